@@ -1,0 +1,40 @@
+#pragma once
+// Reads a text file, plain or gzip-compressed (".gz"), line by line in large chunks.
+
+#include <cstddef>
+#include <cstdio>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace stochnav {
+
+class LineReader final {
+ public:
+  /// Opens `path`; throws InputError if it cannot be read.
+  explicit LineReader(const std::string& path);
+  ~LineReader();
+  LineReader(const LineReader&) = delete;
+  LineReader& operator=(const LineReader&) = delete;
+
+  /// Sets `line` to the next line without its line terminator ("\n" or "\r\n"). The view is
+  /// valid until the next call. Returns false at the end of the file.
+  bool next(std::string_view& line);
+  /// 1-based number of the line last returned.
+  std::size_t line_number() const { return line_number_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::size_t fill();  // reads more bytes after the unconsumed tail; returns bytes read
+
+  std::string path_;
+  void* gz_ = nullptr;          // gzFile when compressed
+  std::FILE* file_ = nullptr;   // plain file otherwise
+  std::vector<char> buffer_;
+  std::size_t begin_ = 0;  // first unconsumed byte
+  std::size_t end_ = 0;    // one past the last valid byte
+  bool eof_ = false;
+  std::size_t line_number_ = 0;
+};
+
+}  // namespace stochnav

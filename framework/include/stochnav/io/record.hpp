@@ -1,0 +1,61 @@
+#pragma once
+// A uniformly sampled record of one sensor channel, and how to read it from a file.
+//
+// Supported files (chosen by extension, then by content):
+//   *.csv            CSV with a header row; the column is chosen by name or 0-based index; an
+//                    optional column named `t` (or `t_s`, `time`) gives the sample times in s.
+//   *.f64, *.f32     raw little-endian IEEE floats, `channels` interleaved channels per epoch.
+//   anything else    text with one or more whitespace-separated numbers per line and `#`
+//                    comment lines (Stable32 style); the first column unless one is chosen.
+//   *.gz             any text format above, gzip-compressed.
+// Every failure throws InputError naming file, line and a fix.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stochnav/core/units.hpp"
+
+namespace stochnav {
+
+/// What the samples are: a rate (gyro rate, fractional frequency) or its integral (angle, clock
+/// phase in s). Allan-variance estimators work on phase; rate records are integrated first.
+enum class DataKind { kRate, kPhase };
+
+/// One channel, uniformly sampled at rate_hz.
+struct Record {
+  std::vector<double> values;  ///< samples in `unit` (rate) or unit*s (phase)
+  double rate_hz = 1.0;        ///< sampling rate (Hz); tau0 = 1 / rate_hz
+  double start_time_s = 0.0;   ///< time of values[0] (s); 0 when the file has no time column
+  DataKind kind = DataKind::kRate;
+  Unit unit = Unit::kPlain;
+  std::string source;  ///< file the record came from, for messages
+  std::string column;  ///< column name (or index as text) within the file
+
+  double tau0() const { return 1.0 / rate_hz; }
+};
+
+struct ReadOptions {
+  std::string path;
+  /// Column by name, or by 0-based index given as digits. Empty: the first column that is not
+  /// a time column.
+  std::string column;
+  /// Sampling rate (Hz). Required unless the file has a time column, from which it is derived;
+  /// when both are given they must agree to 1e-4 relative.
+  std::optional<double> rate_hz;
+  DataKind kind = DataKind::kRate;
+  Unit unit = Unit::kPlain;
+  /// Interleaved channels per epoch in raw binary files (.f64/.f32).
+  int binary_channels = 1;
+};
+
+/// Reads one channel of a file. Throws InputError on malformed content (non-numeric cell, NaN or
+/// infinity, missing column, ragged row, fewer than 2 samples, non-uniform or decreasing time)
+/// and ConfigError on inconsistent options (no rate and no time column, rate <= 0).
+Record read_record(const ReadOptions& options);
+
+/// Column names of a CSV file's header (or "0", "1", ... for headerless text), for messages.
+std::vector<std::string> list_columns(const std::string& path);
+
+}  // namespace stochnav

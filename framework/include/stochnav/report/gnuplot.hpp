@@ -1,0 +1,27 @@
+#pragma once
+// Plots through gnuplot (an external program, Debian package gnuplot-nox).
+//
+// Scripts carry their data inline as datablocks, so a plot is one script and one output file;
+// the picture is rendered to a temporary file and renamed into place when gnuplot succeeds.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace stochnav {
+
+/// Throws ConfigError with an install hint when gnuplot is not on PATH. Call it before any
+/// work whose result is to be plotted, so a missing gnuplot costs nothing.
+void require_gnuplot();
+
+/// A gnuplot datablock `$name << EOD ... EOD` with one row per index and one column per vector
+/// (all columns the same length).
+std::string gnuplot_datablock(const std::string& name,
+                              const std::vector<const std::vector<double>*>& columns);
+
+/// Renders `script` (without a `set terminal` / `set output` line) to `output`: the terminal is
+/// chosen from the extension (.png: pngcairo 1000x700; .svg: svg). Throws ConfigError for other
+/// extensions and InputError if gnuplot fails (with its first error line).
+void render_gnuplot(const std::string& script, const std::filesystem::path& output);
+
+}  // namespace stochnav

@@ -1,0 +1,89 @@
+#include "stochnav/io/line_reader.hpp"
+
+#include <zlib.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "stochnav/core/errors.hpp"
+
+namespace stochnav {
+namespace {
+
+constexpr std::size_t kChunkBytes = 1 << 20;
+
+bool ends_with(std::string_view text, std::string_view suffix) {
+  return text.size() >= suffix.size() && text.substr(text.size() - suffix.size()) == suffix;
+}
+
+}  // namespace
+
+LineReader::LineReader(const std::string& path) : path_(path), buffer_(kChunkBytes) {
+  if (ends_with(path, ".gz")) {
+    gz_ = gzopen(path.c_str(), "rb");
+    if (gz_ != nullptr) gzbuffer(static_cast<gzFile>(gz_), 1 << 17);
+  } else {
+    file_ = std::fopen(path.c_str(), "rb");
+  }
+  if (gz_ == nullptr && file_ == nullptr) {
+    throw InputError(path + ": cannot open file (" + std::strerror(errno) +
+                     "); check the path given with --input");
+  }
+}
+
+LineReader::~LineReader() {
+  if (gz_ != nullptr) gzclose(static_cast<gzFile>(gz_));
+  if (file_ != nullptr) std::fclose(file_);
+}
+
+std::size_t LineReader::fill() {
+  // Keep the unconsumed tail (a partial line) at the front, grow if one line fills the buffer.
+  const std::size_t tail = end_ - begin_;
+  if (begin_ > 0) std::memmove(buffer_.data(), buffer_.data() + begin_, tail);
+  begin_ = 0;
+  end_ = tail;
+  if (end_ == buffer_.size()) buffer_.resize(buffer_.size() * 2);
+  const std::size_t room = buffer_.size() - end_;
+  std::size_t got = 0;
+  if (gz_ != nullptr) {
+    const int n = gzread(static_cast<gzFile>(gz_), buffer_.data() + end_,
+                         static_cast<unsigned>(room));
+    if (n < 0) throw InputError(path_ + ": corrupt gzip stream; re-create the .gz file");
+    got = static_cast<std::size_t>(n);
+  } else {
+    got = std::fread(buffer_.data() + end_, 1, room, file_);
+    if (got == 0 && std::ferror(file_)) throw InputError(path_ + ": read error");
+  }
+  end_ += got;
+  if (got == 0) eof_ = true;
+  return got;
+}
+
+bool LineReader::next(std::string_view& line) {
+  while (true) {
+    const char* start = buffer_.data() + begin_;
+    const auto* newline =
+        static_cast<const char*>(std::memchr(start, '\n', end_ - begin_));
+    if (newline != nullptr) {
+      std::size_t length = static_cast<std::size_t>(newline - start);
+      begin_ += length + 1;
+      if (length > 0 && start[length - 1] == '\r') --length;
+      line = std::string_view(start, length);
+      ++line_number_;
+      return true;
+    }
+    if (eof_ || fill() == 0) {
+      if (begin_ == end_) return false;
+      // Last line without a terminator.
+      const char* rest = buffer_.data() + begin_;
+      std::size_t length = end_ - begin_;
+      if (rest[length - 1] == '\r') --length;
+      line = std::string_view(rest, length);
+      begin_ = end_;
+      ++line_number_;
+      return true;
+    }
+  }
+}
+
+}  // namespace stochnav

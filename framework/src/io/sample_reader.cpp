@@ -1,0 +1,342 @@
+#include "stochnav/io/sample_reader.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <optional>
+#include <string_view>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/io/line_reader.hpp"
+#include "stochnav/io/text_cells.hpp"
+
+namespace stochnav {
+namespace {
+
+enum class FileFormat { kCsv, kText, kFloat64, kFloat32 };
+
+bool ends_with(std::string_view text, std::string_view suffix) {
+  return text.size() >= suffix.size() && text.substr(text.size() - suffix.size()) == suffix;
+}
+
+FileFormat format_of(std::string_view path) {
+  std::string_view stem = path;
+  if (ends_with(stem, ".gz")) stem.remove_suffix(3);
+  if (ends_with(stem, ".csv")) return FileFormat::kCsv;
+  if (ends_with(path, ".f64")) return FileFormat::kFloat64;
+  if (ends_with(path, ".f32")) return FileFormat::kFloat32;
+  return FileFormat::kText;
+}
+
+bool is_time_column(std::string_view name) {
+  return name == "t" || name == "t_s" || name == "time" || name == "time_s";
+}
+
+std::optional<std::size_t> parse_index(std::string_view text) {
+  if (text.empty() || !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    return std::nullopt;
+  }
+  std::size_t value = 0;
+  std::from_chars(text.data(), text.data() + text.size(), value);
+  return value;
+}
+
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+}  // namespace
+
+/// Tracks a time column: checks uniform, increasing sampling and derives the rate.
+class TimeAxis {
+ public:
+  void add(double t_s, const std::string& where) {
+    if (count_ == 0) {
+      first_ = t_s;
+    } else {
+      const double step = t_s - last_;
+      if (!(step > 0.0)) {
+        throw InputError(where + ": time does not increase (t = " + format(t_s) + " s after " +
+                         format(last_) + " s); sort the record and remove duplicate epochs");
+      }
+      if (count_ == 1) {
+        nominal_step_ = step;
+      } else if (std::abs(step - nominal_step_) > 0.01 * nominal_step_) {
+        throw InputError(where + ": time is not uniformly sampled (step " + format(step) +
+                         " s where the record started with " + format(nominal_step_) +
+                         " s); fill the gap or split the record at this line");
+      }
+    }
+    last_ = t_s;
+    ++count_;
+  }
+  bool has_rate() const { return count_ >= 2; }
+  double rate_hz() const { return static_cast<double>(count_ - 1) / (last_ - first_); }
+  double first() const { return first_; }
+
+ private:
+  static std::string format(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", value);
+    return text;
+  }
+  std::size_t count_ = 0;
+  double first_ = 0.0;
+  double last_ = 0.0;
+  double nominal_step_ = 0.0;
+};
+
+class SampleReader::Impl {
+ public:
+  explicit Impl(const ReadOptions& options) : options_(options), format_(format_of(options.path)) {
+    if (options.rate_hz && !(*options.rate_hz > 0.0 && std::isfinite(*options.rate_hz))) {
+      throw ConfigError("--rate must be a positive number of Hz (got " +
+                        std::to_string(*options.rate_hz) + ")");
+    }
+    if (format_ == FileFormat::kFloat64 || format_ == FileFormat::kFloat32) {
+      open_binary();
+    } else {
+      lines_.emplace(options.path);
+      open_text();
+    }
+    if (!time_column_ && !options.rate_hz) {
+      throw ConfigError(options.path + ": no time column (t, t_s, time) and no --rate; give --rate HZ");
+    }
+  }
+
+  std::size_t read_block(std::vector<double>& out, std::size_t max_samples) {
+    const std::size_t got = binary_ ? read_binary(out, max_samples) : read_text(out, max_samples);
+    samples_ += got;
+    if (got == 0 && !finished_) finish();
+    return got;
+  }
+
+  double rate_hz() const {
+    if (time_column_ && time_.has_rate()) return time_.rate_hz();
+    return options_.rate_hz.value_or(0.0);
+  }
+  double start_time_s() const { return time_column_ ? time_.first() : 0.0; }
+  const std::string& column_name() const { return column_name_; }
+  std::size_t samples_read() const { return samples_; }
+
+ private:
+  std::string where() const { return options_.path + ":" + std::to_string(lines_->line_number()); }
+
+  // Skips blank and '#' lines. Returns false at the end of the file.
+  bool next_data_line(std::string_view& line) {
+    while (lines_->next(line)) {
+      const std::string_view trimmed = trim(line);
+      if (trimmed.empty() || trimmed.front() == '#') continue;
+      line = trimmed;
+      return true;
+    }
+    return false;
+  }
+
+  void open_text() {
+    separator_ = format_ == FileFormat::kCsv ? ',' : ' ';
+    std::string_view first;
+    if (!next_data_line(first)) {
+      throw InputError(options_.path + ": no samples (the file is empty or only comments); " +
+                       "check that --input names the record");
+    }
+    split_cells(first, separator_, cells_);
+    const bool numeric_first_line = std::all_of(cells_.begin(), cells_.end(), [](std::string_view c) {
+      double ignored = 0.0;
+      return parse_number(c, ignored);
+    });
+    if (format_ == FileFormat::kCsv && !numeric_first_line) {
+      for (auto cell : cells_) names_.emplace_back(trim(cell));
+    } else {
+      for (std::size_t i = 0; i < cells_.size(); ++i) names_.push_back(std::to_string(i));
+      pending_line_ = std::string(first);  // the first line is data
+    }
+    choose_columns();
+  }
+
+  void choose_columns() {
+    for (std::size_t i = 0; i < names_.size(); ++i) {
+      if (is_time_column(names_[i])) time_column_ = i;
+    }
+    if (options_.column.empty()) {
+      for (std::size_t i = 0; i < names_.size(); ++i) {
+        if (!time_column_ || i != *time_column_) {
+          value_column_ = i;
+          break;
+        }
+      }
+      if (!value_column_) {
+        throw InputError(options_.path + ":1: only a time column; the record needs a data column");
+      }
+    } else if (auto index = parse_index(options_.column)) {
+      if (*index >= names_.size()) {
+        throw InputError(options_.path + ":1: column index " + options_.column + " out of range (" +
+                         std::to_string(names_.size()) + " columns: " + join(names_) +
+                         "); pass --column with an index from 0 to " +
+                         std::to_string(names_.size() - 1));
+      }
+      value_column_ = *index;
+    } else {
+      const auto it = std::find(names_.begin(), names_.end(), options_.column);
+      if (it == names_.end()) {
+        throw InputError(options_.path + ":1: no column '" + options_.column + "' (columns: " +
+                         join(names_) + "); pass --column with one of these names or an index");
+      }
+      value_column_ = static_cast<std::size_t>(it - names_.begin());
+    }
+    if (time_column_ && *time_column_ == *value_column_) time_column_.reset();
+    column_name_ = names_[*value_column_];
+  }
+
+  void parse_line(std::string_view line, std::vector<double>& out) {
+    split_cells(line, separator_, cells_);
+    if (cells_.size() != names_.size() && format_ == FileFormat::kCsv) {
+      throw InputError(where() + ": row has " + std::to_string(cells_.size()) + " cells, the header " +
+                       std::to_string(names_.size()) + "; fix the row or remove it");
+    }
+    if (*value_column_ >= cells_.size()) {
+      throw InputError(where() + ": row has no column " + std::to_string(*value_column_) +
+                       "; fix the row or choose another --column");
+    }
+    double value = 0.0;
+    const std::string_view cell = cells_[*value_column_];
+    if (!parse_number(cell, value)) {
+      throw InputError(where() + ": '" + std::string(trim(cell)) + "' in column '" + column_name_ +
+                       "' is not a number; fix or remove the row");
+    }
+    if (!std::isfinite(value)) {
+      throw InputError(where() + ": " + std::string(trim(cell)) + " in column '" + column_name_ +
+                       "'; NaN and infinity are not samples: fill the gap or split the record");
+    }
+    if (time_column_) {
+      double t = 0.0;
+      const std::string_view t_cell = cells_[*time_column_];
+      if (!parse_number(t_cell, t) || !std::isfinite(t)) {
+        throw InputError(where() + ": time '" + std::string(trim(t_cell)) +
+                         "' is not a finite number; fix or remove the row");
+      }
+      time_.add(t, where());
+    }
+    out.push_back(value);
+  }
+
+  std::size_t read_text(std::vector<double>& out, std::size_t max_samples) {
+    std::size_t got = 0;
+    if (pending_line_ && max_samples > 0) {
+      parse_line(*pending_line_, out);
+      pending_line_.reset();
+      ++got;
+    }
+    std::string_view line;
+    while (got < max_samples && next_data_line(line)) {
+      parse_line(line, out);
+      ++got;
+    }
+    return got;
+  }
+
+  void open_binary() {
+    binary_ = std::make_unique<std::ifstream>(options_.path, std::ios::binary | std::ios::ate);
+    if (!*binary_) {
+      throw InputError(options_.path + ": cannot open file (" + std::strerror(errno) +
+                       "); check the path given with --input");
+    }
+    const auto bytes = static_cast<std::size_t>(binary_->tellg());
+    binary_->seekg(0);
+    sample_bytes_ = format_ == FileFormat::kFloat64 ? 8 : 4;
+    if (options_.binary_channels < 1) {
+      throw ConfigError("--columns must be at least 1 (got " +
+                        std::to_string(options_.binary_channels) + ")");
+    }
+    channels_ = static_cast<std::size_t>(options_.binary_channels);
+    const std::size_t epoch_bytes = sample_bytes_ * channels_;
+    if (bytes % epoch_bytes != 0) {
+      throw InputError(options_.path + ": size " + std::to_string(bytes) +
+                       " bytes is not a whole number of epochs of " + std::to_string(channels_) +
+                       " x " + std::to_string(sample_bytes_) + " bytes; check --columns and the type");
+    }
+    epochs_total_ = bytes / epoch_bytes;
+    for (std::size_t i = 0; i < channels_; ++i) names_.push_back(std::to_string(i));
+    choose_columns();
+    time_column_.reset();
+  }
+
+  std::size_t read_binary(std::vector<double>& out, std::size_t max_samples) {
+    const std::size_t epochs = std::min(max_samples, epochs_total_ - epochs_read_);
+    raw_.resize(epochs * channels_ * sample_bytes_);
+    binary_->read(raw_.data(), static_cast<std::streamsize>(raw_.size()));
+    for (std::size_t e = 0; e < epochs; ++e) {
+      const char* at = raw_.data() + (e * channels_ + *value_column_) * sample_bytes_;
+      double value = 0.0;
+      if (sample_bytes_ == 8) {
+        std::memcpy(&value, at, 8);
+      } else {
+        float narrow = 0.0F;
+        std::memcpy(&narrow, at, 4);
+        value = narrow;
+      }
+      if (!std::isfinite(value)) {
+        throw InputError(options_.path + ": epoch " + std::to_string(epochs_read_ + e) +
+                         " of channel " + column_name_ +
+                         " is NaN or infinite; fill the gap or split the record");
+      }
+      out.push_back(value);
+    }
+    epochs_read_ += epochs;
+    return epochs;
+  }
+
+  void finish() {
+    finished_ = true;
+    if (samples_ == 0) {
+      throw InputError(options_.path + ": no samples (the file is empty or only comments); " +
+                       "check that --input names the record");
+    }
+    if (samples_ < 2) {
+      throw InputError(options_.path + ": only one sample; an Allan variance needs at least two");
+    }
+    if (time_column_ && options_.rate_hz &&
+        std::abs(time_.rate_hz() - *options_.rate_hz) > 1e-4 * *options_.rate_hz) {
+      throw InputError(options_.path + ": --rate " + std::to_string(*options_.rate_hz) +
+                       " Hz disagrees with the time column (" + std::to_string(time_.rate_hz()) +
+                       " Hz); drop --rate or fix the time column");
+    }
+  }
+
+  ReadOptions options_;
+  FileFormat format_;
+  std::optional<LineReader> lines_;
+  std::unique_ptr<std::ifstream> binary_;
+  std::vector<char> raw_;
+  std::size_t sample_bytes_ = 8;
+  std::size_t channels_ = 1;
+  std::size_t epochs_total_ = 0;
+  std::size_t epochs_read_ = 0;
+  char separator_ = ',';
+  std::vector<std::string> names_;
+  std::vector<std::string_view> cells_;
+  std::optional<std::string> pending_line_;
+  std::optional<std::size_t> value_column_;
+  std::optional<std::size_t> time_column_;
+  std::string column_name_;
+  TimeAxis time_;
+  std::size_t samples_ = 0;
+  bool finished_ = false;
+};
+
+SampleReader::SampleReader(const ReadOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+SampleReader::~SampleReader() = default;
+std::size_t SampleReader::read_block(std::vector<double>& out, std::size_t max_samples) {
+  return impl_->read_block(out, max_samples);
+}
+double SampleReader::rate_hz() const { return impl_->rate_hz(); }
+double SampleReader::start_time_s() const { return impl_->start_time_s(); }
+const std::string& SampleReader::column_name() const { return impl_->column_name(); }
+std::size_t SampleReader::samples_read() const { return impl_->samples_read(); }
+
+}  // namespace stochnav
