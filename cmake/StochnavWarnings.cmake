@@ -1,7 +1,9 @@
 # Private interface target carrying the project's warning and sanitizer flags.
 add_library(stochnav_warnings INTERFACE)
 target_compile_options(stochnav_warnings INTERFACE
-  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wconversion -Wno-sign-conversion)
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wconversion -Wno-sign-conversion
+  # C++20 designated initializers leave defaulted members out on purpose.
+  -Wno-missing-field-initializers)
 if(STOCHNAV_WERROR)
   target_compile_options(stochnav_warnings INTERFACE -Werror)
 endif()

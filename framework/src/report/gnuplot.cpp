@@ -28,7 +28,11 @@ std::string quoted(const std::string& text) {
 
 }  // namespace
 
-void require_gnuplot() {
+void check_plot_request(const std::filesystem::path& output) {
+  const std::string extension = output.extension().string();
+  if (extension != ".png" && extension != ".svg") {
+    throw ConfigError("--plot " + output.string() + ": use a .png or .svg file name");
+  }
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
     throw ConfigError(
         "--plot needs gnuplot, which is not on PATH; install it (apt-get install gnuplot-nox) "
@@ -62,7 +66,7 @@ void render_gnuplot(const std::string& script, const std::filesystem::path& outp
   } else {
     throw ConfigError("--plot " + output.string() + ": use a .png or .svg file name");
   }
-  require_gnuplot();
+  check_plot_request(output);
   PendingFile picture(output);
   PendingFile script_file(output.string() + ".gp");
   {

@@ -10,9 +10,9 @@
 
 namespace stochnav {
 
-/// Throws ConfigError with an install hint when gnuplot is not on PATH. Call it before any
-/// work whose result is to be plotted, so a missing gnuplot costs nothing.
-void require_gnuplot();
+/// Checks a requested plot before any work is done: the file name ends in .png or .svg and
+/// gnuplot is on PATH. Throws ConfigError (with an install hint when gnuplot is missing).
+void check_plot_request(const std::filesystem::path& output);
 
 /// A gnuplot datablock `$name << EOD ... EOD` with one row per index and one column per vector
 /// (all columns the same length).

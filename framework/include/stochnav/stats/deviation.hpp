@@ -1,0 +1,112 @@
+#pragma once
+// Allan-family deviations of a phase record, with the averaging-factor sets, term counts, noise
+// identification, equivalent degrees of freedom and 68.3 % confidence intervals that Stable32
+// (W. Riley, Hamilton Technical Services) reports, so results can be checked against its tables.
+//
+// Conventions (NIST SP 1065, "Handbook of Frequency Stability Analysis", W. Riley, 2008):
+//   x[0 .. N-1]  phase points taken every tau0 seconds (unit U*s for a rate in unit U; clock
+//                phase in s). Rate records are integrated first (phase.hpp).
+//   m            averaging factor, tau = m * tau0 (s).
+//   deviation    in the unit of the rate (U), except TDEV, a time deviation in U*s.
+//
+//   kAdev   Allan, non-overlapping:   AVAR = sum over i = 0, m, 2m, ... of
+//           (x[i+2m] - 2 x[i+m] + x[i])^2 / (2 tau^2 n),  n = floor((N-1)/m) - 1 terms
+//   kOadev  Allan, overlapping: same sum over every i, n = N - 2m terms
+//   kMdev   modified Allan: MVAR = sum over j of (sum_{i=j}^{j+m-1} x[i+2m] - 2 x[i+m] + x[i])^2
+//           / (2 m^2 tau^2 n),  n = N - 3m + 1 terms
+//   kTdev   time deviation: TDEV = tau * MDEV / sqrt(3) (same terms as MDEV)
+//   kHdev   Hadamard, non-overlapping: HVAR = sum over i = 0, m, 2m, ... of
+//           (x[i+3m] - 3 x[i+2m] + 3 x[i+m] - x[i])^2 / (6 tau^2 n),  n = floor((N-1)/m) - 2
+//   kOhdev  Hadamard, overlapping: same sum over every i, n = N - 3m terms
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "stochnav/stats/confidence.hpp"
+
+namespace stochnav {
+
+enum class Deviation { kAdev, kOadev, kMdev, kTdev, kHdev, kOhdev };
+
+/// Which averaging factors to evaluate.
+enum class TauSpacing {
+  kOctave,  ///< m = 1, 2, 4, 8, ... (Stable32 "octave")
+  kDecade,  ///< m = 1, 2, 4, 10, 20, 40, 100, ... (Stable32 "decade")
+  kDense,   ///< about 10 log-spaced distinct integers per decade (stochnav's own choice)
+  kAll,     ///< Stable32 "all tau": every m at first, then ever sparser, about 490 points
+            ///< spread over the decades of tau the result spans (see averaging_factors)
+};
+
+/// "adev", "oadev", "mdev", "tdev", "hdev", "ohdev".
+std::string_view deviation_name(Deviation kind);
+/// The inverse of deviation_name; nullopt for anything else (case-sensitive).
+std::optional<Deviation> deviation_from_name(std::string_view name);
+/// deviation_from_name, or throws ConfigError naming the text and the accepted names.
+Deviation parse_deviation(std::string_view name);
+
+/// Order d of the phase difference the variance is built on: 2 (Allan family), 3 (Hadamard).
+int difference_order(Deviation kind);
+/// True for the estimators that use every start index (OADEV, MDEV, TDEV, OHDEV).
+bool is_overlapping(Deviation kind);
+/// True for MDEV and TDEV (the phase is averaged over m points before differencing).
+bool is_modified(Deviation kind);
+
+/// Number of terms (squared differences) of the estimator at averaging factor m on N phase
+/// points, as Stable32 reports it in its `#` column: OADEV N - 2m; ADEV floor((N-1)/m) - 1;
+/// MDEV and TDEV N - 3m + 1; HDEV floor((N-1)/m) - 2; OHDEV N - 3m. 0 when m == 0 or the record
+/// is too short for even one term.
+std::size_t term_count(Deviation kind, std::size_t m, std::size_t phase_count);
+
+/// Largest averaging factor Stable32 evaluates on N phase points: the largest m with
+/// 5m < N - 1 (ADEV, HDEV) or 4m < N - 1 (the overlapping and modified estimators). Inferred
+/// from Stable32 tables: PHASE.DAT (N = 1001) stops ADEV at m = 197 < 200 and OADEV at 247.
+/// 0 when the record is too short.
+std::size_t max_averaging_factor(Deviation kind, std::size_t phase_count);
+
+/// The averaging factors Stable32 would use for `kind` on N phase points, ascending, all
+/// <= max_averaging_factor(kind, N); empty when N is too short.
+///   kOctave, kDecade: powers of two; 1, 2, 4 times powers of ten.
+///   kAll: m = 1, then m <- m + floor(m / K) + 1 with K = floor(213 / D), where D is the number
+///     of decades of tau the result spans, ceil(log10(m_max * tau0_s)) - floor(log10(tau0_s)).
+///     Inferred from Stable32's all-tau tables (D = 3 .. 6, record lengths 1001 .. 556990,
+///     tau0 = 1 s and 42 s); tau0_s matters only here.
+///   kDense: round(10^(k/10)), k = 0, 1, 2, ..., duplicates removed.
+std::vector<std::size_t> averaging_factors(Deviation kind, TauSpacing spacing,
+                                           std::size_t phase_count, double tau0_s = 1.0);
+
+/// The raw estimator (see the formulas above) at averaging factor m, tau = m * tau0_s. Throws
+/// std::invalid_argument when term_count(kind, m, phase.size()) == 0 (m == 0 included).
+double deviation_value(Deviation kind, std::span<const double> phase, double tau0_s,
+                       std::size_t m);
+
+/// deviation_value at each of `m_values` (any order), sharing the passes over the data: the
+/// overlapping Allan and Hadamard sums of all factors are accumulated block by block, so each
+/// cache-sized block of the phase is read from memory once for all of them. Same throws.
+std::vector<double> deviation_values(Deviation kind, std::span<const double> phase,
+                                     double tau0_s, std::span<const std::size_t> m_values);
+
+/// One row of a Stable32-style result table.
+struct DeviationPoint {
+  std::size_t m = 0;       ///< averaging factor
+  double tau_s = 0.0;      ///< m * tau0 (s)
+  double deviation = 0.0;  ///< the estimate (unit of the rate; U*s for TDEV)
+  std::size_t terms = 0;   ///< term_count(kind, m, N)
+  int alpha = 0;           ///< identified power-law noise, S_y(f) ~ f^alpha, in [-2, 2]
+  double edf = 0.0;        ///< equivalent degrees of freedom of the variance (Greenhall)
+  double lower = 0.0;      ///< lower bound of the chi-square confidence interval (deviation units)
+  double upper = 0.0;      ///< upper bound
+};
+
+/// Deviation, noise type (noise_id.hpp), EDF (edf.hpp) and the chi-square interval
+/// (confidence.hpp) at each averaging factor, in the order given. `confidence` is the two-sided
+/// probability of [lower, upper]; Stable32 uses 0.683. Throws std::invalid_argument when an m
+/// leaves no terms.
+std::vector<DeviationPoint> compute_deviation(Deviation kind, std::span<const double> phase,
+                                              double tau0_s,
+                                              std::span<const std::size_t> m_values,
+                                              double confidence = kStable32Confidence);
+
+}  // namespace stochnav

@@ -1,0 +1,34 @@
+#pragma once
+// Equivalent degrees of freedom (EDF) of the Allan-family variance estimators, by the algorithm
+// of C. A. Greenhall and W. J. Riley, "Uncertainty of Stability Variances Based on Finite
+// Differences", Proc. 35th PTTI Meeting, 2003, pp. 267-280 (the one Stable32 uses). It covers
+// every estimator built from d-th differences of phase, overlapping or not, modified (phase
+// averaged over m points first) or not, for power-law noise S_y(f) ~ f^alpha.
+//
+// With F = 1 (modified) or m (unmodified) and S = m (overlapping) or 1 (non-overlapping), the
+// estimator averages M = 1 + floor(S (N - L) / m) squared filter outputs, L = m / F + m d. The
+// EDF is 2 (E v)^2 / Var v for the estimate v, computed from the generalized autocovariance of
+// the power-law noise: exactly (a finite sum of at most J = min(M, (d+1) S) terms) while
+// J <= 100, and otherwise from the paper's asymptotic Tables 1-3 or its decimated sum.
+// White PM (alpha = 2) on unmodified variances uses the exact closed form
+//   1/edf = (1/M) [1 + 2 sum_{k=1}^{min(d, K-1)} (1 - k/r) rho_k^2],
+// rho_k = C(2d, d-k) / C(2d, d), r = M / S, K = ceil(r), which is the paper's Case 4.
+
+#include <cstddef>
+
+namespace stochnav {
+
+struct EdfQuery {
+  int alpha = 0;                 ///< power-law noise exponent of S_y(f), -4 .. 2, alpha + 2d > 1
+  int d = 2;                     ///< difference order: 2 Allan, 3 Hadamard (1 also supported)
+  std::size_t m = 1;             ///< averaging factor (>= 1)
+  std::size_t phase_count = 0;   ///< N, phase points of the record
+  bool overlapping = false;      ///< every start index (OADEV, MDEV, OHDEV) or stride m
+  bool modified = false;         ///< modified variance (MDEV, TDEV)
+};
+
+/// Greenhall-Riley EDF, > 0. NaN when the query is outside the algorithm's domain: alpha
+/// outside [-4, 2], d outside [1, 3], alpha + 2d <= 1, m == 0, or N too short for one term.
+double greenhall_edf(const EdfQuery& query);
+
+}  // namespace stochnav

@@ -1,0 +1,53 @@
+#pragma once
+// Power-law noise identification at one averaging factor, as Stable32 does it: the dominant
+// noise S_y(f) ~ f^alpha is needed to choose the EDF of a deviation (edf.hpp).
+//
+//   alpha   2 white PM   1 flicker PM   0 white FM   -1 flicker FM   -2 random-walk FM
+//
+// 1. Lag-1 autocorrelation (W. J. Riley and C. A. Greenhall, "Power Law Noise Identification
+//    Using the Lag 1 Autocorrelation", Proc. 18th EFTF, 2004), used while the phase decimated by
+//    m keeps at least kMinLag1Points points: the decimated phase has its quadratic (frequency
+//    offset and drift) removed, then is differenced until its lag-1 autocorrelation r1 gives
+//    delta = r1 / (1 + r1) < 0.25, or d_max differences were taken (2 for the Allan family, 3
+//    for Hadamard). Then alpha = 2 - 2 d - round(2 delta).
+// 2. Otherwise the B1 bias ratio (J. A. Barnes, NBS TN 375, 1969): the sample variance of the
+//    n = floor((N-1)/m) non-overlapping frequency averages over their Allan variance, against
+//    its expectation B1(n, mu) = n (1 - n^mu) / (2 (n-1) (1 - 2^mu)) for the Allan-variance
+//    exponent mu (alpha 2 and 1 -> -2, 0 -> -1, -1 -> 0, -2 -> 1), the nearest in the geometric
+//    sense. B1 cannot split white from flicker PM (both mu = -2); the R(n) ratio MVAR / AVAR at
+//    the same m does (expected 1/m for white PM, 3 ln(256/27) / (2 (1.038 + 3 ln(pi m))) for
+//    flicker PM with f_h = 1 / (2 tau0)).
+// The result is clamped to [-2, 2], the range Stable32 reports.
+
+#include <cstddef>
+#include <span>
+
+#include "stochnav/stats/deviation.hpp"
+
+namespace stochnav {
+
+/// Fewest decimated phase points for the lag-1 autocorrelation method.
+inline constexpr std::size_t kMinLag1Points = 30;
+
+enum class NoiseIdMethod { kLag1Autocorrelation, kB1Ratio, kB1AndRn };
+
+struct NoiseId {
+  int alpha = 0;  ///< identified exponent, -2 .. 2
+  NoiseIdMethod method = NoiseIdMethod::kLag1Autocorrelation;
+  /// Lag-1 method: the unrounded alpha, 2 - 2 d - 2 delta. Otherwise the B1 ratio.
+  double statistic = 0.0;
+};
+
+/// Noise type of `phase` (N points) at averaging factor m, for the deviation `kind` (which sets
+/// d_max). Requires m >= 1 and N > 2m + 1 (throws std::invalid_argument otherwise).
+NoiseId identify_noise(Deviation kind, std::span<const double> phase, std::size_t m);
+
+/// Lag-1 autocorrelation of a series (mean removed):
+///   sum_{i<n-1} (z_i - mean)(z_{i+1} - mean) / sum_i (z_i - mean)^2.
+/// 0 for fewer than 2 points or a constant series.
+double lag1_autocorrelation(std::span<const double> series);
+
+/// Expected B1 ratio for n frequency averages and Allan-variance tau exponent mu (-2 .. 2).
+double b1_expected(double n, int mu);
+
+}  // namespace stochnav

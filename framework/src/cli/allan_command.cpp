@@ -1,0 +1,124 @@
+// stochnav allan: Allan-family deviations of a record with Stable32 confidence intervals.
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "allan_plot.hpp"
+#include "command_support.hpp"
+#include "commands.hpp"
+#include "stochnav/core/errors.hpp"
+#include "stochnav/report/gnuplot.hpp"
+#include "stochnav/stats/deviation.hpp"
+#include "stochnav/stats/phase.hpp"
+
+namespace stochnav::cli {
+namespace {
+
+struct AllanArguments {
+  InputArguments input;
+  std::string taus = "octave";
+  std::string deviation = "oadev";
+  std::string format = "table";
+  std::string plot;
+  std::string fit;
+  std::string output;
+};
+
+TauSpacing parse_spacing(const std::string& text) {
+  if (text == "octave") return TauSpacing::kOctave;
+  if (text == "decade") return TauSpacing::kDecade;
+  if (text == "dense") return TauSpacing::kDense;
+  if (text == "all") return TauSpacing::kAll;
+  throw ConfigError("--taus '" + text + "': use octave, decade, dense or all");
+}
+
+std::string as_json(const std::vector<DeviationPoint>& points) {
+  nlohmann::json out = {{"tau", nlohmann::json::array()},   {"adev", nlohmann::json::array()},
+                        {"adev_lo", nlohmann::json::array()}, {"adev_hi", nlohmann::json::array()},
+                        {"n", nlohmann::json::array()},     {"edf", nlohmann::json::array()},
+                        {"alpha", nlohmann::json::array()}};
+  for (const auto& p : points) {
+    out["tau"].push_back(p.tau_s);
+    out["adev"].push_back(p.deviation);
+    out["adev_lo"].push_back(p.lower);
+    out["adev_hi"].push_back(p.upper);
+    out["n"].push_back(p.terms);
+    out["edf"].push_back(p.edf);
+    out["alpha"].push_back(p.alpha);
+  }
+  return out.dump(2) + "\n";
+}
+
+std::string as_csv(const std::vector<DeviationPoint>& points) {
+  std::string out = "m,tau,n,alpha,edf,adev_lo,adev,adev_hi\n";
+  for (const auto& p : points) {
+    out += fmt::format("{},{:.10g},{},{},{:.6g},{:.10g},{:.10g},{:.10g}\n", p.m, p.tau_s, p.terms,
+                       p.alpha, p.edf, p.lower, p.deviation, p.upper);
+  }
+  return out;
+}
+
+std::string as_table(const std::vector<DeviationPoint>& points, const Record& record,
+                     Deviation kind) {
+  std::string out = fmt::format("# {} of {} [{}], {} samples at {} Hz, unit {}\n",
+                                deviation_name(kind), record.source, record.column,
+                                record.values.size(), record.rate_hz, unit_name(record.unit));
+  out += fmt::format("{:>9} {:>12} {:>9} {:>5} {:>10} {:>12} {:>12} {:>12}\n", "m", "tau_s", "n",
+                     "alpha", "edf", "lower", "deviation", "upper");
+  for (const auto& p : points) {
+    out += fmt::format("{:>9} {:>12.5e} {:>9} {:>5} {:>10.4g} {:>12.5e} {:>12.5e} {:>12.5e}\n", p.m,
+                       p.tau_s, p.terms, p.alpha, p.edf, p.lower, p.deviation, p.upper);
+  }
+  return out;
+}
+
+void run_allan(const AllanArguments& arguments) {
+  const OutputFormat format = parse_format(arguments.format);
+  const TauSpacing spacing = parse_spacing(arguments.taus);
+  const Deviation kind = parse_deviation(arguments.deviation);
+  if (!arguments.plot.empty()) check_plot_request(arguments.plot);
+
+  const Record record = read_record(arguments.input.to_read_options());
+  const std::vector<double> phase = record.kind == DataKind::kPhase
+                                        ? record.values
+                                        : phase_from_rate(record.values, record.tau0());
+  const auto m_values = averaging_factors(kind, spacing, phase.size());
+  if (m_values.empty()) {
+    throw InputError(record.source + ": " + std::to_string(record.values.size()) +
+                     " samples are too few for any " + std::string(deviation_name(kind)) +
+                     " averaging time; use a longer record");
+  }
+  const auto points = compute_deviation(kind, phase, record.tau0(), m_values);
+
+  std::string text;
+  switch (format) {
+    case OutputFormat::kJson: text = as_json(points); break;
+    case OutputFormat::kCsv: text = as_csv(points); break;
+    case OutputFormat::kTable: text = as_table(points, record, kind); break;
+  }
+  if (!arguments.plot.empty()) {
+    plot_allan_deviation(points, record, kind, arguments.fit, arguments.plot);
+  }
+  write_output(arguments.output, text);
+}
+
+}  // namespace
+
+void add_allan_command(CLI::App& app) {
+  auto arguments = std::make_shared<AllanArguments>();
+  CLI::App* command = app.add_subcommand("allan", "Allan deviation with confidence intervals");
+  add_input_options(*command, arguments->input);
+  command->add_option("--taus", arguments->taus, "octave, decade, dense or all")
+      ->capture_default_str();
+  command->add_option("--deviation", arguments->deviation, "oadev, adev, mdev, tdev, hdev, ohdev")
+      ->capture_default_str();
+  add_format_option(*command, arguments->format);
+  command->add_option("--plot", arguments->plot, "Draw the deviation to FILE.png or FILE.svg");
+  command->add_option("--fit", arguments->fit,
+                      "Noise model JSON (stochnav fit --format json) drawn over the deviation");
+  command->add_option("--output", arguments->output, "Write to FILE instead of standard output");
+  command->callback([arguments] { run_allan(*arguments); });
+}
+
+}  // namespace stochnav::cli

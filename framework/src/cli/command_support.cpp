@@ -1,0 +1,62 @@
+#include "command_support.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/io/atomic_file.hpp"
+
+namespace stochnav::cli {
+
+ReadOptions InputArguments::to_read_options() const {
+  ReadOptions options;
+  options.path = path;
+  options.column = column;
+  options.rate_hz = rate_hz;
+  if (data == "rate") {
+    options.kind = DataKind::kRate;
+  } else if (data == "phase") {
+    options.kind = DataKind::kPhase;
+  } else {
+    throw ConfigError("--data '" + data + "': use rate or phase");
+  }
+  options.unit = parse_unit(unit);
+  options.binary_channels = binary_channels;
+  return options;
+}
+
+void add_input_options(CLI::App& command, InputArguments& arguments) {
+  command.add_option("--input", arguments.path, "Record file: .csv, text (# comments), .f64/.f32, .gz")
+      ->required();
+  command.add_option("--column", arguments.column, "Column by name or 0-based index");
+  command.add_option("--rate", arguments.rate_hz, "Sampling rate in Hz (when there is no t column)");
+  command.add_option("--data", arguments.data, "rate (gyro rate, frequency) or phase (its integral)")
+      ->capture_default_str();
+  command.add_option("--unit", arguments.unit, "deg/h, deg/s, rad/s, m/s^2, g or plain")
+      ->capture_default_str();
+  command.add_option("--columns", arguments.binary_channels,
+                     "Interleaved channels per epoch in .f64/.f32 files")
+      ->capture_default_str();
+}
+
+void add_format_option(CLI::App& command, std::string& format) {
+  command.add_option("--format", format, "table, csv or json")->capture_default_str();
+}
+
+OutputFormat parse_format(const std::string& format) {
+  if (format == "table") return OutputFormat::kTable;
+  if (format == "csv") return OutputFormat::kCsv;
+  if (format == "json") return OutputFormat::kJson;
+  throw ConfigError("--format '" + format + "': use table, csv or json");
+}
+
+void write_output(const std::string& path, const std::string& content) {
+  if (path.empty() || path == "-") {
+    std::cout << content << std::flush;
+    return;
+  }
+  write_file_atomically(path, content);
+}
+
+}  // namespace stochnav::cli

@@ -1,0 +1,35 @@
+#pragma once
+// Pieces shared by the stochnav subcommands: input options, output files, formats.
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+
+#include "stochnav/io/record.hpp"
+
+namespace stochnav::cli {
+
+/// The input options common to allan, davar, fit and diagnose (DESIGN.md CLI contract).
+struct InputArguments {
+  std::string path;
+  std::string column;
+  std::optional<double> rate_hz;
+  std::string data = "rate";
+  std::string unit = "plain";
+  int binary_channels = 1;
+
+  ReadOptions to_read_options() const;
+};
+
+void add_input_options(CLI::App& command, InputArguments& arguments);
+
+enum class OutputFormat { kTable, kCsv, kJson };
+void add_format_option(CLI::App& command, std::string& format);
+OutputFormat parse_format(const std::string& format);
+
+/// Writes `content` to `path` through a temporary file renamed into place, so a failure never
+/// leaves a half-written file. An empty path or "-" writes to standard output.
+void write_output(const std::string& path, const std::string& content);
+
+}  // namespace stochnav::cli

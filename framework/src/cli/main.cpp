@@ -1,0 +1,39 @@
+// stochnav: the command-line tool. Exit codes: 0 success, 2 bad input or configuration (one
+// line on stderr saying what, where and how to fix it), 1 internal failure.
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+#include "stochnav/core/errors.hpp"
+#include "stochnav/version.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"stochnav: inertial-sensor noise modelling for Kalman filters"};
+  app.set_version_flag("--version", std::string(stochnav::kVersion));
+  app.require_subcommand(1);
+  stochnav::cli::add_allan_command(app);
+  stochnav::cli::add_davar_command(app);
+  // FIT stochnav::cli::add_fit_command(app);
+  // SIM stochnav::cli::add_simulate_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& success) {
+    return app.exit(success);
+  } catch (const CLI::ParseError& error) {
+    std::cerr << "stochnav: error: " << error.what() << " (see stochnav --help)\n";
+    return 2;
+  } catch (const stochnav::InputError& error) {
+    std::cerr << "stochnav: error: " << error.what() << '\n';
+    return 2;
+  } catch (const stochnav::ConfigError& error) {
+    std::cerr << "stochnav: error: " << error.what() << '\n';
+    return 2;
+  } catch (const std::exception& error) {
+    std::cerr << "stochnav: internal error: " << error.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,37 @@
+// A Stable32-style result table: deviation, noise type, EDF and confidence interval per tau.
+
+#include "stochnav/stats/deviation.hpp"
+#include "stochnav/stats/edf.hpp"
+#include "stochnav/stats/noise_id.hpp"
+
+namespace stochnav {
+
+std::vector<DeviationPoint> compute_deviation(Deviation kind, std::span<const double> phase,
+                                              double tau0_s,
+                                              std::span<const std::size_t> m_values,
+                                              double confidence) {
+  const std::vector<double> values = deviation_values(kind, phase, tau0_s, m_values);
+  std::vector<DeviationPoint> points;
+  points.reserve(m_values.size());
+  for (std::size_t k = 0; k < m_values.size(); ++k) {
+    DeviationPoint point;
+    point.m = m_values[k];
+    point.tau_s = static_cast<double>(point.m) * tau0_s;
+    point.deviation = values[k];
+    point.terms = term_count(kind, point.m, phase.size());
+    point.alpha = identify_noise(kind, phase, point.m).alpha;
+    point.edf = greenhall_edf({.alpha = point.alpha,
+                               .d = difference_order(kind),
+                               .m = point.m,
+                               .phase_count = phase.size(),
+                               .overlapping = is_overlapping(kind),
+                               .modified = is_modified(kind)});
+    const DeviationInterval interval = chi_square_interval(point.deviation, point.edf, confidence);
+    point.lower = interval.lower;
+    point.upper = interval.upper;
+    points.push_back(point);
+  }
+  return points;
+}
+
+}  // namespace stochnav

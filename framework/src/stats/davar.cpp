@@ -1,0 +1,250 @@
+#include "stochnav/stats/davar.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <string>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/stats/deviation.hpp"
+
+namespace stochnav {
+namespace {
+
+/// A double-double running sum: the prefix sums of squared second differences grow with the
+/// record, and a window's sum is a small difference of two of them.
+struct CompensatedSum {
+  double high = 0.0;
+  double low = 0.0;
+  void add(double value) {
+    const double sum = high + value;
+    const double virtual_value = sum - high;
+    low += (high - (sum - virtual_value)) + (value - virtual_value);
+    high = sum;
+  }
+  friend double operator-(const CompensatedSum& a, const CompensatedSum& b) {
+    return (a.high - b.high) + (a.low - b.low);
+  }
+};
+
+std::size_t phase_points_per_window(std::size_t window, DataKind kind) {
+  return kind == DataKind::kRate ? window + 1 : window;
+}
+
+/// Running state for one averaging factor m.
+struct TauLane {
+  std::size_t m = 0;
+  std::size_t next_term = 0;  // global phase index i of the next term x[i+2m] - 2x[i+m] + x[i]
+  CompensatedSum prefix;      // sum of squared terms with index < next_term
+  std::deque<CompensatedSum> open_starts;  // prefixes at the starts of windows not yet ended
+  std::size_t next_start_window = 0;       // window whose start prefix is recorded next
+  std::size_t next_end_window = 0;         // window whose sum ends next
+};
+
+}  // namespace
+
+std::string DavarOptions::validate(std::size_t record_samples) const {
+  if (step == 0) return "--step must be at least 1 sample (got 0)";
+  if (window < 4) return "--window must be at least 4 samples (got " + std::to_string(window) + ")";
+  if (record_samples > 0 && window > record_samples) {
+    return "--window " + std::to_string(window) + " is longer than the record (" +
+           std::to_string(record_samples) + " samples); use a window of at most " +
+           std::to_string(record_samples) + " samples";
+  }
+  return {};
+}
+
+std::vector<std::size_t> default_davar_m_values(std::size_t window, DataKind kind) {
+  return averaging_factors(Deviation::kOadev, TauSpacing::kOctave,
+                           phase_points_per_window(window, kind));
+}
+
+class DavarAccumulator::Impl {
+ public:
+  Impl(const DavarOptions& options, DataKind kind, double rate_hz, double start_time_s,
+       RowSink sink)
+      : options_(options),
+        kind_(kind),
+        tau0_(1.0 / rate_hz),
+        start_time_s_(start_time_s),
+        window_points_(phase_points_per_window(options.window, kind)),
+        sink_(std::move(sink)) {
+    if (options_.m_values.empty()) options_.m_values = default_davar_m_values(options.window, kind);
+    std::sort(options_.m_values.begin(), options_.m_values.end());
+    if (options_.m_values.front() == 0 || 2 * options_.m_values.back() >= window_points_) {
+      throw ConfigError("DAVAR averaging factors must satisfy 1 <= m and 2m < " +
+                        std::to_string(window_points_) + " phase points per window");
+    }
+    for (std::size_t m : options_.m_values) lanes_.push_back(TauLane{.m = m});
+  }
+
+  void push(std::span<const double> samples) {
+    if (samples.empty()) return;
+    append_phase(samples);
+    const std::size_t available_end = phase_base_ + phase_.size();  // one past last phase index
+    for (std::size_t lane = 0; lane < lanes_.size(); ++lane) advance(lane, available_end);
+    emit_completed_rows();
+    drop_old_phase();
+  }
+
+  std::vector<std::size_t> term_counts() const {
+    std::vector<std::size_t> counts;
+    for (const auto& lane : lanes_) counts.push_back(window_points_ - 2 * lane.m);
+    return counts;
+  }
+  const std::vector<std::size_t>& m_values() const { return options_.m_values; }
+  std::size_t buffered_points() const { return phase_.size(); }
+
+ private:
+  void append_phase(std::span<const double> samples) {
+    if (kind_ == DataKind::kPhase) {
+      phase_.insert(phase_.end(), samples.begin(), samples.end());
+      return;
+    }
+    if (!have_reference_) {
+      // Integrating y - reference keeps the phase small; second differences do not change.
+      const std::size_t count = std::min<std::size_t>(samples.size(), 1 << 16);
+      double sum = 0.0;
+      for (std::size_t i = 0; i < count; ++i) sum += samples[i];
+      rate_reference_ = sum / static_cast<double>(count);
+      have_reference_ = true;
+      phase_.push_back(0.0);
+    }
+    for (double y : samples) {
+      phase_sum_.add((y - rate_reference_) * tau0_);
+      phase_.push_back(phase_sum_.high + phase_sum_.low);
+    }
+  }
+
+  // Processes every term of lane `lane_index` whose phase points have arrived.
+  void advance(std::size_t lane_index, std::size_t available_end) {
+    TauLane& lane = lanes_[lane_index];
+    const std::size_t m = lane.m;
+    if (available_end < 2 * m + 1) return;
+    const std::size_t last_term_end = available_end - 2 * m;  // terms [next_term, last_term_end)
+    const std::size_t span_end = window_points_ - 2 * m;      // terms per window
+    while (lane.next_term <= last_term_end) {
+      // Events at this position: the end of the oldest open window, then a new window start.
+      const std::size_t end_position = lane.next_end_window * options_.step + span_end;
+      const std::size_t start_position = lane.next_start_window * options_.step;
+      if (lane.next_term == end_position && !lane.open_starts.empty()) {
+        record_window_sum(lane_index, lane.next_end_window, lane.prefix - lane.open_starts.front());
+        lane.open_starts.pop_front();
+        ++lane.next_end_window;
+        continue;
+      }
+      if (lane.next_term == start_position) {
+        lane.open_starts.push_back(lane.prefix);
+        ++lane.next_start_window;
+        continue;
+      }
+      std::size_t segment_end = std::min(last_term_end, start_position);
+      if (!lane.open_starts.empty()) segment_end = std::min(segment_end, end_position);
+      if (segment_end == lane.next_term) break;  // waiting for more data
+      lane.prefix.add(sum_of_squared_terms(m, lane.next_term, segment_end));
+      lane.next_term = segment_end;
+    }
+  }
+
+  double sum_of_squared_terms(std::size_t m, std::size_t begin, std::size_t end) const {
+    const double* x = phase_.data() + (begin - phase_base_);
+    const std::size_t count = end - begin;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < count; ++i) {
+      const double d = x[i + 2 * m] - 2.0 * x[i + m] + x[i];
+      sum += d * d;
+    }
+    return sum;
+  }
+
+  void record_window_sum(std::size_t lane_index, std::size_t window, double sum) {
+    if (pending_.empty() || pending_.back().window_index < window) {
+      while (pending_.empty() || pending_.back().window_index < window) {
+        DavarRow row;
+        row.window_index = pending_.empty() ? window : pending_.back().window_index + 1;
+        row.deviation.assign(lanes_.size(), 0.0);
+        pending_.push_back(std::move(row));
+      }
+    }
+    DavarRow& row = pending_[window - pending_.front().window_index];
+    const double tau = static_cast<double>(lanes_[lane_index].m) * tau0_;
+    const double terms = static_cast<double>(window_points_ - 2 * lanes_[lane_index].m);
+    row.deviation[lane_index] = std::sqrt(std::max(sum, 0.0) / (2.0 * tau * tau * terms));
+  }
+
+  // A window is complete when its smallest m (the last lane to reach its end) has been recorded.
+  void emit_completed_rows() {
+    const std::size_t complete_before = lanes_.front().next_end_window;
+    while (!pending_.empty() && pending_.front().window_index < complete_before) {
+      DavarRow& row = pending_.front();
+      const double start = static_cast<double>(row.window_index * options_.step);
+      const double offset =
+          options_.causal ? static_cast<double>(options_.window)
+                          : 0.5 * static_cast<double>(options_.window);
+      row.time_s = start_time_s_ + (start + offset) * tau0_;
+      sink_(row);
+      pending_.pop_front();
+    }
+  }
+
+  // Keeps only the phase points a future term can use, and re-bases them near zero.
+  void drop_old_phase() {
+    std::size_t oldest_needed = phase_base_ + phase_.size();
+    for (const auto& lane : lanes_) oldest_needed = std::min(oldest_needed, lane.next_term);
+    const std::size_t drop = oldest_needed - phase_base_;
+    if (drop < (1 << 15) && drop < phase_.size() / 2) return;
+    phase_.erase(phase_.begin(), phase_.begin() + static_cast<std::ptrdiff_t>(drop));
+    phase_base_ = oldest_needed;
+    if (kind_ == DataKind::kRate && !phase_.empty()) {
+      const double base = phase_.front();
+      for (double& x : phase_) x -= base;
+      phase_sum_.high -= base;
+    }
+  }
+
+  DavarOptions options_;
+  DataKind kind_;
+  double tau0_;
+  double start_time_s_;
+  std::size_t window_points_;
+  RowSink sink_;
+  std::vector<TauLane> lanes_;
+  std::vector<double> phase_;   // phase points [phase_base_, phase_base_ + size)
+  std::size_t phase_base_ = 0;  // global phase index of phase_[0]
+  CompensatedSum phase_sum_;
+  double rate_reference_ = 0.0;
+  bool have_reference_ = false;
+  std::deque<DavarRow> pending_;
+};
+
+DavarAccumulator::DavarAccumulator(const DavarOptions& options, DataKind kind, double rate_hz,
+                                   double start_time_s, RowSink sink)
+    : impl_(std::make_unique<Impl>(options, kind, rate_hz, start_time_s, std::move(sink))) {}
+DavarAccumulator::~DavarAccumulator() = default;
+void DavarAccumulator::push(std::span<const double> samples) { impl_->push(samples); }
+const std::vector<std::size_t>& DavarAccumulator::m_values() const { return impl_->m_values(); }
+std::vector<std::size_t> DavarAccumulator::term_counts() const { return impl_->term_counts(); }
+std::size_t DavarAccumulator::buffered_points() const { return impl_->buffered_points(); }
+
+DavarResult dynamic_allan_deviation(const Record& record, const DavarOptions& options) {
+  if (const std::string problem = options.validate(record.values.size()); !problem.empty()) {
+    throw ConfigError(record.source + ": " + problem);
+  }
+  DavarResult result;
+  DavarAccumulator accumulator(options, record.kind, record.rate_hz, record.start_time_s,
+                               [&result](const DavarRow& row) {
+                                 result.time_s.push_back(row.time_s);
+                                 result.adev.push_back(row.deviation);
+                               });
+  constexpr std::size_t kBlock = 1 << 16;
+  const std::span<const double> all(record.values);
+  for (std::size_t begin = 0; begin < all.size(); begin += kBlock) {
+    accumulator.push(all.subspan(begin, std::min(kBlock, all.size() - begin)));
+  }
+  result.m = accumulator.m_values();
+  result.terms = accumulator.term_counts();
+  for (std::size_t m : result.m) result.tau_s.push_back(static_cast<double>(m) * record.tau0());
+  return result;
+}
+
+}  // namespace stochnav

@@ -1,0 +1,179 @@
+// The raw Allan-family estimators. The overlapping ones dominate the cost on long records, so
+// their sums run over cache-sized blocks of start indices, all averaging factors per block:
+// the phase around each block offset (0, m, 2m, ...) is then read from memory once and shared
+// by every factor that needs it (with octave factors, offset 2m of one is offset m of the next).
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "stochnav/stats/deviation.hpp"
+
+namespace stochnav {
+namespace {
+
+/// Start indices per block: a few dozen offsets of it stay within the L2 cache.
+constexpr std::size_t kBlockTerms = 2048;
+
+/// sum_{i = begin}^{end - 1} (x[i+2m] - 2 x[i+m] + x[i])^2. Eight independent accumulators
+/// let the compiler keep the adds in vector registers (no reassociation is needed).
+double sum_second_differences(const double* x, std::size_t m, std::size_t begin,
+                              std::size_t end) {
+  const double* x0 = x + begin;
+  const double* x1 = x0 + m;
+  const double* x2 = x1 + m;
+  const std::size_t count = end - begin;
+  double acc[8] = {};
+  std::size_t i = 0;
+  for (; i + 8 <= count; i += 8) {
+    for (std::size_t lane = 0; lane < 8; ++lane) {
+      const double diff = x2[i + lane] - 2.0 * x1[i + lane] + x0[i + lane];
+      acc[lane] += diff * diff;
+    }
+  }
+  for (; i < count; ++i) {
+    const double diff = x2[i] - 2.0 * x1[i] + x0[i];
+    acc[0] += diff * diff;
+  }
+  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+}
+
+/// sum_{i = begin}^{end - 1} (x[i+3m] - 3 x[i+2m] + 3 x[i+m] - x[i])^2.
+double sum_third_differences(const double* x, std::size_t m, std::size_t begin,
+                             std::size_t end) {
+  const double* x0 = x + begin;
+  const double* x1 = x0 + m;
+  const double* x2 = x1 + m;
+  const double* x3 = x2 + m;
+  const std::size_t count = end - begin;
+  double acc[8] = {};
+  std::size_t i = 0;
+  for (; i + 8 <= count; i += 8) {
+    for (std::size_t lane = 0; lane < 8; ++lane) {
+      const double diff =
+          x3[i + lane] - 3.0 * x2[i + lane] + 3.0 * x1[i + lane] - x0[i + lane];
+      acc[lane] += diff * diff;
+    }
+  }
+  for (; i < count; ++i) {
+    const double diff = x3[i] - 3.0 * x2[i] + 3.0 * x1[i] - x0[i];
+    acc[0] += diff * diff;
+  }
+  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+}
+
+/// Overlapping sums of squared d-th differences (d = 2 or 3) for every m, block by block.
+std::vector<double> overlapping_sums(int d, std::span<const double> phase,
+                                     std::span<const std::size_t> m_values) {
+  const std::size_t n = phase.size();
+  const auto order = static_cast<std::size_t>(d);
+  std::size_t most_terms = 0;
+  for (std::size_t m : m_values) most_terms = std::max(most_terms, n - order * m);
+  std::vector<double> sums(m_values.size(), 0.0);
+  for (std::size_t begin = 0; begin < most_terms; begin += kBlockTerms) {
+    for (std::size_t k = 0; k < m_values.size(); ++k) {
+      const std::size_t m = m_values[k];
+      const std::size_t terms = n - order * m;
+      if (begin >= terms) continue;
+      const std::size_t end = std::min(begin + kBlockTerms, terms);
+      sums[k] += d == 2 ? sum_second_differences(phase.data(), m, begin, end)
+                        : sum_third_differences(phase.data(), m, begin, end);
+    }
+  }
+  return sums;
+}
+
+/// Non-overlapping: the terms start at 0, m, 2m, ...
+double strided_sum(int d, std::span<const double> x, std::size_t m, std::size_t terms) {
+  double sum = 0.0;
+  for (std::size_t t = 0, i = 0; t < terms; ++t, i += m) {
+    const double diff = d == 2 ? x[i + 2 * m] - 2.0 * x[i + m] + x[i]
+                               : x[i + 3 * m] - 3.0 * x[i + 2 * m] + 3.0 * x[i + m] - x[i];
+    sum += diff * diff;
+  }
+  return sum;
+}
+
+/// sum over j of (sum_{i=j}^{j+m-1} x[i+2m] - 2 x[i+m] + x[i])^2. The inner sum slides by one
+/// index per term; it is recomputed from scratch every max(m, 4096) terms so rounding errors
+/// of the sliding updates cannot build up.
+double modified_sum(std::span<const double> x, std::size_t m, std::size_t terms) {
+  const auto second_difference = [&](std::size_t i) { return x[i + 2 * m] - 2.0 * x[i + m] + x[i]; };
+  const std::size_t refresh = std::max<std::size_t>(m, 4096);
+  double total = 0.0;
+  double window = 0.0;
+  for (std::size_t j = 0; j < terms; ++j) {
+    if (j % refresh == 0) {
+      window = 0.0;
+      for (std::size_t i = j; i < j + m; ++i) window += second_difference(i);
+    } else {
+      window += second_difference(j + m - 1) - second_difference(j - 1);
+    }
+    total += window * window;
+  }
+  return total;
+}
+
+void require_terms(Deviation kind, std::size_t m, std::size_t phase_count) {
+  if (term_count(kind, m, phase_count) == 0) {
+    throw std::invalid_argument(std::string(deviation_name(kind)) + ": averaging factor m = " +
+                                std::to_string(m) + " leaves no terms on " +
+                                std::to_string(phase_count) + " phase points");
+  }
+}
+
+/// Variance sum -> deviation, with the normalisation of each estimator.
+double to_deviation(Deviation kind, double sum, double tau0_s, std::size_t m, std::size_t terms) {
+  const double tau = static_cast<double>(m) * tau0_s;
+  const double n = static_cast<double>(terms);
+  switch (kind) {
+    case Deviation::kAdev:
+    case Deviation::kOadev: return std::sqrt(sum / (2.0 * tau * tau * n));
+    case Deviation::kMdev: {
+      const double md = static_cast<double>(m);
+      return std::sqrt(sum / (2.0 * md * md * tau * tau * n));
+    }
+    case Deviation::kTdev: {
+      const double md = static_cast<double>(m);
+      return tau * std::sqrt(sum / (2.0 * md * md * tau * tau * n) / 3.0);
+    }
+    case Deviation::kHdev:
+    case Deviation::kOhdev: return std::sqrt(sum / (6.0 * tau * tau * n));
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+std::vector<double> deviation_values(Deviation kind, std::span<const double> phase,
+                                     double tau0_s, std::span<const std::size_t> m_values) {
+  const std::size_t n = phase.size();
+  for (std::size_t m : m_values) require_terms(kind, m, n);
+
+  std::vector<double> sums;
+  if (kind == Deviation::kOadev || kind == Deviation::kOhdev) {
+    sums = overlapping_sums(difference_order(kind), phase, m_values);
+  } else {
+    sums.reserve(m_values.size());
+    for (std::size_t m : m_values) {
+      const std::size_t terms = term_count(kind, m, n);
+      sums.push_back(is_modified(kind) ? modified_sum(phase, m, terms)
+                                       : strided_sum(difference_order(kind), phase, m, terms));
+    }
+  }
+  std::vector<double> deviations(m_values.size());
+  for (std::size_t k = 0; k < m_values.size(); ++k) {
+    const std::size_t m = m_values[k];
+    deviations[k] = to_deviation(kind, sums[k], tau0_s, m, term_count(kind, m, n));
+  }
+  return deviations;
+}
+
+double deviation_value(Deviation kind, std::span<const double> phase, double tau0_s,
+                       std::size_t m) {
+  const std::size_t factors[] = {m};
+  return deviation_values(kind, phase, tau0_s, factors).front();
+}
+
+}  // namespace stochnav

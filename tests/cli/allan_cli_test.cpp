@@ -1,0 +1,102 @@
+// End-to-end: `stochnav allan --format json` on Stable32's PHASE.DAT reproduces its octave table,
+// and the JSON has exactly the fields of the DESIGN.md contract.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <sstream>
+
+#include "run_cli.hpp"
+#include "temp_dir.hpp"
+
+namespace stochnav {
+namespace {
+
+using testing::run_cli;
+using testing::TempDir;
+
+struct Stable32Row {
+  std::size_t m, n;
+  int alpha;
+  double lower, deviation, upper;
+};
+
+std::vector<Stable32Row> read_stable32_table(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<Stable32Row> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream cells(line);
+    Stable32Row row{};
+    double tau = 0.0;
+    cells >> row.m >> tau >> row.n >> row.alpha >> row.lower >> row.deviation >> row.upper;
+    if (cells) rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST(AllanCli, JsonOnPhaseDatMatchesStable32OctaveTable) {
+  STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
+  STOCHNAV_REQUIRE_SHARED_DATA(table, "allan/phasedat/phase_dat_oadev_octave.txt");
+  TempDir dir;
+  const auto result = run_cli("allan --input '" + phase_dat +
+                                  "' --data phase --rate 1 --taus octave --format json",
+                              dir.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto json = nlohmann::json::parse(result.out);
+  std::vector<std::string> keys;
+  for (const auto& item : json.items()) keys.push_back(item.key());
+  std::sort(keys.begin(), keys.end());
+  EXPECT_EQ(keys, (std::vector<std::string>{"adev", "adev_hi", "adev_lo", "alpha", "edf", "n",
+                                            "tau"}));
+  const auto reference = read_stable32_table(table);
+  ASSERT_EQ(json["tau"].size(), reference.size());
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    const auto& row = reference[i];
+    EXPECT_EQ(json["tau"][i].get<double>(), static_cast<double>(row.m));
+    EXPECT_EQ(json["n"][i].get<std::size_t>(), row.n);
+    EXPECT_NEAR(json["adev"][i].get<double>(), row.deviation, 1e-4 * row.deviation);
+    EXPECT_NEAR(json["adev_lo"][i].get<double>(), row.lower, 1e-2 * row.lower);
+    EXPECT_NEAR(json["adev_hi"][i].get<double>(), row.upper, 1e-2 * row.upper);
+  }
+}
+
+TEST(AllanCli, RateAndPhaseInputsAgree) {
+  STOCHNAV_REQUIRE_SHARED_DATA(freq, "allan/nbs14/nbs14_1000_freq.txt");
+  STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
+  TempDir dir;
+  const auto from_rate =
+      run_cli("allan --input '" + freq + "' --rate 1 --format json", dir.path().string());
+  const auto from_phase = run_cli("allan --input '" + phase_dat + "' --data phase --rate 1 --format json",
+                                  dir.path().string());
+  ASSERT_EQ(from_rate.exit_code, 0) << from_rate.err;
+  ASSERT_EQ(from_phase.exit_code, 0) << from_phase.err;
+  const auto a = nlohmann::json::parse(from_rate.out);
+  const auto b = nlohmann::json::parse(from_phase.out);
+  ASSERT_EQ(a["adev"].size(), b["adev"].size());
+  for (std::size_t i = 0; i < a["adev"].size(); ++i) {
+    EXPECT_NEAR(a["adev"][i].get<double>(), b["adev"][i].get<double>(),
+                1e-6 * b["adev"][i].get<double>());
+  }
+}
+
+TEST(AllanCli, WritesPlotWhenAsked) {
+  STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
+  TempDir dir;
+  const auto plot = dir.file("adev.png");
+  const auto result = run_cli("allan --input '" + phase_dat + "' --data phase --rate 1 --plot '" +
+                                  plot + "' --output '" + dir.file("adev.txt") + "'",
+                              dir.path().string());
+  if (result.exit_code == 2 && result.err.find("gnuplot") != std::string::npos) {
+    GTEST_SKIP() << "gnuplot not installed: " << result.err;
+  }
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_GT(std::filesystem::file_size(plot), 1000U);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("adev.txt")));
+}
+
+}  // namespace
+}  // namespace stochnav
