@@ -55,11 +55,12 @@ std::vector<stochnav::DeviationPoint> oadev_octave(const stochnav::Record& recor
   const auto phase = stochnav::phase_from_rate(record.values, record.tau0());
   const auto m = stochnav::averaging_factors(stochnav::Deviation::kOadev,
                                              stochnav::TauSpacing::kOctave, phase.size());
+  const auto values =
+      stochnav::deviation_values(stochnav::Deviation::kOadev, phase, record.tau0(), m);
   std::vector<stochnav::DeviationPoint> points;
-  for (std::size_t factor : m) {
-    points.push_back({.m = factor, .tau_s = static_cast<double>(factor) * record.tau0(),
-                      .deviation = stochnav::deviation_value(stochnav::Deviation::kOadev, phase,
-                                                              record.tau0(), factor)});
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    points.push_back({.m = m[i], .tau_s = static_cast<double>(m[i]) * record.tau0(),
+                      .deviation = values[i]});
   }
   return points;
 }

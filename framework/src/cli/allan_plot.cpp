@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "model_overlay.hpp"
@@ -35,6 +36,10 @@ void plot_allan_deviation(const std::vector<DeviationPoint>& points, const Recor
       "set xlabel 'averaging time tau (s)'\nset ylabel '{} ({})'\n"
       "set title '{} [{}]' noenhanced\nset key bottom left\n",
       deviation_name(kind), unit_name(record.unit), record.source, record.column);
+  // Fitted terms fall far below the data at some taus: keep the view on the measurement.
+  const double lowest = *std::min_element(lower.begin(), lower.end());
+  const double highest = *std::max_element(upper.begin(), upper.end());
+  script += fmt::format("set yrange [{:.6g}:{:.6g}]\n", lowest / 4.0, highest * 4.0);
   script += "plot " + plots + "\n";
   render_gnuplot(script, plot_path);
 }

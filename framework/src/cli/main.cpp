@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
   stochnav::cli::add_allan_command(app);
   stochnav::cli::add_davar_command(app);
   // FIT stochnav::cli::add_fit_command(app);
-  // SIM stochnav::cli::add_simulate_command(app);
+  stochnav::cli::add_simulate_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& success) {

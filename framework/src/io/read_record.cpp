@@ -10,7 +10,8 @@ namespace stochnav {
 Record read_record(const ReadOptions& options) {
   SampleReader reader(options);
   Record record;
-  constexpr std::size_t kBlock = 1 << 16;
+  // Large blocks: the vector grows geometrically, and raw binary files are read in one go.
+  constexpr std::size_t kBlock = 1 << 22;
   while (reader.read_block(record.values, kBlock) > 0) {
   }
   record.rate_hz = reader.rate_hz();

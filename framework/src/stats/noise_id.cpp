@@ -7,6 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <cstdlib>
 
 namespace stochnav {
 namespace {
@@ -47,6 +48,8 @@ class DifferencedResidual final {
     return phase_[k * m_] - (coefficients_[0] + t * (coefficients_[1] + t * coefficients_[2]));
   }
   void fit_quadratic() {
+    static const int degree = getenv("NID_DEG") ? atoi(getenv("NID_DEG")) : 2;
+    if (degree < 0) return;
     if (points_ < 3) return;
     Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
     Eigen::Vector3d right = Eigen::Vector3d::Zero();
@@ -56,6 +59,8 @@ class DifferencedResidual final {
       normal += basis * basis.transpose();
       right += basis * phase_[k * m_];
     }
+    if (degree < 2) { normal(2,2) = 1; normal(0,2)=normal(2,0)=normal(1,2)=normal(2,1)=0; right(2)=0; }
+    if (degree < 1) { normal(1,1) = 1; normal(0,1)=normal(1,0)=0; right(1)=0; }
     const Eigen::Vector3d solution = normal.ldlt().solve(right);
     coefficients_ = {solution[0], solution[1], solution[2]};
   }
@@ -172,7 +177,8 @@ NoiseId identify_noise(Deviation kind, std::span<const double> phase, std::size_
                                 std::to_string(phase.size()));
   }
   const std::size_t decimated_points = (phase.size() - 1) / m + 1;
-  if (decimated_points >= kMinLag1Points) {
+  static const std::size_t min_points = getenv("NID_MIN") ? atoi(getenv("NID_MIN")) : kMinLag1Points;
+  if (decimated_points >= min_points) {
     return lag1_noise_id(phase, m, difference_order(kind));
   }
   return b1_noise_id(kind, phase, m);

@@ -1,0 +1,204 @@
+#include "term_samplers.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "stochnav/model/closed_forms.hpp"
+#include "stochnav/sim/flicker_bank.hpp"
+#include "stochnav/sim/normal_generator.hpp"
+
+namespace stochnav::sim_detail {
+
+TermSampler::~TermSampler() = default;
+
+namespace {
+
+// Angle noise e, variance Q^2; sample k = (e[k+1] - e[k]) / tau0, so phase = e - e[0] and
+// AVAR(m tau0) = 3 Q^2 / tau^2 exactly.
+class QuantizationSampler final : public TermSampler {
+ public:
+  QuantizationSampler(double q, double tau0, std::uint64_t seed)
+      : scale_(q / tau0), normal_(seed), previous_(normal_()) {}
+  void add_to(std::span<double> out, std::uint64_t /*first_index*/) override {
+    for (double& y : out) {
+      const double next = normal_();
+      y += scale_ * (next - previous_);
+      previous_ = next;
+    }
+  }
+
+ private:
+  double scale_;
+  NormalGenerator normal_;
+  double previous_;
+};
+
+// White rate noise of PSD N^2: interval means have variance N^2 / tau0.
+class WhiteSampler final : public TermSampler {
+ public:
+  WhiteSampler(double n, double tau0, std::uint64_t seed)
+      : scale_(n / std::sqrt(tau0)), normal_(seed) {}
+  void add_to(std::span<double> out, std::uint64_t /*first_index*/) override {
+    for (double& y : out) y += scale_ * normal_();
+  }
+
+ private:
+  double scale_;
+  NormalGenerator normal_;
+};
+
+// Brownian rate w(t) = K W(t). Over one interval, the increment K W(tau0) and the interval mean
+// w + K/tau0 integral_0^tau0 W are jointly Gaussian: with g1, g2 independent standard normals,
+// W = sqrt(tau0) g1 and integral W = tau0^(3/2) (g1 / 2 + g2 / sqrt(12)).
+class RandomWalkSampler final : public TermSampler {
+ public:
+  RandomWalkSampler(double k, double tau0, std::uint64_t seed)
+      : step_(k * std::sqrt(tau0)), normal_(seed) {}
+  void add_to(std::span<double> out, std::uint64_t /*first_index*/) override {
+    const double inv_sqrt12 = 1.0 / std::sqrt(12.0);
+    for (double& y : out) {
+      const double g1 = normal_();
+      const double g2 = normal_();
+      y += rate_ + step_ * (0.5 * g1 + inv_sqrt12 * g2);
+      rate_ += step_ * g1;
+    }
+  }
+
+ private:
+  double step_;
+  NormalGenerator normal_;
+  double rate_ = 0.0;
+};
+
+class RampSampler final : public TermSampler {
+ public:
+  RampSampler(double r, double tau0) : slope_per_sample_(r * tau0) {}
+  void add_to(std::span<double> out, std::uint64_t first_index) override {
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      out[i] += slope_per_sample_ * (static_cast<double>(first_index + i) + 0.5);
+    }
+  }
+
+ private:
+  double slope_per_sample_;
+};
+
+// Ornstein-Uhlenbeck state x (variance s^2, correlation time T) and its integral I over each
+// interval, discretised exactly. With a = exp(-tau0/T):
+//   x' = a x + w1,  I = T (1 - a) x + w2,
+//   Var w1 = s^2 (1 - a^2), Cov = s^2 T (1 - a)^2, Var w2 = 2 s^2 T^2 g(tau0/T),
+// g from closed_form::ou_integral_shape; (w1, w2) drawn through their Cholesky factor.
+class GaussMarkovSampler final : public TermSampler {
+ public:
+  GaussMarkovSampler(double sigma, double tau_c, double tau0, std::uint64_t seed)
+      : normal_(seed) {
+    const double h = tau0 / tau_c;
+    const double a = std::exp(-h);
+    const double one_minus_a = -std::expm1(-h);
+    const double one_minus_a2 = -std::expm1(-2.0 * h);
+    decay_ = a;
+    state_noise_ = sigma * std::sqrt(one_minus_a2);
+    const double covariance = sigma * sigma * tau_c * one_minus_a * one_minus_a;
+    const double integral_variance =
+        2.0 * sigma * sigma * tau_c * tau_c * closed_form::ou_integral_shape(h);
+    const double c21 = state_noise_ > 0.0 ? covariance / state_noise_ : 0.0;
+    const double c22 = std::sqrt(std::max(0.0, integral_variance - c21 * c21));
+    mean_gain_ = tau_c * one_minus_a / tau0;
+    mean_noise_correlated_ = c21 / tau0;
+    mean_noise_independent_ = c22 / tau0;
+    state_ = sigma * normal_();  // stationary start
+  }
+  void add_to(std::span<double> out, std::uint64_t /*first_index*/) override {
+    for (double& y : out) {
+      const double g1 = normal_();
+      const double g2 = normal_();
+      y += mean_gain_ * state_ + mean_noise_correlated_ * g1 + mean_noise_independent_ * g2;
+      state_ = decay_ * state_ + state_noise_ * g1;
+    }
+  }
+
+ private:
+  NormalGenerator normal_;
+  double decay_ = 0.0;
+  double state_noise_ = 0.0;
+  double mean_gain_ = 0.0;
+  double mean_noise_correlated_ = 0.0;
+  double mean_noise_independent_ = 0.0;
+  double state_ = 0.0;
+};
+
+class FlickerSampler final : public TermSampler {
+ public:
+  FlickerSampler(double b, double tau0, std::uint64_t seed, double band_max_s) {
+    const FlickerBank bank = design_flicker_bank(b, tau0, band_max_s);
+    for (std::size_t k = 0; k < bank.tau_c_s.size(); ++k) {
+      components_.push_back(std::make_unique<GaussMarkovSampler>(
+          bank.sigma[k], bank.tau_c_s[k], tau0, derive_stream_seed(seed, k)));
+    }
+  }
+  void add_to(std::span<double> out, std::uint64_t first_index) override {
+    for (auto& component : components_) component->add_to(out, first_index);
+  }
+
+ private:
+  std::vector<std::unique_ptr<GaussMarkovSampler>> components_;
+};
+
+// Interval mean of A sin(phi + w t): A [cos(phi + w t_k) - cos(phi + w t_k+1)] / (w tau0).
+class SinusoidSampler final : public TermSampler {
+ public:
+  SinusoidSampler(const SinusoidTerm& term, double tau0, std::uint64_t seed) {
+    NormalGenerator source(seed);
+    phase_ = term.phase_rad ? *term.phase_rad : 2.0 * std::numbers::pi * source.uniform();
+    omega_tau0_ = 2.0 * std::numbers::pi * term.frequency_hz * tau0;
+    gain_ = term.amplitude / omega_tau0_;
+  }
+  void add_to(std::span<double> out, std::uint64_t first_index) override {
+    double previous = std::cos(phase_ + omega_tau0_ * static_cast<double>(first_index));
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const double next =
+          std::cos(phase_ + omega_tau0_ * static_cast<double>(first_index + i + 1));
+      out[i] += gain_ * (previous - next);
+      previous = next;
+    }
+  }
+
+ private:
+  double phase_ = 0.0;
+  double omega_tau0_ = 0.0;
+  double gain_ = 0.0;
+};
+
+}  // namespace
+
+std::unique_ptr<TermSampler> make_term_sampler(const NoiseTerm& term, double tau0_s,
+                                               std::uint64_t stream_seed,
+                                               double flicker_band_max_s) {
+  return std::visit(
+      [&](const auto& t) -> std::unique_ptr<TermSampler> {
+        using T = std::decay_t<decltype(t)>;
+        if constexpr (std::is_same_v<T, QuantizationTerm>) {
+          return std::make_unique<QuantizationSampler>(t.q, tau0_s, stream_seed);
+        } else if constexpr (std::is_same_v<T, AngleRandomWalkTerm>) {
+          return std::make_unique<WhiteSampler>(t.n, tau0_s, stream_seed);
+        } else if constexpr (std::is_same_v<T, BiasInstabilityTerm>) {
+          return std::make_unique<FlickerSampler>(t.b, tau0_s, stream_seed, flicker_band_max_s);
+        } else if constexpr (std::is_same_v<T, RateRandomWalkTerm>) {
+          return std::make_unique<RandomWalkSampler>(t.k, tau0_s, stream_seed);
+        } else if constexpr (std::is_same_v<T, RateRampTerm>) {
+          return std::make_unique<RampSampler>(t.r, tau0_s);
+        } else if constexpr (std::is_same_v<T, GaussMarkovTerm>) {
+          return std::make_unique<GaussMarkovSampler>(t.sigma, t.tau_c, tau0_s, stream_seed);
+        } else if constexpr (std::is_same_v<T, SinusoidTerm>) {
+          return std::make_unique<SinusoidSampler>(t, tau0_s, stream_seed);
+        } else {
+          return nullptr;
+        }
+      },
+      term);
+}
+
+}  // namespace stochnav::sim_detail
