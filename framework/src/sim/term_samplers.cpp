@@ -90,16 +90,21 @@ class RampSampler final : public TermSampler {
 // interval, discretised exactly. With a = exp(-tau0/T):
 //   x' = a x + w1,  I = T (1 - a) x + w2,
 //   Var w1 = s^2 (1 - a^2), Cov = s^2 T (1 - a)^2, Var w2 = 2 s^2 T^2 g(tau0/T),
-// g from closed_form::ou_integral_shape; (w1, w2) drawn through their Cholesky factor.
+// g from closed_form::ou_integral_shape. With g1, g2 independent standard normals,
+// w1 = c11 g1 and w2 = c21 g1 + c22 g2 (Cholesky factor).
 class GaussMarkovSampler final : public TermSampler {
  public:
-  GaussMarkovSampler(double sigma, double tau_c, double tau0, std::uint64_t seed)
-      : normal_(seed) {
+  /// With with_independent_part false, the c22 g2 part is left out of the samples: a bank adds
+  /// the parts of all its components as one white sequence of variance sum c22^2 / tau0^2,
+  /// which has the same distribution (the parts are white, Gaussian and independent of all
+  /// else) for one normal draw per sample instead of one per component.
+  GaussMarkovSampler(double sigma, double tau_c, double tau0, std::uint64_t seed,
+                     bool with_independent_part = true)
+      : normal_(seed), with_independent_part_(with_independent_part) {
     const double h = tau0 / tau_c;
-    const double a = std::exp(-h);
     const double one_minus_a = -std::expm1(-h);
     const double one_minus_a2 = -std::expm1(-2.0 * h);
-    decay_ = a;
+    decay_ = std::exp(-h);
     state_noise_ = sigma * std::sqrt(one_minus_a2);
     const double covariance = sigma * sigma * tau_c * one_minus_a * one_minus_a;
     const double integral_variance =
@@ -111,7 +116,19 @@ class GaussMarkovSampler final : public TermSampler {
     mean_noise_independent_ = c22 / tau0;
     state_ = sigma * normal_();  // stationary start
   }
+
+  /// Standard deviation of the independent part of a sample (c22 / tau0).
+  double independent_part_sigma() const { return mean_noise_independent_; }
+
   void add_to(std::span<double> out, std::uint64_t /*first_index*/) override {
+    if (!with_independent_part_) {
+      for (double& y : out) {
+        const double g1 = normal_();
+        y += mean_gain_ * state_ + mean_noise_correlated_ * g1;
+        state_ = decay_ * state_ + state_noise_ * g1;
+      }
+      return;
+    }
     for (double& y : out) {
       const double g1 = normal_();
       const double g2 = normal_();
@@ -122,6 +139,7 @@ class GaussMarkovSampler final : public TermSampler {
 
  private:
   NormalGenerator normal_;
+  bool with_independent_part_;
   double decay_ = 0.0;
   double state_noise_ = 0.0;
   double mean_gain_ = 0.0;
@@ -132,18 +150,25 @@ class GaussMarkovSampler final : public TermSampler {
 
 class FlickerSampler final : public TermSampler {
  public:
-  FlickerSampler(double b, double tau0, std::uint64_t seed, double band_max_s) {
+  FlickerSampler(double b, double tau0, std::uint64_t seed, double band_max_s) : white_(seed) {
     const FlickerBank bank = design_flicker_bank(b, tau0, band_max_s);
+    double white_variance = 0.0;
     for (std::size_t k = 0; k < bank.tau_c_s.size(); ++k) {
       components_.push_back(std::make_unique<GaussMarkovSampler>(
-          bank.sigma[k], bank.tau_c_s[k], tau0, derive_stream_seed(seed, k)));
+          bank.sigma[k], bank.tau_c_s[k], tau0, derive_stream_seed(seed, k + 1), false));
+      const double part = components_.back()->independent_part_sigma();
+      white_variance += part * part;
     }
+    white_sigma_ = std::sqrt(white_variance);
   }
   void add_to(std::span<double> out, std::uint64_t first_index) override {
+    for (double& y : out) y += white_sigma_ * white_();
     for (auto& component : components_) component->add_to(out, first_index);
   }
 
  private:
+  NormalGenerator white_;
+  double white_sigma_ = 0.0;
   std::vector<std::unique_ptr<GaussMarkovSampler>> components_;
 };
 

@@ -19,7 +19,9 @@ std::vector<DeviationPoint> compute_deviation(Deviation kind, std::span<const do
     point.tau_s = static_cast<double>(point.m) * tau0_s;
     point.deviation = values[k];
     point.terms = term_count(kind, point.m, phase.size());
-    point.alpha = identify_noise(kind, phase, point.m).alpha;
+    point.alpha = !points.empty() && keeps_previous_noise_type(kind, point.m, phase.size())
+                      ? points.back().alpha
+                      : identify_noise(kind, phase, point.m).alpha;
     point.edf = greenhall_edf({.alpha = point.alpha,
                                .d = difference_order(kind),
                                .m = point.m,

@@ -1,108 +1,95 @@
 #include "stochnav/stats/noise_id.hpp"
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <string>
-#include <cstdlib>
 
 namespace stochnav {
 namespace {
 
-/// The phase decimated by m with its least-squares quadratic removed, differenced d times,
-/// evaluated on the fly: no copy of a long record is made.
-class DifferencedResidual final {
- public:
-  DifferencedResidual(std::span<const double> phase, std::size_t m)
-      : phase_(phase), m_(m), points_((phase.size() - 1) / m + 1) {
-    fit_quadratic();
+constexpr int kMaxDifferences = 3;
+using PerDifference = std::array<double, kMaxDifferences + 1>;
+
+/// Means of the d-th differences of z[k] = x[k m], k < points, d = 0 .. MaxD: one pass for z,
+/// the sums of its differences telescope.
+template <int MaxD>
+PerDifference decimated_difference_means(std::span<const double> phase, std::size_t m,
+                                         std::size_t points) {
+  const auto z = [&](std::size_t k) { return phase[k * m]; };
+  PerDifference mean{};
+  for (std::size_t k = 0; k < points; ++k) mean[0] += z(k);
+  mean[0] /= static_cast<double>(points);
+  const std::size_t last = points - 1;
+  if constexpr (MaxD >= 1) mean[1] = (z(last) - z(0)) / static_cast<double>(points - 1);
+  if constexpr (MaxD >= 2) {
+    mean[2] = ((z(last) - z(last - 1)) - (z(1) - z(0))) / static_cast<double>(points - 2);
   }
+  if constexpr (MaxD >= 3) {
+    mean[3] = ((z(last) - 2.0 * z(last - 1) + z(last - 2)) - (z(2) - 2.0 * z(1) + z(0))) /
+              static_cast<double>(points - 3);
+  }
+  return mean;
+}
 
-  /// Points of the series after `differences` differences.
-  std::size_t size() const { return points_ - static_cast<std::size_t>(differences_); }
-  int differences() const { return differences_; }
-  void difference() { ++differences_; }
-
-  double operator[](std::size_t k) const {
-    // Binomial weights (-1)^(d-j) C(d, j) of the d-th forward difference.
-    double value = 0.0;
-    double weight = differences_ % 2 == 0 ? 1.0 : -1.0;
-    for (int j = 0; j <= differences_; ++j) {
-      value += weight * residual(k + static_cast<std::size_t>(j));
-      weight = -weight * (differences_ - j) / (j + 1.0);
+/// Lag-1 autocorrelations r1[d], d = 0 .. MaxD, of the d-th differences of the decimated phase
+/// z[k] = x[k m], k < points (> MaxD + 1), read on the fly (no copy of a long record): one pass
+/// for the mean of z, one pass for all the sums. No trend is removed: Stable32's
+/// identifications match the raw decimated phase (removing a quadratic first changes them on the
+/// Cs 5071A record).
+template <int MaxD>
+PerDifference lag1_of_decimated_differences(std::span<const double> phase, std::size_t m,
+                                            std::size_t points) {
+  const auto z = [&](std::size_t k) { return phase[k * m]; };
+  const PerDifference mean = decimated_difference_means<MaxD>(phase, m, points);
+  PerDifference lagged{};
+  PerDifference squares{};
+  PerDifference previous{};
+  // z(k), z(k-1), z(k-2), z(k-3); the d-th difference ending at k starts at k - d.
+  double z0 = 0.0, z1 = 0.0, z2 = 0.0, z3 = 0.0;
+  const auto differences = [&] {
+    return PerDifference{z0, z0 - z1, z0 - 2.0 * z1 + z2, z0 - 3.0 * z1 + 3.0 * z2 - z3};
+  };
+  // The first MaxD + 1 points, where the higher differences are still incomplete.
+  for (std::size_t k = 0; k <= MaxD; ++k) {
+    z3 = z2, z2 = z1, z1 = z0, z0 = z(k);
+    const PerDifference value = differences();
+    for (std::size_t d = 0; d <= k; ++d) {
+      const double centred = value[d] - mean[d];
+      if (k > d) lagged[d] += previous[d] * centred;
+      squares[d] += centred * centred;
+      previous[d] = centred;
     }
-    return value;
   }
-
- private:
-  double abscissa(std::size_t k) const {
-    // Scaled to [-1, 1] so the normal equations stay well conditioned for long records.
-    const double half = 0.5 * static_cast<double>(points_ - 1);
-    return half > 0.0 ? (static_cast<double>(k) - half) / half : 0.0;
-  }
-  double residual(std::size_t k) const {
-    const double t = abscissa(k);
-    return phase_[k * m_] - (coefficients_[0] + t * (coefficients_[1] + t * coefficients_[2]));
-  }
-  void fit_quadratic() {
-    static const int degree = getenv("NID_DEG") ? atoi(getenv("NID_DEG")) : 2;
-    if (degree < 0) return;
-    if (points_ < 3) return;
-    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d right = Eigen::Vector3d::Zero();
-    for (std::size_t k = 0; k < points_; ++k) {
-      const double t = abscissa(k);
-      const Eigen::Vector3d basis(1.0, t, t * t);
-      normal += basis * basis.transpose();
-      right += basis * phase_[k * m_];
+  for (std::size_t k = MaxD + 1; k < points; ++k) {
+    z3 = z2, z2 = z1, z1 = z0, z0 = z(k);
+    const PerDifference value = differences();
+    for (std::size_t d = 0; d <= MaxD; ++d) {  // unrolled: MaxD is a constant
+      const double centred = value[d] - mean[d];
+      lagged[d] += previous[d] * centred;
+      squares[d] += centred * centred;
+      previous[d] = centred;
     }
-    if (degree < 2) { normal(2,2) = 1; normal(0,2)=normal(2,0)=normal(1,2)=normal(2,1)=0; right(2)=0; }
-    if (degree < 1) { normal(1,1) = 1; normal(0,1)=normal(1,0)=0; right(1)=0; }
-    const Eigen::Vector3d solution = normal.ldlt().solve(right);
-    coefficients_ = {solution[0], solution[1], solution[2]};
   }
-
-  std::span<const double> phase_;
-  std::size_t m_;
-  std::size_t points_;
-  int differences_ = 0;
-  std::array<double, 3> coefficients_{};
-};
-
-/// Lag-1 autocorrelation of any indexable series (two passes: mean, then the sums).
-template <typename Series>
-double lag1_of(const Series& series, std::size_t n) {
-  if (n < 2) return 0.0;
-  double mean = 0.0;
-  for (std::size_t k = 0; k < n; ++k) mean += series[k];
-  mean /= static_cast<double>(n);
-  double previous = series[0] - mean;
-  double lagged = 0.0;
-  double squares = previous * previous;
-  for (std::size_t k = 1; k < n; ++k) {
-    const double current = series[k] - mean;
-    lagged += previous * current;
-    squares += current * current;
-    previous = current;
-  }
-  return squares > 0.0 ? lagged / squares : 0.0;
+  PerDifference r1{};
+  for (std::size_t d = 0; d <= MaxD; ++d) r1[d] = squares[d] > 0.0 ? lagged[d] / squares[d] : 0.0;
+  return r1;
 }
 
 NoiseId lag1_noise_id(std::span<const double> phase, std::size_t m, int max_differences) {
-  DifferencedResidual series(phase, m);
-  while (true) {
-    const double r1 = lag1_of(series, series.size());
-    const double delta = r1 / (1.0 + r1);
-    const int d = series.differences();
+  const std::size_t points = (phase.size() - 1) / m + 1;
+  const PerDifference r1 = max_differences >= 3
+                               ? lag1_of_decimated_differences<3>(phase, m, points)
+                               : lag1_of_decimated_differences<2>(phase, m, points);
+  for (int d = 0;; ++d) {
+    const double delta = r1[static_cast<std::size_t>(d)] / (1.0 + r1[static_cast<std::size_t>(d)]);
     if (delta < 0.25 || d >= max_differences) {
       const double alpha = 2.0 - 2.0 * d - 2.0 * delta;
       const auto rounded = static_cast<int>(2 - 2 * d - std::lround(2.0 * delta));
       return {std::clamp(rounded, -2, 2), NoiseIdMethod::kLag1Autocorrelation, alpha};
     }
-    series.difference();
   }
 }
 
@@ -145,7 +132,9 @@ int white_or_flicker_pm(std::span<const double> phase, std::size_t m) {
 }
 
 NoiseId b1_noise_id(Deviation kind, std::span<const double> phase, std::size_t m) {
-  const double n = static_cast<double>((phase.size() - 1) / m);
+  // Stable32 evaluates the expected ratios at the estimator's term count (its `#` column), not
+  // at the number of averages: that is what reproduces its tables (Cs 5071A, all taus).
+  const double n = static_cast<double>(term_count(kind, m, phase.size()));
   const double ratio = b1_ratio(phase, m);
   int mu = -2;
   while (mu < 2 && ratio >= std::sqrt(b1_expected(n, mu) * b1_expected(n, mu + 1))) ++mu;
@@ -154,20 +143,27 @@ NoiseId b1_noise_id(Deviation kind, std::span<const double> phase, std::size_t m
   if (term_count(Deviation::kMdev, m, phase.size()) == 0) {
     return {1, NoiseIdMethod::kB1Ratio, ratio};
   }
-  (void)kind;
   return {white_or_flicker_pm(phase, m), NoiseIdMethod::kB1AndRn, ratio};
 }
 
 }  // namespace
 
 double lag1_autocorrelation(std::span<const double> series) {
-  return lag1_of(series, series.size());
+  if (series.size() < 2) return 0.0;
+  return lag1_of_decimated_differences<0>(series, 1, series.size())[0];
 }
 
 double b1_expected(double n, int mu) {
   if (mu == 0) return n * std::log(n) / (2.0 * (n - 1.0) * std::numbers::ln2);
   const double p = static_cast<double>(mu);
   return n * (1.0 - std::pow(n, p)) / (2.0 * (n - 1.0) * (1.0 - std::pow(2.0, p)));
+}
+
+bool keeps_previous_noise_type(Deviation kind, std::size_t m, std::size_t phase_count) {
+  if (m == 0 || phase_count < 2) return false;
+  const std::size_t averages = (phase_count - 1) / m;
+  if (averages + 1 >= kMinLag1Points) return false;
+  return averages < (is_overlapping(kind) ? 8u : 10u);
 }
 
 NoiseId identify_noise(Deviation kind, std::span<const double> phase, std::size_t m) {
@@ -177,8 +173,7 @@ NoiseId identify_noise(Deviation kind, std::span<const double> phase, std::size_
                                 std::to_string(phase.size()));
   }
   const std::size_t decimated_points = (phase.size() - 1) / m + 1;
-  static const std::size_t min_points = getenv("NID_MIN") ? atoi(getenv("NID_MIN")) : kMinLag1Points;
-  if (decimated_points >= min_points) {
+  if (decimated_points >= kMinLag1Points) {
     return lag1_noise_id(phase, m, difference_order(kind));
   }
   return b1_noise_id(kind, phase, m);

@@ -18,6 +18,13 @@
 //    the same m does (expected 1/m for white PM, 3 ln(256/27) / (2 (1.038 + 3 ln(pi m))) for
 //    flicker PM with f_h = 1 / (2 tau0)).
 // The result is clamped to [-2, 2], the range Stable32 reports.
+//
+// Two details are not in the papers but are needed to reproduce Stable32's tables (inferred
+// from them: PHASE.DAT, NBS, GPS, Cs 5071A, OCXO, Keysight TIC, 1200 rows in all):
+//  - the expected B1 values are taken at n = the estimator's term count (Stable32's `#`
+//    column: N - 2m for OADEV, ...), while the ratio itself uses the non-overlapping averages;
+//  - with very few averages Stable32 keeps the noise type of the previous (shorter) tau
+//    instead: see keeps_previous_noise_type.
 
 #include <cstddef>
 #include <span>
@@ -34,13 +41,19 @@ enum class NoiseIdMethod { kLag1Autocorrelation, kB1Ratio, kB1AndRn };
 struct NoiseId {
   int alpha = 0;  ///< identified exponent, -2 .. 2
   NoiseIdMethod method = NoiseIdMethod::kLag1Autocorrelation;
-  /// Lag-1 method: the unrounded alpha, 2 - 2 d - 2 delta. Otherwise the B1 ratio.
+  /// Lag-1 method: the unrounded alpha, 2 - 2 d - 2 delta. Otherwise the measured B1 ratio.
   double statistic = 0.0;
 };
 
 /// Noise type of `phase` (N points) at averaging factor m, for the deviation `kind` (which sets
 /// d_max). Requires m >= 1 and N > 2m + 1 (throws std::invalid_argument otherwise).
 NoiseId identify_noise(Deviation kind, std::span<const double> phase, std::size_t m);
+
+/// True where Stable32 reuses the noise type of the previous averaging factor of a run instead
+/// of identifying one: when the B1 method would rest on fewer than 8 (overlapping and modified
+/// estimators) or 10 (ADEV, HDEV) frequency averages floor((N-1)/m). compute_deviation applies
+/// it to every point but the first.
+bool keeps_previous_noise_type(Deviation kind, std::size_t m, std::size_t phase_count);
 
 /// Lag-1 autocorrelation of a series (mean removed):
 ///   sum_{i<n-1} (z_i - mean)(z_{i+1} - mean) / sum_i (z_i - mean)^2.

@@ -1,0 +1,111 @@
+#pragma once
+// Robust least-squares fit of the noise terms to a measured Allan-variance curve (Ceres).
+//
+// Model: sigma^2(tau) = sum of the closed forms of model/closed_forms.hpp over the chosen terms.
+//
+// Residuals, one per point, in the log domain where the estimator's scatter is nearly Gaussian:
+//   r_i = (log model(tau_i) - log avar_i + b_i) / s_i,
+// with nu_i = edf_i and, for an estimate distributed as avar chi2(nu)/nu,
+//   b_i = E[log(chi2(nu)/nu)] = digamma(nu/2) - log(nu/2)   (about -1/nu: removes the bias of
+//                                                            the log of a noisy variance),
+//   s_i^2 = Var[log(chi2(nu)/nu)] = trigamma(nu/2)           (about 2/nu).
+// So each r_i is about N(0, 1) when the model is right. The cost 1/2 sum rho(r_i^2) uses a robust
+// loss (default Huber with scale 2: quadratic within 2 sigma, linear beyond, so a single bad
+// point pulls like a 2-sigma one).
+//
+// Parameters: the natural logarithm of each coefficient (Q, N, B, K, |R|, Gauss-Markov sigma and
+// tau_c, sinusoid amplitude and frequency), which keeps them positive and well scaled, bounded
+// to a wide box around the data's scale. Uncertainties: ceres::Covariance of the log parameters
+// (dense SVD pseudo-inverse of J^T J at the optimum), mapped to each coefficient c as
+// sigma_c = c sigma_log c. A parameter at its bound (a term the data do not support) gets NaN.
+// Known limitation: Allan variances at neighbouring taus of one record are positively
+// correlated; the fit treats them as independent.
+//
+// Term selection: with an explicit term list, those terms are fitted (added one at a time, each
+// from several starts, then refitted jointly). Otherwise, greedy forward selection over
+// `candidates`: start from the best single term, then add the candidate that lowers the
+// information criterion most, while it lowers it by more than min_criterion_improvement; then
+// drop any term whose removal lowers it. Criteria on the robust cost: AIC = 2 cost + 2 p,
+// BIC = 2 cost + p ln(n), p parameters, n points.
+//
+// Starting values: the slope read-offs (fit/slope_readoffs.hpp) scaled by 0.7, 0.2 and 0.03;
+// Gauss-Markov starts with tau_c = tau_i / 1.89 (the AVAR peak) at every measured tau; sinusoid
+// starts with f = 0.371 / tau_i (its AVAR peak). The best optimum over the starts is kept.
+
+#include <Eigen/Core>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "stochnav/fit/fit_data.hpp"
+#include "stochnav/fit/slope_readoffs.hpp"
+#include "stochnav/model/noise_model.hpp"
+
+namespace stochnav {
+
+enum class RobustLoss { kNone, kHuber, kCauchy };
+enum class InformationCriterion { kAic, kBic };
+
+struct FitOptions {
+  /// Terms to fit, in any order (repeats allowed, e.g. two Gauss-Markov terms). Empty: choose
+  /// automatically among `candidates`. Nonstationary terms cannot be fitted to an AVAR curve.
+  std::vector<TermType> terms;
+  /// Terms automatic selection may use, each at most once.
+  std::vector<TermType> candidates = {TermType::kQuantization,   TermType::kAngleRandomWalk,
+                                      TermType::kBiasInstability, TermType::kRateRandomWalk,
+                                      TermType::kRateRamp,       TermType::kGaussMarkov};
+  RobustLoss loss = RobustLoss::kHuber;
+  double loss_scale = 2.0;  ///< in units of the standardized residual r_i, > 0
+  InformationCriterion criterion = InformationCriterion::kBic;
+  double min_criterion_improvement = 0.0;  ///< >= 0
+  int max_iterations = 200;                ///< Ceres iterations per solve, >= 1
+
+  /// Empty when valid; otherwise the reason, naming the option.
+  std::string validate() const;
+};
+
+struct SelectionStep {
+  std::vector<TermType> terms;  ///< the term set tried
+  double criterion = 0.0;       ///< its information criterion
+  bool accepted = false;        ///< kept as the current model
+};
+
+struct FitDiagnostics {
+  double cost = 0.0;        ///< final Ceres cost, 1/2 sum rho(r_i^2)
+  double chi_square = 0.0;  ///< sum r_i^2 (no robust loss)
+  std::size_t points = 0;
+  std::size_t parameters = 0;
+  InformationCriterion criterion = InformationCriterion::kBic;
+  double criterion_value = 0.0;
+  RobustLoss loss = RobustLoss::kHuber;
+  double loss_scale = 0.0;
+  int iterations = 0;       ///< Ceres iterations of the final solve
+  bool converged = false;   ///< the final solve met a convergence tolerance
+  bool automatic = false;   ///< terms chosen by the criterion (not given)
+  std::vector<TermType> chosen_terms;  ///< as in the model
+  SlopeReadoffs readoffs;              ///< IEEE 952 cross-check, natural units
+  std::vector<SelectionStep> selection;  ///< automatic selection history
+  std::vector<std::string> warnings;     ///< e.g. parameters at a bound
+};
+
+struct FitResult {
+  /// The fitted terms in TermType order (natural units), unit and rate_hz from the data.
+  NoiseModel model;
+  /// Per term, the same type holding the 1-sigma uncertainty of each parameter (natural units);
+  /// NaN when not determined. Sinusoid phases are not fitted (absent).
+  std::vector<NoiseTerm> sigma;
+  /// Covariance of the natural logs of all fitted parameters, in model order.
+  Eigen::MatrixXd log_covariance;
+  FitDiagnostics diagnostics;
+};
+
+/// Fits the noise terms to `data`. Throws ConfigError when the data (validate(data)) or the
+/// options are invalid, when a term cannot be fitted (nonstationary), or when there are fewer
+/// points than parameters.
+FitResult fit_noise_terms(const FitData& data, const FitOptions& options = {});
+
+/// "none", "huber", "cauchy"; "aic", "bic".
+std::string_view robust_loss_name(RobustLoss loss);
+std::string_view criterion_name(InformationCriterion criterion);
+
+}  // namespace stochnav

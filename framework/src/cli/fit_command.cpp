@@ -1,0 +1,171 @@
+// stochnav fit: the IEEE 952 noise terms of a record (Ceres), and with --window/--step the same
+// fit on every DAVAR window, giving each coefficient as a time series (Zhang et al. 2017, Eq. 7).
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "command_support.hpp"
+#include "commands.hpp"
+#include "fit_report.hpp"
+#include "stochnav/core/errors.hpp"
+#include "stochnav/fit/fit_data.hpp"
+#include "stochnav/fit/fit_noise_terms.hpp"
+#include "stochnav/model/noise_term.hpp"
+#include "stochnav/stats/davar.hpp"
+#include "stochnav/stats/deviation.hpp"
+#include "stochnav/stats/edf.hpp"
+#include "stochnav/stats/phase.hpp"
+
+namespace stochnav::cli {
+namespace {
+
+struct FitArguments {
+  InputArguments input;
+  std::string terms;
+  std::string taus = "octave";
+  std::string loss = "huber";
+  std::string criterion = "bic";
+  std::size_t window = 0;
+  std::size_t step = 0;
+  std::string format = "table";
+  std::string output;
+};
+
+std::vector<TermType> parse_terms(const std::string& list) {
+  std::vector<TermType> terms;
+  std::stringstream items(list);
+  std::string item;
+  while (std::getline(items, item, ',')) {
+    if (item.empty()) continue;
+    const auto type = parse_term_type(item);
+    if (!type) {
+      std::string known;
+      for (TermType t : all_term_types()) known += (known.empty() ? "" : ", ") + std::string(term_type_name(t));
+      throw ConfigError("--terms: unknown term '" + item + "'; use a comma-separated list of " + known);
+    }
+    terms.push_back(*type);
+  }
+  return terms;
+}
+
+FitOptions fit_options(const FitArguments& arguments) {
+  FitOptions options;
+  options.terms = parse_terms(arguments.terms);
+  if (arguments.loss == "huber") {
+    options.loss = RobustLoss::kHuber;
+  } else if (arguments.loss == "cauchy") {
+    options.loss = RobustLoss::kCauchy;
+  } else if (arguments.loss == "none") {
+    options.loss = RobustLoss::kNone;
+  } else {
+    throw ConfigError("--loss '" + arguments.loss + "': use huber, cauchy or none");
+  }
+  if (arguments.criterion == "bic") {
+    options.criterion = InformationCriterion::kBic;
+  } else if (arguments.criterion == "aic") {
+    options.criterion = InformationCriterion::kAic;
+  } else {
+    throw ConfigError("--criterion '" + arguments.criterion + "': use bic or aic");
+  }
+  if (const auto problem = options.validate(); !problem.empty()) throw ConfigError(problem);
+  return options;
+}
+
+TauSpacing parse_fit_spacing(const std::string& text) {
+  if (text == "octave") return TauSpacing::kOctave;
+  if (text == "decade") return TauSpacing::kDecade;
+  if (text == "dense") return TauSpacing::kDense;
+  throw ConfigError("--taus '" + text + "': use octave, decade or dense for a fit");
+}
+
+/// The fit of one window: the window's Allan deviations with the EDF its length and the
+/// record's noise type give at each tau.
+FitResult fit_window(const std::vector<double>& adev_row, const DavarResult& davar,
+                     const std::vector<double>& edf, const Record& record,
+                     const FitOptions& options) {
+  std::vector<double> tau, adev_natural, window_edf;
+  for (std::size_t j = 0; j < davar.tau_s.size(); ++j) {
+    if (!(adev_row[j] > 0.0)) continue;
+    tau.push_back(davar.tau_s[j]);
+    adev_natural.push_back(adev_row[j] * si_per_unit(record.unit));
+    window_edf.push_back(edf[j]);
+  }
+  return fit_noise_terms(fit_data_from_adev(tau, adev_natural, window_edf, record.unit,
+                                            record.rate_hz),
+                         options);
+}
+
+void run_fit(const FitArguments& arguments) {
+  const OutputFormat format = parse_format(arguments.format);
+  FitOptions options = fit_options(arguments);
+  const bool windowed = arguments.window > 0 || arguments.step > 0;
+  const DavarOptions davar_options{.window = arguments.window, .step = arguments.step};
+  if (windowed) {
+    if (const auto problem = davar_options.validate(0); !problem.empty()) throw ConfigError(problem);
+  }
+
+  const Record record = read_record(arguments.input.to_read_options());
+  const std::vector<double> phase = record.kind == DataKind::kPhase
+                                        ? record.values
+                                        : phase_from_rate(record.values, record.tau0());
+  const auto m_values = averaging_factors(Deviation::kOadev, parse_fit_spacing(arguments.taus),
+                                          phase.size(), record.tau0());
+  if (m_values.size() < 2) {
+    throw InputError(record.source + ": too short for a fit (" +
+                     std::to_string(record.values.size()) + " samples); use a longer record");
+  }
+  const auto points = compute_deviation(Deviation::kOadev, phase, record.tau0(), m_values);
+  const FitResult whole = fit_noise_terms(fit_data_from_deviations(points, record.unit,
+                                                                   record.rate_hz),
+                                          options);
+  if (!windowed) {
+    write_output(arguments.output, format_fit(whole, record, format));
+    return;
+  }
+
+  // Every window is fitted with the terms chosen on the whole record, so that each coefficient
+  // is one continuous time series.
+  if (const auto problem = davar_options.validate(record.values.size()); !problem.empty()) {
+    throw ConfigError(record.source + ": " + problem);
+  }
+  options.terms = whole.diagnostics.chosen_terms;
+  const DavarResult davar = dynamic_allan_deviation(record, davar_options);
+  std::vector<double> edf;
+  for (std::size_t m : davar.m) {
+    int alpha = 0;
+    for (const auto& p : points) {
+      if (p.m == m) alpha = p.alpha;
+    }
+    edf.push_back(greenhall_edf({.alpha = alpha, .d = 2, .m = m,
+                                 .phase_count = davar.terms.front() + 2 * davar.m.front(),
+                                 .overlapping = true}));
+  }
+  std::vector<FitResult> fits;
+  for (const auto& row : davar.adev) fits.push_back(fit_window(row, davar, edf, record, options));
+  write_output(arguments.output, format_windowed_fit(davar.time_s, fits, record, davar_options,
+                                                     format));
+}
+
+}  // namespace
+
+void add_fit_command(CLI::App& app) {
+  auto arguments = std::make_shared<FitArguments>();
+  CLI::App* command = app.add_subcommand("fit", "Fit the IEEE 952 noise terms to the Allan variance");
+  add_input_options(*command, arguments->input);
+  command->add_option("--terms", arguments->terms,
+                      "Comma-separated terms (default: chosen by the information criterion)");
+  command->add_option("--taus", arguments->taus, "octave, decade or dense")->capture_default_str();
+  command->add_option("--loss", arguments->loss, "Robust loss: huber, cauchy or none")
+      ->capture_default_str();
+  command->add_option("--criterion", arguments->criterion, "Term selection: bic or aic")
+      ->capture_default_str();
+  command->add_option("--window", arguments->window, "Fit every DAVAR window of N samples");
+  command->add_option("--step", arguments->step, "Samples between DAVAR windows");
+  add_format_option(*command, arguments->format);
+  command->add_option("--output", arguments->output, "Write to FILE instead of standard output");
+  command->callback([arguments] { run_fit(*arguments); });
+}
+
+}  // namespace stochnav::cli

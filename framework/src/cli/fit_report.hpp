@@ -1,0 +1,26 @@
+#pragma once
+// Text forms of noise-term fits: one fit (table, csv, json) and the windowed time series.
+
+#include <string>
+#include <vector>
+
+#include "command_support.hpp"
+#include "stochnav/fit/fit_noise_terms.hpp"
+#include "stochnav/io/record.hpp"
+#include "stochnav/stats/davar.hpp"
+
+namespace stochnav::cli {
+
+/// JSON: the noise model of DESIGN.md with "<param>_sigma" after each parameter and
+/// "diagnostics" (fit/fit_result_json.hpp). Table and CSV: one row per parameter in reporting
+/// units with its 1-sigma uncertainty, then the IEEE 952 slope read-offs.
+std::string format_fit(const FitResult& fit, const Record& record, OutputFormat format);
+
+/// Coefficient time series of a windowed fit. JSON: {"units", "window", "step", "t": [...],
+/// "terms": [{"type": T, "<param>": [...], "<param>_sigma": [...]}, ...]}; CSV and table: one
+/// row per window, t then each parameter and its sigma.
+std::string format_windowed_fit(const std::vector<double>& time_s,
+                                const std::vector<FitResult>& fits, const Record& record,
+                                const DavarOptions& davar, OutputFormat format);
+
+}  // namespace stochnav::cli

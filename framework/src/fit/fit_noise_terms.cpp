@@ -1,0 +1,234 @@
+#include "stochnav/fit/fit_noise_terms.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "log_avar_fit.hpp"
+#include "stochnav/core/errors.hpp"
+#include "stochnav/model/reporting_units.hpp"
+
+namespace stochnav {
+namespace {
+
+using fit_detail::LogAvarFit;
+using fit_detail::Solution;
+using fit_detail::TermParameters;
+
+double criterion_of(const Solution& solution, std::size_t points, InformationCriterion kind) {
+  const double p = static_cast<double>(solution.parameter_count);
+  const double penalty = kind == InformationCriterion::kAic
+                             ? 2.0 * p
+                             : p * std::log(static_cast<double>(points));
+  return 2.0 * solution.cost + penalty;
+}
+
+// Best solution over the starts of `added` appended to `base` (jointly refitted).
+Solution best_with(const LogAvarFit& fit, const std::vector<TermParameters>& base,
+                   TermType added) {
+  Solution best;
+  best.cost = std::numeric_limits<double>::infinity();
+  for (const auto& start : fit.starts(added)) {
+    auto terms = base;
+    terms.push_back({added, start});
+    Solution solution = fit.solve(std::move(terms));
+    if (solution.usable && solution.cost < best.cost) best = std::move(solution);
+  }
+  return best;
+}
+
+std::vector<TermParameters> canonical_order(std::vector<TermParameters> terms) {
+  std::stable_sort(terms.begin(), terms.end(),
+                   [](const TermParameters& a, const TermParameters& b) { return a.type < b.type; });
+  return terms;
+}
+
+std::vector<TermType> types_of(const std::vector<TermParameters>& terms) {
+  std::vector<TermType> types;
+  for (const auto& term : terms) types.push_back(term.type);
+  return types;
+}
+
+[[noreturn]] void fail(const std::string& problem) {
+  throw ConfigError("fit_noise_terms: " + problem);
+}
+
+Solution fit_explicit(const LogAvarFit& fit, std::vector<TermType> terms) {
+  // Easy terms first (power laws), then the ones with a shape parameter.
+  std::stable_sort(terms.begin(), terms.end());
+  std::vector<TermParameters> current;
+  Solution solution;
+  for (TermType type : terms) {
+    solution = best_with(fit, current, type);
+    if (!solution.usable) {
+      fail(fmt::format("no usable solution when adding {}", term_type_name(type)));
+    }
+    current = solution.terms;
+  }
+  return fit.solve(canonical_order(current));
+}
+
+Solution fit_automatic(const LogAvarFit& fit, const FitOptions& options,
+                       std::vector<SelectionStep>& history) {
+  const std::size_t points = fit.point_count();
+  std::vector<TermParameters> current;
+  double current_criterion = std::numeric_limits<double>::infinity();
+  Solution current_solution;
+  while (true) {
+    Solution best;
+    double best_criterion = std::numeric_limits<double>::infinity();
+    std::size_t best_step = 0;
+    for (TermType candidate : options.candidates) {
+      const bool present = std::any_of(current.begin(), current.end(),
+                                        [&](const auto& t) { return t.type == candidate; });
+      if (present) continue;
+      std::size_t parameters = fit_detail::parameter_count(candidate);
+      for (const auto& term : current) parameters += term.log_values.size();
+      if (parameters >= points) continue;
+      Solution solution = best_with(fit, current, candidate);
+      if (!solution.usable) continue;
+      const double criterion = criterion_of(solution, points, options.criterion);
+      auto terms = types_of(canonical_order(solution.terms));
+      history.push_back({std::move(terms), criterion, false});
+      if (criterion < best_criterion) {
+        best_criterion = criterion;
+        best = std::move(solution);
+        best_step = history.size() - 1;
+      }
+    }
+    if (!best.usable) break;
+    if (!(best_criterion < current_criterion - options.min_criterion_improvement)) break;
+    history[best_step].accepted = true;
+    current = best.terms;
+    current_criterion = best_criterion;
+    current_solution = std::move(best);
+  }
+  // Backward pass: drop a term whenever that lowers the criterion.
+  bool dropped = true;
+  while (dropped && current.size() > 1) {
+    dropped = false;
+    for (std::size_t j = 0; j < current.size(); ++j) {
+      auto reduced = current;
+      reduced.erase(reduced.begin() + static_cast<std::ptrdiff_t>(j));
+      Solution solution = fit.solve(reduced);
+      if (!solution.usable) continue;
+      const double criterion = criterion_of(solution, points, options.criterion);
+      if (criterion < current_criterion - options.min_criterion_improvement) {
+        history.push_back({types_of(canonical_order(solution.terms)), criterion, true});
+        current = solution.terms;
+        current_criterion = criterion;
+        current_solution = std::move(solution);
+        dropped = true;
+        break;
+      }
+    }
+  }
+  if (current.empty()) fail("no candidate term could be fitted to the data");
+  return fit.solve(canonical_order(current));
+}
+
+}  // namespace
+
+std::string FitOptions::validate() const {
+  for (const auto* list : {&terms, &candidates}) {
+    for (TermType type : *list) {
+      if (type == TermType::kNonstationary) {
+        return std::string(list == &terms ? "terms" : "candidates") +
+               ": nonstationary terms have no Allan-variance signature to fit; expected "
+               "stationary term types";
+      }
+    }
+  }
+  if (terms.empty() && candidates.empty()) return "candidates: empty; expected at least one term";
+  if (!(loss_scale > 0.0) || !std::isfinite(loss_scale)) {
+    return fmt::format("loss_scale: {}; expected a number > 0", loss_scale);
+  }
+  if (!(min_criterion_improvement >= 0.0) || !std::isfinite(min_criterion_improvement)) {
+    return fmt::format("min_criterion_improvement: {}; expected a number >= 0",
+                       min_criterion_improvement);
+  }
+  if (max_iterations < 1) return fmt::format("max_iterations: {}; expected >= 1", max_iterations);
+  return {};
+}
+
+FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
+  if (auto problem = validate(data); !problem.empty()) fail(problem);
+  if (auto problem = options.validate(); !problem.empty()) fail(problem);
+  std::size_t explicit_parameters = 0;
+  for (TermType type : options.terms) explicit_parameters += fit_detail::parameter_count(type);
+  if (explicit_parameters > data.tau_s.size()) {
+    fail(fmt::format("{} parameters to fit from {} points; expected at least as many points "
+                     "(use more taus, e.g. a dense tau set)",
+                     explicit_parameters, data.tau_s.size()));
+  }
+
+  const LogAvarFit fit(data, options);
+  FitResult result;
+  FitDiagnostics& diagnostics = result.diagnostics;
+  diagnostics.automatic = options.terms.empty();
+  const Solution solution = diagnostics.automatic
+                                ? fit_automatic(fit, options, diagnostics.selection)
+                                : fit_explicit(fit, options.terms);
+
+  diagnostics.cost = solution.cost;
+  diagnostics.chi_square = solution.chi_square;
+  diagnostics.points = data.tau_s.size();
+  diagnostics.parameters = solution.parameter_count;
+  diagnostics.criterion = options.criterion;
+  diagnostics.criterion_value = criterion_of(solution, data.tau_s.size(), options.criterion);
+  diagnostics.loss = options.loss;
+  diagnostics.loss_scale = options.loss_scale;
+  diagnostics.iterations = solution.iterations;
+  diagnostics.converged = solution.converged;
+  diagnostics.readoffs = fit.readoffs();
+  if (!solution.converged) {
+    diagnostics.warnings.push_back(
+        fmt::format("the final solve stopped without converging after {} iterations",
+                    solution.iterations));
+  }
+
+  result.log_covariance = fit.covariance(solution);
+  result.model.unit = data.unit;
+  result.model.rate_hz = data.rate_hz;
+  Eigen::Index offset = 0;
+  for (const auto& term : solution.terms) {
+    diagnostics.chosen_terms.push_back(term.type);
+    NoiseTerm value = make_term(term.type);
+    NoiseTerm sigma = make_term(term.type);
+    const auto specs = parameter_specs(term.type);
+    for (std::size_t k = 0; k < term.log_values.size(); ++k, ++offset) {
+      const double natural = std::exp(term.log_values[k]);
+      const double log_variance = result.log_covariance(offset, offset);
+      set_parameter_value(value, k, natural);
+      set_parameter_value(sigma, k, natural * std::sqrt(log_variance));
+      if (fit.at_bound(term, k)) {
+        diagnostics.warnings.push_back(fmt::format(
+            "{} {} reached the edge of its search range: the data do not determine it",
+            term_type_name(term.type), specs[k].name));
+      }
+    }
+    result.model.terms.push_back(std::move(value));
+    result.sigma.push_back(std::move(sigma));
+  }
+  return result;
+}
+
+std::string_view robust_loss_name(RobustLoss loss) {
+  switch (loss) {
+    case RobustLoss::kNone:
+      return "none";
+    case RobustLoss::kHuber:
+      return "huber";
+    case RobustLoss::kCauchy:
+      return "cauchy";
+  }
+  return "none";
+}
+
+std::string_view criterion_name(InformationCriterion criterion) {
+  return criterion == InformationCriterion::kAic ? "aic" : "bic";
+}
+
+}  // namespace stochnav

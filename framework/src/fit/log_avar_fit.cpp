@@ -1,0 +1,316 @@
+#include "log_avar_fit.hpp"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <boost/math/special_functions/digamma.hpp>
+#include <boost/math/special_functions/trigamma.hpp>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "stochnav/model/closed_forms.hpp"
+
+namespace stochnav::fit_detail {
+namespace {
+
+// Allan variance of one term from the logs of its parameters.
+template <typename T>
+T term_avar(TermType type, const T* log_p, double tau) {
+  using std::exp;
+  switch (type) {
+    case TermType::kQuantization:
+      return closed_form::quantization_avar(exp(log_p[0]), tau);
+    case TermType::kAngleRandomWalk:
+      return closed_form::angle_random_walk_avar(exp(log_p[0]), tau);
+    case TermType::kBiasInstability:
+      return closed_form::bias_instability_avar(exp(log_p[0]));
+    case TermType::kRateRandomWalk:
+      return closed_form::rate_random_walk_avar(exp(log_p[0]), tau);
+    case TermType::kRateRamp:
+      return closed_form::rate_ramp_avar(exp(log_p[0]), tau);
+    case TermType::kGaussMarkov:
+      return closed_form::gauss_markov_avar(exp(log_p[0]), exp(log_p[1]), tau);
+    case TermType::kSinusoid:
+      return closed_form::sinusoid_avar(exp(log_p[0]), exp(log_p[1]), tau);
+    case TermType::kNonstationary:
+      break;
+  }
+  return T(0.0);
+}
+
+// r = (log model(tau) - target) / s for one point; one parameter block per term.
+struct LogAvarResidual {
+  const std::vector<TermType>* types;
+  double tau;
+  double target;
+  double inv_sigma;
+
+  template <typename T>
+  bool operator()(T const* const* parameters, T* residual) const {
+    T sum(0.0);
+    for (std::size_t j = 0; j < types->size(); ++j) {
+      sum += term_avar((*types)[j], parameters[j], tau);
+    }
+    if (!(sum > T(0.0))) return false;
+    using std::log;
+    residual[0] = (log(sum) - target) * inv_sigma;
+    return true;
+  }
+};
+
+// Everything a Ceres problem points into: kept alive while the problem is used.
+struct BuiltProblem {
+  std::vector<TermType> types;
+  std::vector<std::vector<double>> blocks;
+  std::unique_ptr<ceres::LossFunction> loss;
+  std::unique_ptr<ceres::Problem> problem;
+};
+
+std::unique_ptr<ceres::LossFunction> make_loss(RobustLoss loss, double scale) {
+  switch (loss) {
+    case RobustLoss::kHuber:
+      return std::make_unique<ceres::HuberLoss>(scale);
+    case RobustLoss::kCauchy:
+      return std::make_unique<ceres::CauchyLoss>(scale);
+    case RobustLoss::kNone:
+      break;
+  }
+  return nullptr;
+}
+
+constexpr double kCoefficientDecadesBelow = 14.0;  // e-folds below the read-off
+constexpr double kCoefficientDecadesAbove = 3.0;
+
+}  // namespace
+
+std::size_t parameter_count(TermType type) {
+  switch (type) {
+    case TermType::kGaussMarkov:
+    case TermType::kSinusoid:
+      return 2;
+    case TermType::kNonstationary:
+      return 0;
+    default:
+      return 1;
+  }
+}
+
+LogAvarFit::LogAvarFit(const FitData& data, const FitOptions& options)
+    : tau_(data.tau_s), avar_(data.avar), options_(options), readoffs_(slope_readoffs(data)) {
+  for (std::size_t i = 0; i < tau_.size(); ++i) {
+    const double half_nu = 0.5 * data.edf[i];
+    const double bias = boost::math::digamma(half_nu) - std::log(half_nu);
+    target_.push_back(std::log(avar_[i]) - bias);
+    inv_sigma_.push_back(1.0 / std::sqrt(boost::math::trigamma(half_nu)));
+  }
+  const auto [avar_min, avar_max] = std::minmax_element(avar_.begin(), avar_.end());
+  log_root_avar_min_ = 0.5 * std::log(*avar_min);
+  log_root_avar_max_ = 0.5 * std::log(*avar_max);
+  const auto [tau_min, tau_max] = std::minmax_element(tau_.begin(), tau_.end());
+  tau_min_ = *tau_min;
+  tau_max_ = *tau_max;
+}
+
+double LogAvarFit::lower_bound(TermType type, std::size_t k) const {
+  switch (type) {
+    case TermType::kQuantization:
+      return std::log(readoffs_.quantization.value) - kCoefficientDecadesBelow;
+    case TermType::kAngleRandomWalk:
+      return std::log(readoffs_.angle_random_walk.value) - kCoefficientDecadesBelow;
+    case TermType::kBiasInstability:
+      return std::log(readoffs_.bias_instability.value) - kCoefficientDecadesBelow;
+    case TermType::kRateRandomWalk:
+      return std::log(readoffs_.rate_random_walk.value) - kCoefficientDecadesBelow;
+    case TermType::kRateRamp:
+      return std::log(readoffs_.rate_ramp.value) - kCoefficientDecadesBelow;
+    case TermType::kGaussMarkov:
+      return k == 0 ? log_root_avar_min_ - kCoefficientDecadesBelow : std::log(tau_min_ / 100.0);
+    case TermType::kSinusoid:
+      return k == 0 ? log_root_avar_min_ - kCoefficientDecadesBelow : std::log(0.01 / tau_max_);
+    case TermType::kNonstationary:
+      break;
+  }
+  return -std::numeric_limits<double>::infinity();
+}
+
+double LogAvarFit::upper_bound(TermType type, std::size_t k) const {
+  switch (type) {
+    case TermType::kQuantization:
+      return std::log(readoffs_.quantization.value) + kCoefficientDecadesAbove;
+    case TermType::kAngleRandomWalk:
+      return std::log(readoffs_.angle_random_walk.value) + kCoefficientDecadesAbove;
+    case TermType::kBiasInstability:
+      return std::log(readoffs_.bias_instability.value) + kCoefficientDecadesAbove;
+    case TermType::kRateRandomWalk:
+      return std::log(readoffs_.rate_random_walk.value) + kCoefficientDecadesAbove;
+    case TermType::kRateRamp:
+      return std::log(readoffs_.rate_ramp.value) + kCoefficientDecadesAbove;
+    case TermType::kGaussMarkov:
+      // A Gauss-Markov term far outside the tau range mimics a random walk or white noise with
+      // a large sigma, so sigma gets more room above than the other coefficients.
+      return k == 0 ? log_root_avar_max_ + 10.0 : std::log(tau_max_ * 100.0);
+    case TermType::kSinusoid:
+      return k == 0 ? log_root_avar_max_ + kCoefficientDecadesAbove : std::log(1.0 / tau_min_);
+    case TermType::kNonstationary:
+      break;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+bool LogAvarFit::at_bound(const TermParameters& term, std::size_t k) const {
+  const double lower = lower_bound(term.type, k);
+  const double upper = upper_bound(term.type, k);
+  const double margin = 1e-6 * (upper - lower);
+  return term.log_values[k] <= lower + margin || term.log_values[k] >= upper - margin;
+}
+
+std::vector<std::vector<double>> LogAvarFit::starts(TermType type) const {
+  std::vector<std::vector<double>> result;
+  const auto scaled = [&](double readoff) {
+    for (double factor : {0.7, 0.2, 0.03}) result.push_back({std::log(factor * readoff)});
+  };
+  switch (type) {
+    case TermType::kQuantization:
+      scaled(readoffs_.quantization.value);
+      break;
+    case TermType::kAngleRandomWalk:
+      scaled(readoffs_.angle_random_walk.value);
+      break;
+    case TermType::kBiasInstability:
+      scaled(readoffs_.bias_instability.value);
+      break;
+    case TermType::kRateRandomWalk:
+      scaled(readoffs_.rate_random_walk.value);
+      break;
+    case TermType::kRateRamp:
+      scaled(readoffs_.rate_ramp.value);
+      break;
+    case TermType::kGaussMarkov:
+      // Peak of the Gauss-Markov AVAR: 0.381 sigma^2 at tau = 1.89 tau_c.
+      for (std::size_t i = 0; i < tau_.size(); ++i) {
+        result.push_back({std::log(0.5 * std::sqrt(avar_[i] / 0.381)), std::log(tau_[i] / 1.89)});
+      }
+      break;
+    case TermType::kSinusoid:
+      // Peak of the sinusoid AVAR: 0.525 A^2 at tau = 0.371 / f.
+      for (std::size_t i = 0; i < tau_.size(); ++i) {
+        result.push_back({std::log(0.5 * std::sqrt(avar_[i] / 0.525)), std::log(0.371 / tau_[i])});
+      }
+      break;
+    case TermType::kNonstationary:
+      break;
+  }
+  return result;
+}
+
+namespace {
+
+BuiltProblem build_problem(const std::vector<TermParameters>& terms,
+                           const std::vector<double>& tau, const std::vector<double>& target,
+                           const std::vector<double>& inv_sigma, const FitOptions& options) {
+  BuiltProblem built;
+  for (const auto& term : terms) {
+    built.types.push_back(term.type);
+    built.blocks.push_back(term.log_values);
+  }
+  built.loss = make_loss(options.loss, options.loss_scale);
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  built.problem = std::make_unique<ceres::Problem>(problem_options);
+  std::vector<double*> pointers;
+  for (auto& block : built.blocks) pointers.push_back(block.data());
+  for (std::size_t i = 0; i < tau.size(); ++i) {
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<LogAvarResidual, 4>(
+        new LogAvarResidual{&built.types, tau[i], target[i], inv_sigma[i]});
+    for (const auto& block : built.blocks) cost->AddParameterBlock(static_cast<int>(block.size()));
+    cost->SetNumResiduals(1);
+    built.problem->AddResidualBlock(cost, built.loss.get(), pointers);
+  }
+  return built;
+}
+
+}  // namespace
+
+Solution LogAvarFit::solve(std::vector<TermParameters> start) const {
+  Solution solution;
+  for (auto& term : start) {
+    for (std::size_t k = 0; k < term.log_values.size(); ++k) {
+      term.log_values[k] =
+          std::clamp(term.log_values[k], lower_bound(term.type, k), upper_bound(term.type, k));
+    }
+    solution.parameter_count += term.log_values.size();
+  }
+  BuiltProblem built = build_problem(start, tau_, target_, inv_sigma_, options_);
+  for (std::size_t j = 0; j < start.size(); ++j) {
+    for (std::size_t k = 0; k < start[j].log_values.size(); ++k) {
+      built.problem->SetParameterLowerBound(built.blocks[j].data(), static_cast<int>(k),
+                                            lower_bound(start[j].type, k));
+      built.problem->SetParameterUpperBound(built.blocks[j].data(), static_cast<int>(k),
+                                            upper_bound(start[j].type, k));
+    }
+  }
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::DENSE_QR;
+  solver_options.max_num_iterations = options_.max_iterations;
+  solver_options.function_tolerance = 1e-12;
+  solver_options.gradient_tolerance = 1e-12;
+  solver_options.parameter_tolerance = 1e-10;
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.minimizer_progress_to_stdout = false;
+  solver_options.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options, built.problem.get(), &summary);
+
+  solution.usable = summary.IsSolutionUsable();
+  solution.converged = summary.termination_type == ceres::CONVERGENCE;
+  solution.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  solution.cost = summary.final_cost;
+  for (std::size_t j = 0; j < start.size(); ++j) {
+    solution.terms.push_back({start[j].type, built.blocks[j]});
+  }
+  ceres::Problem::EvaluateOptions evaluate_options;
+  evaluate_options.apply_loss_function = false;
+  std::vector<double> residuals;
+  double raw_cost = 0.0;
+  if (built.problem->Evaluate(evaluate_options, &raw_cost, &residuals, nullptr, nullptr)) {
+    solution.chi_square = 2.0 * raw_cost;
+  } else {
+    solution.usable = false;
+  }
+  if (!std::isfinite(solution.cost)) solution.usable = false;
+  return solution;
+}
+
+Eigen::MatrixXd LogAvarFit::covariance(const Solution& solution) const {
+  const auto n = static_cast<Eigen::Index>(solution.parameter_count);
+  Eigen::MatrixXd nan_matrix =
+      Eigen::MatrixXd::Constant(n, n, std::numeric_limits<double>::quiet_NaN());
+  if (n == 0) return nan_matrix;
+  BuiltProblem built = build_problem(solution.terms, tau_, target_, inv_sigma_, options_);
+  ceres::Covariance::Options covariance_options;
+  covariance_options.algorithm_type = ceres::DENSE_SVD;
+  covariance_options.null_space_rank = -1;
+  covariance_options.min_reciprocal_condition_number = 1e-14;
+  covariance_options.num_threads = 1;
+  ceres::Covariance covariance(covariance_options);
+  std::vector<const double*> pointers;
+  for (const auto& block : built.blocks) pointers.push_back(block.data());
+  if (!covariance.Compute(pointers, built.problem.get())) return nan_matrix;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> matrix(n, n);
+  if (!covariance.GetCovarianceMatrix(pointers, matrix.data())) return nan_matrix;
+  Eigen::MatrixXd result = matrix;
+  // Parameters pinned at a bound have no meaningful variance.
+  Eigen::Index offset = 0;
+  for (const auto& term : solution.terms) {
+    for (std::size_t k = 0; k < term.log_values.size(); ++k, ++offset) {
+      if (at_bound(term, k)) {
+        result.row(offset).setConstant(std::numeric_limits<double>::quiet_NaN());
+        result.col(offset).setConstant(std::numeric_limits<double>::quiet_NaN());
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace stochnav::fit_detail

@@ -1,0 +1,71 @@
+#pragma once
+// One Ceres solve of the log-domain Allan-variance fit for a fixed list of terms (the method is
+// described in fit/fit_noise_terms.hpp). Internal to the fit domain.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "stochnav/fit/fit_data.hpp"
+#include "stochnav/fit/fit_noise_terms.hpp"
+#include "stochnav/fit/slope_readoffs.hpp"
+#include "stochnav/model/noise_term.hpp"
+
+namespace stochnav::fit_detail {
+
+/// A term and the natural logs of its fitted parameters (see parameter_count).
+struct TermParameters {
+  TermType type = TermType::kAngleRandomWalk;
+  std::vector<double> log_values;
+};
+
+struct Solution {
+  std::vector<TermParameters> terms;
+  double cost = 0.0;        ///< 1/2 sum rho(r_i^2)
+  double chi_square = 0.0;  ///< sum r_i^2
+  int iterations = 0;
+  bool converged = false;
+  bool usable = false;      ///< Ceres returned a usable point
+  std::size_t parameter_count = 0;
+};
+
+/// Parameters fitted for a term type: 1, or 2 for Gauss-Markov (sigma, tau_c) and sinusoid
+/// (amplitude, frequency). 0 for nonstationary (not fittable).
+std::size_t parameter_count(TermType type);
+
+class LogAvarFit {
+ public:
+  LogAvarFit(const FitData& data, const FitOptions& options);
+
+  /// Minimises the cost from `start` (clamped into the bounds).
+  Solution solve(std::vector<TermParameters> start) const;
+
+  /// Covariance of all log parameters of `solution` (term order), from ceres::Covariance at
+  /// the solution. Entries of parameters at a bound, or all when Ceres fails, are NaN.
+  Eigen::MatrixXd covariance(const Solution& solution) const;
+
+  /// Whether parameter k of term j sits at (within 1e-6 of) its lower or upper bound.
+  bool at_bound(const TermParameters& term, std::size_t k) const;
+
+  /// Starting log parameters for a term of `type` added to a model.
+  std::vector<std::vector<double>> starts(TermType type) const;
+
+  std::size_t point_count() const { return tau_.size(); }
+  const SlopeReadoffs& readoffs() const { return readoffs_; }
+
+ private:
+  double lower_bound(TermType type, std::size_t k) const;
+  double upper_bound(TermType type, std::size_t k) const;
+
+  std::vector<double> tau_;
+  std::vector<double> avar_;
+  std::vector<double> target_;     // log avar_i - b_i
+  std::vector<double> inv_sigma_;  // 1 / s_i
+  FitOptions options_;
+  SlopeReadoffs readoffs_;
+  double log_root_avar_min_ = 0.0;
+  double log_root_avar_max_ = 0.0;
+  double tau_min_ = 0.0;
+  double tau_max_ = 0.0;
+};
+
+}  // namespace stochnav::fit_detail
