@@ -5,7 +5,8 @@
 #    episode from 2400 s to 3600 s that scales the noise by 8);
 # 2. its overlapping Allan deviation with Stable32 confidence intervals;
 # 3. the noise-term fit (Ceres) with the IEEE 952 slope read-offs beside it;
-# 4. plots: the deviation with the fitted terms, and the DAVAR heat map that shows the episode.
+# 4. plots: the deviation with the fitted terms, and the DAVAR heat map that shows the episode;
+# 5. the windowed fit (the paper's Eq. 7): the white-noise coefficients rise in the episode.
 # Usage: examples/quickstart/run.sh [OUT_DIR]   (STOCHNAV=path/to/stochnav to choose the binary)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -27,5 +28,9 @@ echo "== Noise-term fit =="
   --output "$out/allan.txt"
 "$stochnav" davar "${input[@]}" --window 60000 --step 3000 --plot "$out/davar.png" \
   --format csv --output "$out/davar.csv"
+echo
+echo "== Windowed fit (10-minute DAVAR windows): white-noise terms over time =="
+"$stochnav" fit "${input[@]}" --window 60000 --step 30000 \
+  --terms quantization,angle_random_walk --format table
 echo
 echo "Wrote $out/allan.png (deviation, 68.3 % intervals, fitted terms) and $out/davar.png (DAVAR)."

@@ -22,6 +22,9 @@ struct BadInputCase {
   std::string expected_fragment; // must appear in the one-line message
 };
 
+// Names the case in test listings instead of dumping its bytes.
+void PrintTo(const BadInputCase& c, std::ostream* os) { *os << c.name; }
+
 std::string good_csv(int rows) {
   std::string text = "t,x\n";
   for (int i = 0; i < rows; ++i) text += std::to_string(i) + "," + std::to_string((i * 7) % 5) + "\n";

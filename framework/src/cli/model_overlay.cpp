@@ -47,7 +47,7 @@ ModelOverlay model_overlay(const std::string& model_path, const Record& record, 
     const auto curve = deviation_curve([&](double t) { return allan_variance(term, t); });
     const std::string name = fmt::format("term{}", index++);
     overlay.datablocks += gnuplot_datablock(name, {&tau, &curve});
-    overlay.plot_clauses += fmt::format(", ${} using 1:2 with lines dt 2 lw 1.5 title '{}'", name,
+    overlay.plot_clauses += fmt::format(", ${} using 1:2 with lines dt 2 lw 1.5 title '{}' noenhanced", name,
                                         term_type_name(term_type(term)));
   }
   return overlay;
