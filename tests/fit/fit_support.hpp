@@ -21,7 +21,7 @@ inline FitData simulated_fit_data(const NoiseModel& truth, std::size_t samples, 
   const auto phase = phase_from_rate(rate, tau0);
   const auto m = averaging_factors(Deviation::kOadev, TauSpacing::kOctave, phase.size(), tau0);
   const auto points = compute_deviation(Deviation::kOadev, phase, tau0, m);
-  return fit_data_from_deviations(points, truth.unit, rate_hz);
+  return fit_data_from_deviations(Deviation::kOadev, points, truth.unit, rate_hz);
 }
 
 /// The exact closed-form curve of `truth` at the taus of `like`, same edf: a noiseless input.

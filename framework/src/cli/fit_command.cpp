@@ -117,8 +117,8 @@ void run_fit(const FitArguments& arguments) {
                      std::to_string(record.values.size()) + " samples); use a longer record");
   }
   const auto points = compute_deviation(Deviation::kOadev, phase, record.tau0(), m_values);
-  const FitResult whole = fit_noise_terms(fit_data_from_deviations(points, record.unit,
-                                                                   record.rate_hz),
+  const FitResult whole = fit_noise_terms(
+      fit_data_from_deviations(Deviation::kOadev, points, record.unit, record.rate_hz),
                                           options);
   if (!windowed) {
     write_output(arguments.output, format_fit(whole, record, format));

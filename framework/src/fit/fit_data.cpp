@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "stochnav/core/errors.hpp"
+
 namespace stochnav {
 namespace {
 
@@ -34,8 +36,13 @@ std::string validate(const FitData& data) {
   return {};
 }
 
-FitData fit_data_from_deviations(std::span<const DeviationPoint> points, Unit unit,
-                                 double rate_hz) {
+FitData fit_data_from_deviations(Deviation kind, std::span<const DeviationPoint> points,
+                                 Unit unit, double rate_hz) {
+  if (kind != Deviation::kOadev && kind != Deviation::kAdev) {
+    throw ConfigError(fmt::format(
+        "fit: {} values are not Allan variances; expected an adev or oadev table",
+        deviation_name(kind)));
+  }
   FitData data;
   data.unit = unit;
   data.rate_hz = rate_hz;
@@ -47,15 +54,20 @@ FitData fit_data_from_deviations(std::span<const DeviationPoint> points, Unit un
     data.tau_s.push_back(point.tau_s);
     data.avar.push_back(deviation * deviation);
     data.edf.push_back(point.edf);
+    if (kind == Deviation::kOadev && data.phase_count == 0) {
+      data.phase_count = point.terms + 2 * point.m;
+    }
   }
   return data;
 }
 
 FitData fit_data_from_adev(std::span<const double> tau_s, std::span<const double> adev_natural,
-                           std::span<const double> edf, Unit unit, double rate_hz) {
+                           std::span<const double> edf, Unit unit, double rate_hz,
+                           std::size_t phase_count) {
   FitData data;
   data.unit = unit;
   data.rate_hz = rate_hz;
+  data.phase_count = phase_count;
   data.tau_s.assign(tau_s.begin(), tau_s.end());
   data.edf.assign(edf.begin(), edf.end());
   for (double adev : adev_natural) data.avar.push_back(adev * adev);

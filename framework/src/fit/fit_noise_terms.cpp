@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <optional>
 
 #include "log_avar_fit.hpp"
 #include "stochnav/core/errors.hpp"
-#include "stochnav/model/reporting_units.hpp"
+#include "stochnav/fit/oadev_covariance.hpp"
+#include "stochnav/model/allan_variance.hpp"
 
 namespace stochnav {
 namespace {
@@ -153,6 +156,73 @@ std::string FitOptions::validate() const {
   return {};
 }
 
+namespace {
+
+// The input EDF, made non-increasing in tau: more averaging never adds degrees of freedom, and
+// noise misidentification at long tau can report EDFs far too large for a point.
+std::vector<double> monotone_edf(const FitData& data) {
+  std::vector<std::size_t> order(data.tau_s.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return data.tau_s[a] < data.tau_s[b]; });
+  std::vector<double> edf = data.edf;
+  double cap = std::numeric_limits<double>::infinity();
+  for (std::size_t i : order) {
+    edf[i] = std::min(edf[i], cap);
+    cap = edf[i];
+  }
+  return edf;
+}
+
+struct Weighting {
+  std::vector<double> edf;
+  Eigen::MatrixXd correlation;  // empty: independent points
+};
+
+NoiseModel model_of(const Solution& solution, const FitData& data) {
+  NoiseModel model{data.unit, data.rate_hz, {}};
+  for (const auto& term : solution.terms) {
+    NoiseTerm value = make_term(term.type);
+    for (std::size_t k = 0; k < term.log_values.size(); ++k) {
+      set_parameter_value(value, k, std::exp(term.log_values[k]));
+    }
+    model.terms.push_back(std::move(value));
+  }
+  return model;
+}
+
+// EDFs and correlations of the points under `model`; nullopt when the data do not allow it
+// (taus not integer multiples of tau0, or a degenerate model).
+std::optional<Weighting> model_weighting(const FitData& data, const NoiseModel& model) {
+  if (data.phase_count == 0) return std::nullopt;
+  std::vector<std::size_t> m_values;
+  for (double tau : data.tau_s) {
+    const double m = std::round(tau * data.rate_hz);
+    if (m < 1.0 || std::abs(m - tau * data.rate_hz) > 1e-6 * m ||
+        2.0 * m >= static_cast<double>(data.phase_count)) {
+      return std::nullopt;
+    }
+    m_values.push_back(static_cast<std::size_t>(m));
+  }
+  const Eigen::MatrixXd covariance =
+      oadev_estimate_covariance(model, 1.0 / data.rate_hz, data.phase_count, m_values);
+  Weighting weighting;
+  const auto n = static_cast<Eigen::Index>(m_values.size());
+  Eigen::VectorXd scale(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double avar = allan_variance(model, data.tau_s[static_cast<std::size_t>(i)]);
+    const double variance = covariance(i, i);
+    if (!(variance > 0.0) || !std::isfinite(variance) || !(avar > 0.0)) return std::nullopt;
+    weighting.edf.push_back(2.0 * avar * avar / variance);
+    scale[i] = 1.0 / std::sqrt(variance);
+  }
+  weighting.correlation = scale.asDiagonal() * covariance * scale.asDiagonal();
+  if (!weighting.correlation.allFinite()) return std::nullopt;
+  return weighting;
+}
+
+}  // namespace
+
 FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
   if (auto problem = validate(data); !problem.empty()) fail(problem);
   if (auto problem = options.validate(); !problem.empty()) fail(problem);
@@ -164,13 +234,37 @@ FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
                      explicit_parameters, data.tau_s.size()));
   }
 
-  const LogAvarFit fit(data, options);
   FitResult result;
   FitDiagnostics& diagnostics = result.diagnostics;
   diagnostics.automatic = options.terms.empty();
-  const Solution solution = diagnostics.automatic
-                                ? fit_automatic(fit, options, diagnostics.selection)
-                                : fit_explicit(fit, options.terms);
+  const auto select = [&](const LogAvarFit& fit) {
+    diagnostics.selection.clear();
+    return diagnostics.automatic ? fit_automatic(fit, options, diagnostics.selection)
+                                 : fit_explicit(fit, options.terms);
+  };
+
+  // Pilot fit with the input EDFs; then, when the record length is known, two passes weighted
+  // by the covariance of the estimates under the current model (the first one repeats the term
+  // selection with those weights).
+  Weighting weighting{monotone_edf(data), {}};
+  auto fit = std::make_unique<LogAvarFit>(data, options, weighting.edf);
+  Solution solution = select(*fit);
+  diagnostics.model_weighting = false;
+  if (data.phase_count > 0) {
+    for (int pass = 0; pass < 2; ++pass) {
+      auto next = model_weighting(data, model_of(solution, data));
+      if (!next) {
+        diagnostics.warnings.push_back(
+            "points weighted by the input edf as independent: the taus are not integer "
+            "multiples of 1 / rate_hz below phase_count / 2, or the model is degenerate");
+        break;
+      }
+      weighting = std::move(*next);
+      fit = std::make_unique<LogAvarFit>(data, options, weighting.edf, weighting.correlation);
+      solution = pass == 0 ? select(*fit) : fit->solve(solution.terms);
+      diagnostics.model_weighting = true;
+    }
+  }
 
   diagnostics.cost = solution.cost;
   diagnostics.chi_square = solution.chi_square;
@@ -182,14 +276,15 @@ FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
   diagnostics.loss_scale = options.loss_scale;
   diagnostics.iterations = solution.iterations;
   diagnostics.converged = solution.converged;
-  diagnostics.readoffs = fit.readoffs();
+  diagnostics.readoffs = fit->readoffs();
+  diagnostics.edf_used = weighting.edf;
   if (!solution.converged) {
     diagnostics.warnings.push_back(
         fmt::format("the final solve stopped without converging after {} iterations",
                     solution.iterations));
   }
 
-  result.log_covariance = fit.covariance(solution);
+  result.log_covariance = fit->covariance(solution);
   result.model.unit = data.unit;
   result.model.rate_hz = data.rate_hz;
   Eigen::Index offset = 0;
@@ -203,7 +298,7 @@ FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
       const double log_variance = result.log_covariance(offset, offset);
       set_parameter_value(value, k, natural);
       set_parameter_value(sigma, k, natural * std::sqrt(log_variance));
-      if (fit.at_bound(term, k)) {
+      if (fit->at_bound(term, k)) {
         diagnostics.warnings.push_back(fmt::format(
             "{} {} reached the edge of its search range: the data do not determine it",
             term_type_name(term.type), specs[k].name));

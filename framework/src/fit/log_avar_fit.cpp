@@ -96,10 +96,15 @@ std::size_t parameter_count(TermType type) {
   }
 }
 
-LogAvarFit::LogAvarFit(const FitData& data, const FitOptions& options)
-    : tau_(data.tau_s), avar_(data.avar), options_(options), readoffs_(slope_readoffs(data)) {
+LogAvarFit::LogAvarFit(const FitData& data, const FitOptions& options,
+                       std::span<const double> edf, Eigen::MatrixXd correlation)
+    : tau_(data.tau_s),
+      avar_(data.avar),
+      correlation_(std::move(correlation)),
+      options_(options),
+      readoffs_(slope_readoffs(data)) {
   for (std::size_t i = 0; i < tau_.size(); ++i) {
-    const double half_nu = 0.5 * data.edf[i];
+    const double half_nu = 0.5 * edf[i];
     const double bias = boost::math::digamma(half_nu) - std::log(half_nu);
     target_.push_back(std::log(avar_[i]) - bias);
     inv_sigma_.push_back(1.0 / std::sqrt(boost::math::trigamma(half_nu)));
@@ -300,6 +305,26 @@ Eigen::MatrixXd LogAvarFit::covariance(const Solution& solution) const {
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> matrix(n, n);
   if (!covariance.GetCovarianceMatrix(pointers, matrix.data())) return nan_matrix;
   Eigen::MatrixXd result = matrix;
+  if (correlation_.rows() == static_cast<Eigen::Index>(tau_.size())) {
+    // Sandwich for correlated residuals: C J^T R J C, J with the same loss corrections.
+    ceres::Problem::EvaluateOptions evaluate_options;
+    evaluate_options.apply_loss_function = true;
+    double cost = 0.0;
+    ceres::CRSMatrix crs;
+    if (!built.problem->Evaluate(evaluate_options, &cost, nullptr, nullptr, &crs)) {
+      return nan_matrix;
+    }
+    Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+    for (int row = 0; row < crs.num_rows; ++row) {
+      for (int k = crs.rows[static_cast<std::size_t>(row)];
+           k < crs.rows[static_cast<std::size_t>(row) + 1]; ++k) {
+        jacobian(row, crs.cols[static_cast<std::size_t>(k)]) =
+            crs.values[static_cast<std::size_t>(k)];
+      }
+    }
+    const Eigen::MatrixXd bread = result;
+    result = bread * (jacobian.transpose() * correlation_ * jacobian) * bread;
+  }
   // Parameters pinned at a bound have no meaningful variance.
   Eigen::Index offset = 0;
   for (const auto& term : solution.terms) {

@@ -3,6 +3,7 @@
 // described in fit/fit_noise_terms.hpp). Internal to the fit domain.
 
 #include <Eigen/Core>
+#include <span>
 #include <vector>
 
 #include "stochnav/fit/fit_data.hpp"
@@ -34,13 +35,18 @@ std::size_t parameter_count(TermType type);
 
 class LogAvarFit {
  public:
-  LogAvarFit(const FitData& data, const FitOptions& options);
+  /// Residual scales and bias corrections from `edf` (one per point; it replaces data.edf).
+  /// `correlation`: correlation matrix of the estimates (empty: independent), used only for
+  /// the uncertainties.
+  LogAvarFit(const FitData& data, const FitOptions& options, std::span<const double> edf,
+             Eigen::MatrixXd correlation = {});
 
   /// Minimises the cost from `start` (clamped into the bounds).
   Solution solve(std::vector<TermParameters> start) const;
 
-  /// Covariance of all log parameters of `solution` (term order), from ceres::Covariance at
-  /// the solution. Entries of parameters at a bound, or all when Ceres fails, are NaN.
+  /// Covariance of all log parameters of `solution` (term order): ceres::Covariance at the
+  /// solution, C = (J^T J)^-1, or with a correlation matrix R the sandwich C J^T R J C.
+  /// Entries of parameters at a bound, or all when Ceres fails, are NaN.
   Eigen::MatrixXd covariance(const Solution& solution) const;
 
   /// Whether parameter k of term j sits at (within 1e-6 of) its lower or upper bound.
@@ -60,6 +66,7 @@ class LogAvarFit {
   std::vector<double> avar_;
   std::vector<double> target_;     // log avar_i - b_i
   std::vector<double> inv_sigma_;  // 1 / s_i
+  Eigen::MatrixXd correlation_;
   FitOptions options_;
   SlopeReadoffs readoffs_;
   double log_root_avar_min_ = 0.0;

@@ -61,6 +61,7 @@ class PhaseCovariance {
   }
 
   double ramp() const { return ramp_; }
+  bool has_ramp() const { return ramp_ != 0.0; }
 
  private:
   struct GaussMarkovPart {
@@ -111,6 +112,13 @@ class LagSummer {
     return {count * c * c, count * c};
   }
 
+  /// Per-lag absolute tolerance of the quadrature, from the largest |g| seen at breakpoints:
+  /// far tails, where the contrasts of G lose their digits to cancellation, stop refining there.
+  void set_scale(const LagSums& largest) {
+    squared_tolerance_ = 1e-12 * largest.squared;
+    linear_tolerance_ = 1e-12 * std::abs(largest.linear);
+  }
+
   // Sum over the integers strictly between breakpoints a < b.
   LagSums interior(double a, double b) const {
     LagSums sums;
@@ -144,9 +152,13 @@ class LagSummer {
     const LagSums right = gauss(mid, b);
     LagSums both = left;
     both += right;
+    // The signed sum matters only with a ramp; its tolerance is set by the squared sum's scale
+    // (|sum c C| <= sqrt(sum c sum c C^2)), so sign changes cannot stall the refinement.
     const bool converged =
-        std::abs(both.squared - whole.squared) <= 1e-9 * std::abs(both.squared) &&
-        std::abs(both.linear - whole.linear) <= 1e-9 * std::abs(both.linear) + 1e-300;
+        std::abs(both.squared - whole.squared) <=
+            1e-9 * std::abs(both.squared) + squared_tolerance_ * (b - a) &&
+        (!g_.has_ramp() || std::abs(both.linear - whole.linear) <=
+                               1e-9 * std::abs(both.linear) + linear_tolerance_ * (b - a));
     if (converged || depth >= 40 || b - a < 8.0) return both;
     LagSums sums = adaptive(a, mid, left, depth + 1);
     sums += adaptive(mid, b, right, depth + 1);
@@ -155,11 +167,13 @@ class LagSummer {
 
   const PhaseCovariance& g_;
   double m1_, m2_, n1_, n2_;
+  double squared_tolerance_ = 0.0;
+  double linear_tolerance_ = 0.0;
 };
 
 LagSums sum_over_lags(const PhaseCovariance& g, std::size_t m1, std::size_t m2, std::size_t n1,
                       std::size_t n2) {
-  const LagSummer summer(g, m1, m2, n1, n2);
+  LagSummer summer(g, m1, m2, n1, n2);
   const double low_domain = -(static_cast<double>(n2) - 1.0);
   const double high_domain = static_cast<double>(n1) - 1.0;
   const double tail = g.tail_lags(m1, m2);
@@ -176,9 +190,16 @@ LagSums sum_over_lags(const PhaseCovariance& g, std::size_t m1, std::size_t m2, 
   std::sort(breaks.begin(), breaks.end());
   breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
   LagSums sums;
-  for (std::size_t k = 0; k < breaks.size(); ++k) {
-    sums += summer.at(breaks[k]);
-    if (k + 1 < breaks.size()) sums += summer.interior(breaks[k], breaks[k + 1]);
+  LagSums largest;
+  for (double lag : breaks) {
+    const LagSums value = summer.at(lag);
+    sums += value;
+    largest.squared = std::max(largest.squared, value.squared);
+    largest.linear = std::max(largest.linear, std::abs(value.linear));
+  }
+  summer.set_scale(largest);
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    sums += summer.interior(breaks[k], breaks[k + 1]);
   }
   return sums;
 }

@@ -7,8 +7,7 @@
 namespace stochnav {
 
 std::vector<DeviationPoint> compute_deviation(Deviation kind, std::span<const double> phase,
-                                              double tau0_s,
-                                              std::span<const std::size_t> m_values,
+                                              double tau0_s, std::span<const std::size_t> m_values,
                                               double confidence) {
   const std::vector<double> values = deviation_values(kind, phase, tau0_s, m_values);
   std::vector<DeviationPoint> points;

@@ -9,20 +9,26 @@
 namespace stochnav {
 namespace {
 
-constexpr std::array<Deviation, 6> kAllDeviations = {Deviation::kAdev,  Deviation::kOadev,
-                                                      Deviation::kMdev,  Deviation::kTdev,
-                                                      Deviation::kHdev,  Deviation::kOhdev};
+constexpr std::array<Deviation, 6> kAllDeviations = {Deviation::kAdev, Deviation::kOadev,
+                                                     Deviation::kMdev, Deviation::kTdev,
+                                                     Deviation::kHdev, Deviation::kOhdev};
 
 }  // namespace
 
 std::string_view deviation_name(Deviation kind) {
   switch (kind) {
-    case Deviation::kAdev: return "adev";
-    case Deviation::kOadev: return "oadev";
-    case Deviation::kMdev: return "mdev";
-    case Deviation::kTdev: return "tdev";
-    case Deviation::kHdev: return "hdev";
-    case Deviation::kOhdev: return "ohdev";
+    case Deviation::kAdev:
+      return "adev";
+    case Deviation::kOadev:
+      return "oadev";
+    case Deviation::kMdev:
+      return "mdev";
+    case Deviation::kTdev:
+      return "tdev";
+    case Deviation::kHdev:
+      return "hdev";
+    case Deviation::kOhdev:
+      return "ohdev";
   }
   return "unknown";
 }
@@ -44,9 +50,7 @@ int difference_order(Deviation kind) {
   return kind == Deviation::kHdev || kind == Deviation::kOhdev ? 3 : 2;
 }
 
-bool is_overlapping(Deviation kind) {
-  return kind != Deviation::kAdev && kind != Deviation::kHdev;
-}
+bool is_overlapping(Deviation kind) { return kind != Deviation::kAdev && kind != Deviation::kHdev; }
 
 bool is_modified(Deviation kind) { return kind == Deviation::kMdev || kind == Deviation::kTdev; }
 
@@ -55,12 +59,17 @@ std::size_t term_count(Deviation kind, std::size_t m, std::size_t phase_count) {
   const std::size_t n = phase_count;
   const auto positive = [](std::size_t a, std::size_t b) { return a > b ? a - b : 0; };
   switch (kind) {
-    case Deviation::kAdev: return positive((n - 1) / m, 1);
-    case Deviation::kOadev: return positive(n, 2 * m);
+    case Deviation::kAdev:
+      return positive((n - 1) / m, 1);
+    case Deviation::kOadev:
+      return positive(n, 2 * m);
     case Deviation::kMdev:
-    case Deviation::kTdev: return positive(n + 1, 3 * m);
-    case Deviation::kHdev: return positive((n - 1) / m, 2);
-    case Deviation::kOhdev: return positive(n, 3 * m);
+    case Deviation::kTdev:
+      return positive(n + 1, 3 * m);
+    case Deviation::kHdev:
+      return positive((n - 1) / m, 2);
+    case Deviation::kOhdev:
+      return positive(n, 3 * m);
   }
   return 0;
 }

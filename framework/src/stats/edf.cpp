@@ -24,14 +24,22 @@ Real power_law_sw(Real t, int alpha) {
   const Real a = std::abs(t);
   const Real log_a = a > 0 ? std::log(a) : 0;  // t^(2k) log|t| -> 0 as t -> 0
   switch (alpha) {
-    case 2: return -a;
-    case 1: return a * a * log_a;
-    case 0: return a * a * a;
-    case -1: return -a * a * a * a * log_a;
-    case -2: return -a * a * a * a * a;
-    case -3: return a * a * a * a * a * a * log_a;
-    case -4: return a * a * a * a * a * a * a;
-    default: return std::numeric_limits<Real>::quiet_NaN();
+    case 2:
+      return -a;
+    case 1:
+      return a * a * log_a;
+    case 0:
+      return a * a * a;
+    case -1:
+      return -a * a * a * a * log_a;
+    case -2:
+      return -a * a * a * a * a;
+    case -3:
+      return a * a * a * a * a * a * log_a;
+    case -4:
+      return a * a * a * a * a * a * a;
+    default:
+      return std::numeric_limits<Real>::quiet_NaN();
   }
 }
 
@@ -46,7 +54,8 @@ Real averaged_sx(Real t, Real filter_factor, int alpha) {
 
 Real binomial(int n, int k) {
   Real result = 1;
-  for (int i = 1; i <= k; ++i) result = result * static_cast<Real>(n - k + i) / static_cast<Real>(i);
+  for (int i = 1; i <= k; ++i)
+    result = result * static_cast<Real>(n - k + i) / static_cast<Real>(i);
   return result;
 }
 
@@ -61,8 +70,8 @@ Real differenced_sz(Real t, Real filter_factor, int alpha, int d) {
 }
 
 /// Eq. 10: sz(0)^2 + (1 - J/M) sz(J/S)^2 + 2 sum_{j=1}^{J-1} (1 - j/M) sz(j/S)^2.
-Real basic_sum(double terms_summed, double terms, Real stride_factor, Real filter_factor,
-               int alpha, int d) {
+Real basic_sum(double terms_summed, double terms, Real stride_factor, Real filter_factor, int alpha,
+               int d) {
   const Real J = terms_summed;
   const Real M = terms;
   const Real at_zero = differenced_sz(0, filter_factor, alpha, d);
@@ -140,8 +149,8 @@ double greenhall_edf(const EdfQuery& query) {
   const double stride_factor = query.overlapping ? m : 1.0;
   const double filter_length = m / filter_factor + m * d;  // L, phase points per term
   if (n < filter_length) return kNaN;
-  const double terms = 1.0 + std::floor(stride_factor * (n - filter_length) / m);    // M
-  const double summed = std::min(terms, (d + 1) * stride_factor);                      // J
+  const double terms = 1.0 + std::floor(stride_factor * (n - filter_length) / m);  // M
+  const double summed = std::min(terms, (d + 1) * stride_factor);                  // J
   const double r = terms / stride_factor;
   const bool exact = summed <= kMaxExactTerms;
   const bool asymptotic = !exact && r > d + 1;
@@ -185,8 +194,7 @@ double greenhall_edf(const EdfQuery& query) {
       inverse_edf = (e.a0 - e.a1 / r) / (r * log_norm * log_norm);
     } else {
       inverse_edf =
-          basic_sum(kMaxExactTerms, kMaxExactTerms, decimated_stride, decimated_stride, alpha,
-                    d) /
+          basic_sum(kMaxExactTerms, kMaxExactTerms, decimated_stride, decimated_stride, alpha, d) /
           (log_norm * log_norm * kMaxExactTerms);
     }
   } else {  // Case 4, alpha == 2

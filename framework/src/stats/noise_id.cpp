@@ -47,15 +47,16 @@ PerDifference lag1_of_decimated_differences(std::span<const double> phase, std::
   PerDifference lagged{};
   PerDifference squares{};
   PerDifference previous{};
-  // z(k), z(k-1), z(k-2), z(k-3); the d-th difference ending at k starts at k - d.
-  double z0 = 0.0, z1 = 0.0, z2 = 0.0, z3 = 0.0;
-  const auto differences = [&] {
+  // recent = z(k), z(k-1), z(k-2), z(k-3); the d-th difference that ends at k starts at k - d.
+  std::array<double, 4> recent{};
+  const auto step_to = [&](std::size_t k) {
+    recent = {z(k), recent[0], recent[1], recent[2]};
+    const auto& [z0, z1, z2, z3] = recent;
     return PerDifference{z0, z0 - z1, z0 - 2.0 * z1 + z2, z0 - 3.0 * z1 + 3.0 * z2 - z3};
   };
   // The first MaxD + 1 points, where the higher differences are still incomplete.
   for (std::size_t k = 0; k <= MaxD; ++k) {
-    z3 = z2, z2 = z1, z1 = z0, z0 = z(k);
-    const PerDifference value = differences();
+    const PerDifference value = step_to(k);
     for (std::size_t d = 0; d <= k; ++d) {
       const double centred = value[d] - mean[d];
       if (k > d) lagged[d] += previous[d] * centred;
@@ -64,8 +65,7 @@ PerDifference lag1_of_decimated_differences(std::span<const double> phase, std::
     }
   }
   for (std::size_t k = MaxD + 1; k < points; ++k) {
-    z3 = z2, z2 = z1, z1 = z0, z0 = z(k);
-    const PerDifference value = differences();
+    const PerDifference value = step_to(k);
     for (std::size_t d = 0; d <= MaxD; ++d) {  // unrolled: MaxD is a constant
       const double centred = value[d] - mean[d];
       lagged[d] += previous[d] * centred;
@@ -84,7 +84,8 @@ NoiseId lag1_noise_id(std::span<const double> phase, std::size_t m, int max_diff
                                ? lag1_of_decimated_differences<3>(phase, m, points)
                                : lag1_of_decimated_differences<2>(phase, m, points);
   for (int d = 0;; ++d) {
-    const double delta = r1[static_cast<std::size_t>(d)] / (1.0 + r1[static_cast<std::size_t>(d)]);
+    const double r = r1[static_cast<std::size_t>(d)];
+    const double delta = r / (1.0 + r);
     if (delta < 0.25 || d >= max_differences) {
       const double alpha = 2.0 - 2.0 * d - 2.0 * delta;
       const auto rounded = static_cast<int>(2 - 2 * d - std::lround(2.0 * delta));
@@ -126,15 +127,16 @@ int white_or_flicker_pm(std::span<const double> phase, std::size_t m) {
   if (!(allan > 0.0)) return 1;
   const double ratio = (modified * modified) / (allan * allan);
   const double white_pm = 1.0 / md;
-  const double flicker_pm = 3.0 * std::log(256.0 / 27.0) /
-                            (2.0 * (1.038 + 3.0 * std::log(std::numbers::pi * md)));
+  const double flicker_pm =
+      3.0 * std::log(256.0 / 27.0) / (2.0 * (1.038 + 3.0 * std::log(std::numbers::pi * md)));
   return ratio < std::sqrt(white_pm * flicker_pm) ? 2 : 1;
 }
 
 NoiseId b1_noise_id(Deviation kind, std::span<const double> phase, std::size_t m) {
   // Stable32 evaluates the expected ratios at the estimator's term count (its `#` column), not
-  // at the number of averages: that is what reproduces its tables (Cs 5071A, all taus).
-  const double n = static_cast<double>(term_count(kind, m, phase.size()));
+  // at the number of averages: that is what reproduces its tables (Cs 5071A, all taus). Fewer
+  // than 2 makes every expectation 1 (no information) rather than undefined.
+  const double n = static_cast<double>(std::max<std::size_t>(term_count(kind, m, phase.size()), 2));
   const double ratio = b1_ratio(phase, m);
   int mu = -2;
   while (mu < 2 && ratio >= std::sqrt(b1_expected(n, mu) * b1_expected(n, mu + 1))) ++mu;

@@ -1,6 +1,7 @@
 #include "stochnav/stats/phase.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #if defined(__linux__)
@@ -22,6 +23,8 @@ class CompensatedSum {
     sum_ = sum;
   }
   double value() const { return sum_ + compensation_; }
+  double high() const { return sum_; }
+  double low() const { return compensation_; }
   void merge(const CompensatedSum& other) {
     add(other.sum_);
     compensation_ += other.compensation_;
@@ -32,7 +35,14 @@ class CompensatedSum {
   double compensation_ = 0.0;
 };
 
-double compensated_mean(std::span<const double> values) {
+/// The mean as an unevaluated sum high + low: `high` alone, rounded to a double, would leave
+/// an error of up to half an ulp that the running sum multiplies by the record length.
+struct SplitMean {
+  double high = 0.0;
+  double low = 0.0;
+};
+
+SplitMean compensated_mean(std::span<const double> values) {
   // Four independent lanes, so the additions pipeline.
   std::array<CompensatedSum, 4> lanes;
   std::size_t i = 0;
@@ -43,7 +53,11 @@ double compensated_mean(std::span<const double> values) {
   lanes[0].merge(lanes[1]);
   lanes[2].merge(lanes[3]);
   lanes[0].merge(lanes[2]);
-  return lanes[0].value() / static_cast<double>(values.size());
+  const double n = static_cast<double>(values.size());
+  const double high = lanes[0].value() / n;
+  // The remainder of the division, exact up to one rounding: sum - n * high.
+  const double remainder = std::fma(-n, high, lanes[0].high()) + lanes[0].low();
+  return {high, remainder / n};
 }
 
 /// An empty vector with capacity for `size` values. On Linux its memory is advised to be backed
@@ -72,12 +86,12 @@ std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s)
   phase[0] = 0.0;
   if (rate.empty()) return phase;
 
-  const double mean = compensated_mean(rate);
+  const SplitMean mean = compensated_mean(rate);
   CompensatedSum running;
   double* out = phase.data() + 1;
   for (std::size_t i = 0; i < rate.size(); ++i) {
-    running.add(rate[i] - mean);
-    out[i] = running.value() * tau0_s;
+    running.add(rate[i] - mean.high);
+    out[i] = (running.value() - static_cast<double>(i + 1) * mean.low) * tau0_s;
   }
   return phase;
 }

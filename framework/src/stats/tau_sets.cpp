@@ -35,8 +35,9 @@ std::vector<std::size_t> dense_factors(std::size_t max_m) {
   return factors;
 }
 
-// Stable32 spreads its "all tau" points evenly over the plotted decades: with D decades of tau
-// each step grows m by about 1/K, K = floor(213 / D), so the whole set has about 490 points.
+// Stable32 spreads its "all tau" points evenly over the decades of tau it plots: with D decades
+// each step grows m by a factor of about 1 + 1/K, K = floor(213 / D) (about 490 / D points per
+// decade once m > K; every m below).
 std::vector<std::size_t> all_tau_factors(std::size_t max_m, double tau0_s) {
   if (!(tau0_s > 0.0) || !std::isfinite(tau0_s)) tau0_s = 1.0;
   const double first_decade = std::floor(std::log10(tau0_s));
@@ -55,10 +56,14 @@ std::vector<std::size_t> averaging_factors(Deviation kind, TauSpacing spacing,
   const std::size_t max_m = max_averaging_factor(kind, phase_count);
   if (max_m == 0) return {};
   switch (spacing) {
-    case TauSpacing::kOctave: return octave_factors(max_m);
-    case TauSpacing::kDecade: return decade_factors(max_m);
-    case TauSpacing::kDense: return dense_factors(max_m);
-    case TauSpacing::kAll: return all_tau_factors(max_m, tau0_s);
+    case TauSpacing::kOctave:
+      return octave_factors(max_m);
+    case TauSpacing::kDecade:
+      return decade_factors(max_m);
+    case TauSpacing::kDense:
+      return dense_factors(max_m);
+    case TauSpacing::kAll:
+      return all_tau_factors(max_m, tau0_s);
   }
   return {};
 }

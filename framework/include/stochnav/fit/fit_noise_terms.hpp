@@ -5,7 +5,7 @@
 //
 // Residuals, one per point, in the log domain where the estimator's scatter is nearly Gaussian:
 //   r_i = (log model(tau_i) - log avar_i + b_i) / s_i,
-// with nu_i = edf_i and, for an estimate distributed as avar chi2(nu)/nu,
+// with nu_i the point's EDF and, for an estimate distributed as avar chi2(nu)/nu,
 //   b_i = E[log(chi2(nu)/nu)] = digamma(nu/2) - log(nu/2)   (about -1/nu: removes the bias of
 //                                                            the log of a noisy variance),
 //   s_i^2 = Var[log(chi2(nu)/nu)] = trigamma(nu/2)           (about 2/nu).
@@ -13,13 +13,19 @@
 // loss (default Huber with scale 2: quadratic within 2 sigma, linear beyond, so a single bad
 // point pulls like a 2-sigma one).
 //
+// Weights: a pilot fit uses the input edf, made non-increasing in tau (an EDF that grows with tau
+// is a noise misidentification). When FitData::phase_count is known (OADEV of one record), the
+// EDF of each point and the correlation matrix R of the points then come from the covariance of
+// the estimates under the pilot model (fit/oadev_covariance.hpp); the terms are selected (or
+// fitted) again with those EDFs, reweighted once more with the final model and refitted.
+//
 // Parameters: the natural logarithm of each coefficient (Q, N, B, K, |R|, Gauss-Markov sigma and
 // tau_c, sinusoid amplitude and frequency), which keeps them positive and well scaled, bounded
 // to a wide box around the data's scale. Uncertainties: ceres::Covariance of the log parameters
-// (dense SVD pseudo-inverse of J^T J at the optimum), mapped to each coefficient c as
-// sigma_c = c sigma_log c. A parameter at its bound (a term the data do not support) gets NaN.
-// Known limitation: Allan variances at neighbouring taus of one record are positively
-// correlated; the fit treats them as independent.
+// (dense SVD pseudo-inverse) C = (J^T J)^-1 at the optimum, and with correlated points the
+// sandwich C J^T R J C (neighbouring octave taus correlate at about 0.5 to 0.9, so treating them
+// as independent would understate the uncertainties by up to 2x); mapped to each coefficient c
+// as sigma_c = c sigma_log c. A parameter at its bound (a term the data do not support) gets NaN.
 //
 // Term selection: with an explicit term list, those terms are fitted (added one at a time, each
 // from several starts, then refitted jointly). Otherwise, greedy forward selection over
@@ -82,6 +88,10 @@ struct FitDiagnostics {
   int iterations = 0;       ///< Ceres iterations of the final solve
   bool converged = false;   ///< the final solve met a convergence tolerance
   bool automatic = false;   ///< terms chosen by the criterion (not given)
+  /// Points weighted and correlated by the covariance of the estimates under the fitted model
+  /// (FitData::phase_count known), rather than by the input edf as independent points.
+  bool model_weighting = false;
+  std::vector<double> edf_used;  ///< the EDF that set each point's weight
   std::vector<TermType> chosen_terms;  ///< as in the model
   SlopeReadoffs readoffs;              ///< IEEE 952 cross-check, natural units
   std::vector<SelectionStep> selection;  ///< automatic selection history

@@ -13,18 +13,21 @@
 // White PM (alpha = 2) on unmodified variances uses the exact closed form
 //   1/edf = (1/M) [1 + 2 sum_{k=1}^{min(d, K-1)} (1 - k/r) rho_k^2],
 // rho_k = C(2d, d-k) / C(2d, d), r = M / S, K = ceil(r), which is the paper's Case 4.
+// Where an unmodified, alpha <= 0 estimate switches from the exact sum (finite filter factor
+// F = m) to Table 2 (its m -> infinity limit) the EDF steps by about 3 %, in the paper's
+// algorithm as in Stable32's output.
 
 #include <cstddef>
 
 namespace stochnav {
 
 struct EdfQuery {
-  int alpha = 0;                 ///< power-law noise exponent of S_y(f), -4 .. 2, alpha + 2d > 1
-  int d = 2;                     ///< difference order: 2 Allan, 3 Hadamard (1 also supported)
-  std::size_t m = 1;             ///< averaging factor (>= 1)
-  std::size_t phase_count = 0;   ///< N, phase points of the record
-  bool overlapping = false;      ///< every start index (OADEV, MDEV, OHDEV) or stride m
-  bool modified = false;         ///< modified variance (MDEV, TDEV)
+  int alpha = 0;                ///< power-law noise exponent of S_y(f), -4 .. 2, alpha + 2d > 1
+  int d = 2;                    ///< difference order: 2 Allan, 3 Hadamard (1 also supported)
+  std::size_t m = 1;            ///< averaging factor (>= 1)
+  std::size_t phase_count = 0;  ///< N, phase points of the record
+  bool overlapping = false;     ///< every start index (OADEV, MDEV, OHDEV) or stride m
+  bool modified = false;        ///< modified variance (MDEV, TDEV)
 };
 
 /// Greenhall-Riley EDF, > 0. NaN when the query is outside the algorithm's domain: alpha
