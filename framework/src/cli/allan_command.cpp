@@ -83,7 +83,7 @@ void run_allan(const AllanArguments& arguments) {
   const std::vector<double> phase = record.kind == DataKind::kPhase
                                         ? record.values
                                         : phase_from_rate(record.values, record.tau0());
-  const auto m_values = averaging_factors(kind, spacing, phase.size());
+  const auto m_values = averaging_factors(kind, spacing, phase.size(), record.tau0());
   if (m_values.empty()) {
     throw InputError(record.source + ": " + std::to_string(record.values.size()) +
                      " samples are too few for any " + std::string(deviation_name(kind)) +

@@ -84,9 +84,10 @@ std::string format_fit(const FitResult& fit, const Record& record, OutputFormat 
   std::string out = fmt::format(
       "# noise-term fit of {} [{}] ({} samples at {} Hz, unit {})\n", record.source, record.column,
       record.values.size(), record.rate_hz, unit_name(record.unit));
-  out += fmt::format("# terms {} by {}; robust loss {} (scale {}); {} points, {} parameters; "
+  out += fmt::format("# terms {}; robust loss {} (scale {}); {} points, {} parameters; "
                      "chi-square {:.3g}; {} {:.4g}\n",
-                     d.automatic ? "chosen" : "given", criterion_name(d.criterion),
+                     d.automatic ? fmt::format("chosen by {}", criterion_name(d.criterion))
+                                 : std::string("given by --terms"),
                      robust_loss_name(d.loss), d.loss_scale, d.points, d.parameters, d.chi_square,
                      criterion_name(d.criterion), d.criterion_value);
   for (const auto& p : parameters) {

@@ -130,7 +130,9 @@ double LogAvarFit::lower_bound(TermType type, std::size_t k) const {
     case TermType::kRateRamp:
       return std::log(readoffs_.rate_ramp.value) - kCoefficientDecadesBelow;
     case TermType::kGaussMarkov:
-      return k == 0 ? log_root_avar_min_ - kCoefficientDecadesBelow : std::log(tau_min_ / 100.0);
+      // A correlation time below the shortest tau (the sampling interval) is white noise
+      // aliased by the sampling: the data cannot tell it from angle random walk.
+      return k == 0 ? log_root_avar_min_ - kCoefficientDecadesBelow : std::log(tau_min_);
     case TermType::kSinusoid:
       return k == 0 ? log_root_avar_min_ - kCoefficientDecadesBelow : std::log(0.01 / tau_max_);
     case TermType::kNonstationary:

@@ -2,11 +2,8 @@
 
 #include <array>
 #include <cmath>
-#include <cstdint>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
+#include "stochnav/core/huge_page_buffer.hpp"
 
 namespace stochnav {
 namespace {
@@ -58,24 +55,6 @@ SplitMean compensated_mean(std::span<const double> values) {
   // The remainder of the division, exact up to one rounding: sum - n * high.
   const double remainder = std::fma(-n, high, lanes[0].high()) + lanes[0].low();
   return {high, remainder / n};
-}
-
-/// An empty vector with capacity for `size` values. On Linux its memory is advised to be backed
-/// by transparent huge pages before anything touches it: a long record then costs a few hundred
-/// page faults instead of tens of thousands (about half the run time at 1e7 samples).
-std::vector<double> huge_page_buffer(std::size_t size) {
-  std::vector<double> buffer;
-  buffer.reserve(size);
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t kHugePage = std::uintptr_t{1} << 21;
-  const auto begin = reinterpret_cast<std::uintptr_t>(buffer.data());
-  const std::uintptr_t first = (begin + kHugePage - 1) & ~(kHugePage - 1);
-  const std::uintptr_t last = (begin + size * sizeof(double)) & ~(kHugePage - 1);
-  if (last > first) {
-    ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);  // a hint only
-  }
-#endif
-  return buffer;
 }
 
 }  // namespace
