@@ -2,8 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <unistd.h>
+
 #include <fstream>
 #include <memory>
+#include <optional>
 
 #include "command_support.hpp"
 #include "commands.hpp"
@@ -11,6 +14,8 @@
 #include "stochnav/core/errors.hpp"
 #include "stochnav/io/atomic_file.hpp"
 #include "stochnav/model/noise_model_json.hpp"
+#include "stochnav/scenario/scenario_config_json.hpp"
+#include "stochnav/scenario/scenario_writer.hpp"
 #include "stochnav/sim/noise_generator.hpp"
 #include "stochnav/sim/normal_generator.hpp"
 
@@ -102,6 +107,23 @@ void run_simulate_noise(const NoiseArguments& arguments) {
   pending.commit();
 }
 
+struct ScenarioArguments {
+  std::string config_path;
+  std::string out;
+  std::optional<std::uint64_t> seed;
+};
+
+void run_simulate_scenario(const ScenarioArguments& arguments) {
+  const nlohmann::json document = read_json_file(arguments.config_path, "CONFIG");
+  const ScenarioConfig config = scenario_config_from_json(document, arguments.config_path);
+  ScenarioOutputOptions options;
+  options.out_dir = arguments.out;
+  options.seed = arguments.seed.value_or(config.seed);
+  options.progress = ::isatty(STDERR_FILENO) != 0;
+  options.source = arguments.config_path;
+  write_scenario_outputs(config, options);
+}
+
 }  // namespace
 
 void add_simulate_command(CLI::App& app) {
@@ -119,6 +141,17 @@ void add_simulate_command(CLI::App& app) {
   noise_command->add_option("--column", noise->columns,
                             "Column name(s), one per axis (default: value, or the axis names)");
   noise_command->callback([noise] { run_simulate_noise(*noise); });
+
+  auto scenario = std::make_shared<ScenarioArguments>();
+  CLI::App* scenario_command = simulate->add_subcommand(
+      "scenario", "An MWD scenario (vibration table or drilling): imu.csv, truth.csv, aids.csv, "
+                  "scenario.json");
+  scenario_command->add_option("CONFIG", scenario->config_path, "Scenario JSON")->required();
+  scenario_command->add_option("--out", scenario->out, "Output folder (created if missing)")
+      ->required();
+  scenario_command->add_option("--seed", scenario->seed,
+                               "Random seed (default: the configuration's \"seed\")");
+  scenario_command->callback([scenario] { run_simulate_scenario(*scenario); });
 }
 
 }  // namespace stochnav::cli

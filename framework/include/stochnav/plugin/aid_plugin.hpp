@@ -1,0 +1,141 @@
+#pragma once
+// Aiding plugins: measurements that correct the INS (pipe length, ROP, ZUPT, static position).
+// Plugin API (plugin_api.hpp); one instance per aid entry of a run config.
+//
+// Error-state convention (state_layout.hpp, core_state): dx = x_estimated - x_true, with the 15
+// core states [dr (ENU, m), dv_n (ENU, m/s), phi (attitude error in n, rad), b_a (b, m/s^2),
+// b_g (b, rad/s)]. An aid predicts its measurement y from the estimated state and returns
+//   z = h(x_estimated) - y_measured   (m, in the aid's units),
+//   H = dz/d(dx)                      (m x 15, core states only: the runtime pads zeros for
+//                                      the augmented states),
+//   R                                 (m x m, covariance of y's error),
+// so that z ~ H dx + v, v ~ N(0, R). The filter rejects an update whose normalised innovation
+// squared z^T (H P H^T + R)^-1 z exceeds gate().threshold.
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include "stochnav/ins/nav_state.hpp"
+#include "stochnav/plugin/plugin_api.hpp"
+
+namespace stochnav::plugin {
+
+class ParamReader;
+
+/// Time series of aiding data by column name (an aids.csv: t, measured_depth_m, rop_mph, zupt,
+/// ...). Every column has one value per row; the column "t" is the time (s), ascending.
+class AidData {
+ public:
+  AidData() = default;
+  /// Throws InputError when lengths differ, "t" is missing or t is not ascending.
+  AidData(std::string source, std::vector<std::string> names,
+          std::vector<std::vector<double>> columns);
+
+  bool has(std::string_view name) const;
+  /// The column's values; throws ConfigError "<pointer>: aid data <source> has no column
+  /// '<name>'; ..." listing the columns.
+  std::span<const double> column(std::string_view name, std::string_view pointer) const;
+  /// The "t" column (s); empty when there is no data.
+  std::span<const double> time_s() const;
+  const std::vector<std::string>& names() const { return names_; }
+  const std::string& source() const { return source_; }
+  std::size_t rows() const;
+
+ private:
+  std::string source_;
+  std::vector<std::string> names_;
+  std::vector<std::vector<double>> columns_;
+};
+
+/// Reads a CSV with a header row of column names, one of them "t" (s), numeric cells. Throws
+/// InputError naming the file and line.
+AidData read_aid_data(const std::filesystem::path& csv_path);
+
+/// What an aid factory gets besides its params.
+struct AidContext {
+  std::string params_pointer;  ///< JSON pointer of params, e.g. "/aids/0/params"
+  const AidData* data = nullptr;  ///< the run's aid data; never null (empty when there is none)
+  NavState initial_state;         ///< initial position, velocity and attitude of the run
+  std::filesystem::path config_dir;  ///< folder of the config file
+};
+
+/// The latest IMU sample at the time of a measurement.
+struct ImuSample {
+  double t_s = 0.0;                                    ///< time (s)
+  Eigen::Vector3d omega_ib_b = Eigen::Vector3d::Zero();  ///< angular rate, body (rad/s)
+  Eigen::Vector3d f_ib_b = Eigen::Vector3d::Zero();      ///< specific force, body (m/s^2)
+};
+
+/// Innovation gate on NIS = z^T S^-1 z.
+struct NisGate {
+  bool enabled = true;
+  double threshold = std::numeric_limits<double>::infinity();  ///< reject when NIS > threshold
+
+  bool accepts(double nis) const { return !enabled || nis <= threshold; }
+};
+
+/// Default probability of the chi-square gate: 99.9 %.
+inline constexpr double kDefaultGateProbability = 0.999;
+
+/// The chi-square quantile with `dof` degrees of freedom at `probability` (in (0, 1)).
+double chi_square_quantile(double probability, int dof);
+
+/// Reads the gate keys of an aid's params (one place for every aid):
+///   "nis_gate": bool (default true), "nis_probability": (0, 1) (default 0.999: chi-square
+///   quantile with measurement_size dof), "nis_threshold": > 0 (overrides the probability).
+NisGate read_nis_gate(ParamReader& params, int measurement_size);
+
+class AidPlugin {
+ public:
+  virtual ~AidPlugin();
+  AidPlugin(const AidPlugin&) = delete;
+  AidPlugin& operator=(const AidPlugin&) = delete;
+
+  /// The plugin type (PluginInfo::type), e.g. "zupt".
+  virtual std::string_view type() const = 0;
+
+  /// m >= 1, constant.
+  virtual int measurement_size() const = 0;
+
+  /// Whether a measurement exists at t (s), the time of the current IMU epoch.
+  virtual bool has_measurement(double t_s) const = 0;
+
+  /// The measurement at t given the current estimate: residual z (m), h (m x 15), r (m x m),
+  /// caller-sized, every entry written. Returns false when there is none after all (nothing
+  /// written). Const, allocation-free, never throws.
+  virtual bool measure(double t_s, const NavState& state, const ImuSample& imu,
+                       Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
+                       Eigen::Ref<Eigen::MatrixXd> r) const = 0;
+
+  /// One line with the params in their units.
+  virtual std::string describe() const = 0;
+
+  const NisGate& gate() const { return gate_; }
+
+ protected:
+  explicit AidPlugin(NisGate gate) : gate_(gate) {}
+
+ private:
+  NisGate gate_;
+};
+
+/// Builds an aid from its params. Throws ConfigError naming context.params_pointer (+ key).
+using AidFactory = std::unique_ptr<AidPlugin>(const nlohmann::json& params,
+                                              const AidContext& context);
+
+}  // namespace stochnav::plugin
+
+/// Registers an aiding plugin; use once, at global scope, in the plugin library.
+#define STOCHNAV_AID_PLUGIN(TYPE, DESCRIPTION, FACTORY)                                   \
+  static_assert(std::is_same_v<decltype(&FACTORY), ::stochnav::plugin::AidFactory*>,     \
+                "STOCHNAV_AID_PLUGIN: FACTORY must be an AidFactory");                   \
+  STOCHNAV_PLUGIN_INFO_(::stochnav::plugin::PluginKind::kAid, TYPE, DESCRIPTION)         \
+  BOOST_DLL_ALIAS(FACTORY, stochnav_aid_factory)

@@ -1,0 +1,66 @@
+#pragma once
+// Strict reading of a JSON object: a plugin's `params`, or a section of a config: where JSON stops (STYLE.md). A factory reads
+// every key into a plain struct, then calls finish(), which rejects keys it never asked for.
+// Every error is a ConfigError "<pointer>/<key>: <problem>; expected <form>".
+
+#include <array>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace stochnav::plugin {
+
+/// Allowed values of a number.
+enum class Bound {
+  kAny,          ///< any finite number
+  kNonNegative,  ///< >= 0
+  kPositive,     ///< > 0
+  kOpenUnit,     ///< in (0, 1)
+};
+
+class ParamReader {
+ public:
+  /// `params` must be an object or null (read as {}); `pointer` is its JSON pointer. Throws
+  /// ConfigError otherwise. Keeps a reference to `params`.
+  ParamReader(const nlohmann::json& params, std::string pointer);
+
+  /// Whether the key is present (and marks it known).
+  bool has(std::string_view key);
+
+  /// A required number; `unit` is named in messages ("deg/h", "s", "" for none).
+  double number(std::string_view key, Bound bound, std::string_view unit);
+  double number_or(std::string_view key, double fallback, Bound bound, std::string_view unit);
+
+  /// A number for all three axes or an array [x, y, z].
+  std::array<double, 3> axes(std::string_view key, Bound bound, std::string_view unit);
+  std::array<double, 3> axes_or(std::string_view key, std::array<double, 3> fallback,
+                                Bound bound, std::string_view unit);
+
+  bool boolean_or(std::string_view key, bool fallback);
+  /// A required non-empty string.
+  std::string text(std::string_view key);
+  std::string text_or(std::string_view key, std::string_view fallback);
+  /// A string among `allowed`.
+  std::string choice_or(std::string_view key, std::string_view fallback,
+                        std::span<const std::string_view> allowed);
+  /// The raw value (null when absent), e.g. a nested object read with its own ParamReader.
+  const nlohmann::json& raw(std::string_view key);
+
+  /// The JSON pointer of a key.
+  std::string pointer(std::string_view key) const;
+  const std::string& pointer() const { return pointer_; }
+
+  /// Throws ConfigError for the first key never asked for, listing the known keys.
+  void finish() const;
+
+ private:
+  const nlohmann::json* find(std::string_view key);
+
+  const nlohmann::json& params_;
+  std::string pointer_;
+  std::set<std::string, std::less<>> known_;
+};
+
+}  // namespace stochnav::plugin

@@ -1,0 +1,133 @@
+#pragma once
+// Configuration of an MWD scenario (`stochnav simulate scenario`), as plain structs in SI units
+// (angles in rad, times in s, accelerations in m/s^2). The JSON form and its validation live in
+// scenario/scenario_config_json.hpp; see configs/scenarios/*.json for documented examples.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stochnav/ins/mwd_attitude.hpp"
+#include "stochnav/model/noise_model.hpp"
+
+namespace stochnav {
+
+enum class ScenarioKind { kVibrationTable, kDrilling };
+enum class ImuOutput { kIncrements, kRates };
+
+struct ImuOutputConfig {
+  double rate_hz = 100.0;                   ///< IMU epoch rate (Hz), in [100, 1000]
+  ImuOutput output = ImuOutput::kIncrements;  ///< imu.csv: increments (rad, m/s) or rates
+  double truth_rate_hz = 0.0;               ///< truth.csv rate (Hz); 0: the IMU rate
+  double aid_rate_hz = 1.0;                 ///< aids.csv rate (Hz)
+};
+
+struct SiteConfig {
+  double latitude_rad = 0.0;   ///< geodetic latitude of the table / wellhead (rad)
+  double longitude_rad = 0.0;  ///< longitude (rad)
+  double height_m = 0.0;       ///< ellipsoidal height of the table / rig floor (m)
+};
+
+/// Errors of one sensor triad (gyros or accelerometers). Natural units: rad/s for gyros, m/s^2
+/// for accelerometers.
+struct SensorErrorConfig {
+  /// Noise on every axis throughout the run (per axis x, y, z; the same model may repeat).
+  std::array<NoiseModel, 3> noise;
+  /// Noise scaled per phase by the phase's noise scale (the vibration-sensitive part); terms may
+  /// be empty. Its coefficients multiply by the scale, so a scale s multiplies its variance by s^2.
+  std::array<NoiseModel, 3> scheduled_noise;
+  std::array<double, 3> constant_bias{};       ///< rad/s or m/s^2
+  double turn_on_bias_sigma = 0.0;             ///< per run, per axis, 1-sigma; rad/s or m/s^2
+  std::array<double, 3> scale_factor{};        ///< dimensionless (1e-6 = 1 ppm)
+};
+
+/// Random vibration from a PSD table: a sum of sinusoids (see scenario/vibration.hpp).
+struct RandomVibrationConfig {
+  std::vector<std::array<double, 2>> psd;  ///< (frequency Hz, PSD (m/s^2)^2/Hz), ascending
+  double rms_mps2 = 0.0;                   ///< total RMS the sum is scaled to (m/s^2)
+  int components = 128;                    ///< number of sinusoids
+};
+
+struct SineVibrationConfig {
+  double frequency_hz = 0.0;   ///< Hz
+  double amplitude_mps2 = 0.0;  ///< peak acceleration along X (m/s^2)
+};
+
+enum class TableMotion { kStatic, kSine, kRandom };
+
+struct TablePhaseConfig {
+  std::string name;
+  double duration_s = 0.0;
+  TableMotion motion = TableMotion::kStatic;
+  SineVibrationConfig sine;
+  RandomVibrationConfig random;
+  double gyro_noise_scale = 1.0;   ///< factor on the scheduled gyro noise
+  double accel_noise_scale = 1.0;  ///< factor on the scheduled accelerometer noise
+};
+
+struct VibrationTableConfig {
+  MwdAttitude attitude;                 ///< fixed tool attitude
+  std::vector<TablePhaseConfig> phases;  ///< in time order
+};
+
+struct WellPathConfig {
+  double kickoff_md_m = 0.0;             ///< measured depth where the build starts (m)
+  double build_rate_rad_per_m = 0.0;     ///< inclination gain per metre in the build (rad/m), > 0
+  double target_inclination_rad = 0.0;   ///< hold inclination (rad), (0, pi/2]
+  double azimuth_rad = 0.0;              ///< azimuth of the well plane (rad)
+};
+
+struct VibrationEpisodeConfig {
+  double start_s = 0.0;         ///< s
+  double end_s = 0.0;           ///< s, > start_s
+  double axial_amplitude_mps2 = 0.0;  ///< peak axial acceleration (m/s^2)
+  double frequency_hz = 0.0;    ///< axial vibration frequency (Hz)
+};
+
+struct NoiseScales {
+  double gyro = 1.0;
+  double accel = 1.0;
+};
+
+struct DrillingConfig {
+  WellPathConfig well;
+  double start_md_m = 0.0;          ///< measured depth of the tool at t = 0 (m)
+  double duration_s = 0.0;          ///< scenario length (s)
+  double initial_static_s = 0.0;    ///< stationary alignment period at the start (s)
+  double rop_mps = 0.0;             ///< rate of penetration while drilling (m/s)
+  double rotation_radps = 0.0;      ///< toolface rotation rate while drilling (rad/s), 0 = slide
+  double initial_toolface_rad = 0.0;
+  double stand_length_m = 0.0;      ///< MD drilled between connections (m)
+  double connection_s = 0.0;        ///< stationary time of a pipe connection (s)
+  double ramp_s = 0.0;              ///< raised-cosine ramp of ROP and rotation (s)
+  std::vector<VibrationEpisodeConfig> vibration_episodes;  ///< ascending, non-overlapping
+  NoiseScales static_noise;     ///< scheduled-noise scales when stationary
+  NoiseScales drilling_noise;   ///< when drilling without a vibration episode
+  NoiseScales vibration_noise;  ///< during vibration episodes
+};
+
+struct AidConfig {
+  double depth_scale_error = 0.0;  ///< relative error of the pipe tally (dimensionless)
+  double depth_noise_m = 0.0;      ///< white error of each depth reading (m, 1-sigma)
+  double rop_noise_mps = 0.0;      ///< white error of each ROP reading (m/s, 1-sigma)
+};
+
+struct ScenarioConfig {
+  std::string description;
+  ScenarioKind kind = ScenarioKind::kVibrationTable;
+  std::uint64_t seed = 0;
+  ImuOutputConfig imu;
+  SiteConfig site;
+  SensorErrorConfig gyro;
+  SensorErrorConfig accel;
+  AidConfig aids;
+  std::optional<VibrationTableConfig> vibration_table;  ///< kind == kVibrationTable
+  std::optional<DrillingConfig> drilling;               ///< kind == kDrilling
+};
+
+/// Total scenario length (s): the sum of the table phases, or drilling.duration_s.
+double scenario_duration_s(const ScenarioConfig& config);
+
+}  // namespace stochnav

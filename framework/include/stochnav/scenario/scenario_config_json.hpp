@@ -1,0 +1,49 @@
+#pragma once
+// JSON form of a scenario configuration (where JSON stops for scenarios). See
+// configs/scenarios/*.json for complete, commented examples. Top level:
+//
+//   {"description": "...", "kind": "vibration_table" | "drilling", "seed": 1,
+//    "imu": {"rate_hz": 100, "output": "increments" | "rates",
+//            "truth_rate_hz": 100, "aid_rate_hz": 1},                 // rates divide rate_hz
+//    "site": {"latitude_deg": 39.9778, "longitude_deg": 116.3448, "height_m": 50},
+//    "sensors": {
+//      "gyro":  {"noise": MODEL | [MODEL x, MODEL y, MODEL z],          // units deg/h etc.
+//                "scheduled_noise": MODEL | [...],                       // scaled per phase
+//                "bias_dph": [x, y, z] | v, "turn_on_bias_sigma_dph": s,
+//                "scale_factor_ppm": [x, y, z] | v},
+//      "accel": {"noise": ..., "scheduled_noise": ..., "bias_mg": ..., "turn_on_bias_sigma_mg": s,
+//                "scale_factor_ppm": ...}},
+//    "aids": {"depth_scale_error": 1e-3, "depth_noise_m": 0.05, "rop_noise_mph": 0.5},
+//    "vibration_table": {"attitude": {"inclination_deg", "toolface_deg", "azimuth_deg"},
+//      "phases": [{"name": "static", "duration_s": 300, "motion": "static" | "sine" | "random",
+//                  "sine": {"frequency_hz": 25, "amplitude_g": 5},
+//                  "random": {"psd": [[f_hz, g2_per_hz], ...], "rms_g": 13.12,
+//                             "components": 128},
+//                  "gyro_noise_scale": 1, "accel_noise_scale": 1}, ...]},
+//    "drilling": {"well": {"kickoff_md_m", "build_rate_deg_per_30m", "target_inclination_deg",
+//                          "azimuth_deg"},
+//      "start_md_m", "duration_s", "initial_static_s", "rop_mph", "rotation_rpm",
+//      "initial_toolface_deg", "stand_length_m", "connection_s", "ramp_s",
+//      "vibration_episodes": [{"start_s", "end_s", "axial_g", "frequency_hz"}],
+//      "noise_scales": {"static": {"gyro": 1, "accel": 1}, "drilling": {...},
+//                       "vibration": {...}}},
+//    "comments": {...}}                                               // free text, ignored
+//
+// MODEL is a noise model of model/noise_model_json.hpp. Unknown keys are rejected everywhere.
+
+#include <nlohmann/json.hpp>
+#include <string_view>
+
+#include "stochnav/scenario/scenario_config.hpp"
+
+namespace stochnav {
+
+/// Parses and validates a scenario. Throws ConfigError "<source>: <JSON pointer>: <problem>;
+/// expected <form>" (source is typically the file name) on any unknown key, wrong type, missing
+/// required value or value out of range.
+ScenarioConfig scenario_config_from_json(const nlohmann::json& json, std::string_view source);
+
+/// The complete configuration (defaults filled in) in the JSON form above.
+nlohmann::json to_json(const ScenarioConfig& config);
+
+}  // namespace stochnav

@@ -1,0 +1,56 @@
+#include "stochnav/ins/earth.hpp"
+
+#include <cmath>
+
+namespace stochnav {
+
+EarthRadii earth_radii(double latitude_rad) {
+  const double s = std::sin(latitude_rad);
+  const double w = 1.0 - wgs84::kEccentricitySquared * s * s;
+  const double sqrt_w = std::sqrt(w);
+  return {wgs84::kSemiMajorAxis_m * (1.0 - wgs84::kEccentricitySquared) / (w * sqrt_w),
+          wgs84::kSemiMajorAxis_m / sqrt_w};
+}
+
+EarthRadii earth_radii_derivative(double latitude_rad) {
+  const double s = std::sin(latitude_rad);
+  const double c = std::cos(latitude_rad);
+  const double e2 = wgs84::kEccentricitySquared;
+  const double a = wgs84::kSemiMajorAxis_m;
+  const double w = 1.0 - e2 * s * s;
+  const double sqrt_w = std::sqrt(w);
+  // d/dlat w^(-k/2) = k e^2 s c w^(-k/2 - 1).
+  return {3.0 * a * (1.0 - e2) * e2 * s * c / (w * w * sqrt_w), a * e2 * s * c / (w * sqrt_w)};
+}
+
+double normal_gravity(double latitude_rad, double height_m) {
+  using namespace wgs84;
+  const double s2 = std::sin(latitude_rad) * std::sin(latitude_rad);
+  const double k = (kSemiMinorAxis_m * kGravityPole_mps2) /
+                       (kSemiMajorAxis_m * kGravityEquator_mps2) -
+                   1.0;
+  const double g0 = kGravityEquator_mps2 * (1.0 + k * s2) / std::sqrt(1.0 - kEccentricitySquared * s2);
+  const double m = kEarthRate_radps * kEarthRate_radps * kSemiMajorAxis_m * kSemiMajorAxis_m *
+                   kSemiMinorAxis_m / kGm_m3ps2;
+  const double a = kSemiMajorAxis_m;
+  return g0 * (1.0 - 2.0 / a * (1.0 + kFlattening + m - 2.0 * kFlattening * s2) * height_m +
+               3.0 * height_m * height_m / (a * a));
+}
+
+Eigen::Vector3d gravity_n(double latitude_rad, double height_m) {
+  return {0.0, 0.0, -normal_gravity(latitude_rad, height_m)};
+}
+
+Eigen::Vector3d earth_rate_n(double latitude_rad) {
+  return {0.0, wgs84::kEarthRate_radps * std::cos(latitude_rad),
+          wgs84::kEarthRate_radps * std::sin(latitude_rad)};
+}
+
+Eigen::Vector3d transport_rate_n(double latitude_rad, double height_m, const Eigen::Vector3d& v_n) {
+  const EarthRadii r = earth_radii(latitude_rad);
+  const double rn_h = r.transverse_m + height_m;
+  return {-v_n.y() / (r.meridian_m + height_m), v_n.x() / rn_h,
+          v_n.x() * std::tan(latitude_rad) / rn_h};
+}
+
+}  // namespace stochnav

@@ -1,0 +1,91 @@
+#include "stochnav/plugin/runtime.hpp"
+
+#include <cmath>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/io/record.hpp"
+
+namespace stochnav::plugin {
+
+CalibrationRecord read_calibration_record(const FitConfig& fit, SensorGroup group,
+                                          std::string_view pointer) {
+  CalibrationRecord calibration;
+  calibration.group = group;
+  calibration.source = fit.record.string() + " (" + fit.columns[0] + ", " + fit.columns[1] +
+                       ", " + fit.columns[2] + ")";
+  const Unit unit =
+      group == SensorGroup::kGyro ? Unit::kRadPerSecond : Unit::kMeterPerSecondSquared;
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    ReadOptions options;
+    options.path = fit.record.string();
+    options.column = fit.columns[axis];
+    options.unit = unit;
+    Record record = read_record(options);
+    if (axis == 0) {
+      calibration.rate_hz = record.rate_hz;
+    } else if (std::abs(record.rate_hz - calibration.rate_hz) > 1e-9 * calibration.rate_hz) {
+      throw InputError(calibration.source + ": columns have different rates; use one file");
+    }
+    const double first = std::ceil((fit.start_s - record.start_time_s) * record.rate_hz - 1e-9);
+    const double last = fit.end_s ? std::ceil((*fit.end_s - record.start_time_s) * record.rate_hz - 1e-9)
+                                  : static_cast<double>(record.values.size());
+    const auto begin = static_cast<std::size_t>(std::max(0.0, first));
+    const auto end = static_cast<std::size_t>(
+        std::min(static_cast<double>(record.values.size()), std::max(0.0, last)));
+    if (end <= begin + 1) {
+      throw ConfigError(std::string(pointer) + ": the window [start_s, end_s) holds no samples of " +
+                        fit.record.string() + "; choose times within the record");
+    }
+    calibration.start_time_s = record.start_time_s + static_cast<double>(begin) / record.rate_hz;
+    calibration.axes[axis].assign(record.values.begin() + static_cast<std::ptrdiff_t>(begin),
+                                  record.values.begin() + static_cast<std::ptrdiff_t>(end));
+  }
+  return calibration;
+}
+
+std::shared_ptr<NoiseModelPlugin> build_noise_model(const NoiseConfig& config, SensorGroup group,
+                                                    const PluginRegistry& registry,
+                                                    NoiseModelContext context) {
+  context.group = group;
+  context.params_pointer = config.params_pointer();
+  std::shared_ptr<NoiseModelPlugin> model;
+  if (config.fit) {
+    const std::string fit_pointer = config.pointer + "/fit";
+    const auto& descriptor = registry.find(PluginKind::kNoiseModel, config.type, config.type_pointer());
+    if (!descriptor.can_fit) {
+      throw ConfigError(fit_pointer + ": noise plugin '" + config.type +
+                        "' cannot fit its model from data; remove \"fit\" and give \"params\"");
+    }
+    const CalibrationRecord record = read_calibration_record(*config.fit, group, fit_pointer);
+    model = registry.fit_noise_model(config.type, record, config.params, context,
+                                     config.type_pointer());
+  } else {
+    model = registry.create_noise_model(config.type, config.params, context, config.type_pointer());
+  }
+  if (model->group() != group || model->augmented_size() < 0) {
+    throw ConfigError(config.type_pointer() + ": plugin '" + config.type +
+                      "' built a model for the wrong sensor group or with a negative state "
+                      "count; fix the plugin");
+  }
+  return model;
+}
+
+RunPlugins build_run_plugins(const RunConfig& config, const PluginRegistry& registry,
+                             const AidData& aid_data, const NavState& initial_state,
+                             double imu_rate_hz) {
+  NoiseModelContext context;
+  context.imu_rate_hz = imu_rate_hz;
+  context.config_dir = config.config_dir;
+  context.scenario_dir = config.data.scenario_dir;
+  RunPlugins plugins;
+  plugins.gyro = build_noise_model(config.noise.gyro, SensorGroup::kGyro, registry, context);
+  plugins.accel = build_noise_model(config.noise.accel, SensorGroup::kAccel, registry, context);
+  for (const auto& aid : config.aids) {
+    AidContext aid_context{aid.params_pointer(), &aid_data, initial_state, config.config_dir};
+    plugins.aids.push_back(registry.create_aid(aid.type, aid.params, aid_context, aid.type_pointer()));
+  }
+  plugins.layout = assign_state_layout(*plugins.gyro, *plugins.accel);
+  return plugins;
+}
+
+}  // namespace stochnav::plugin

@@ -1,0 +1,621 @@
+#include "stochnav/scenario/scenario_config_json.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+#include <set>
+#include <string>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/model/noise_model_json.hpp"
+
+namespace stochnav {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kStandardGravity = 9.80665;     // m/s^2 per g
+constexpr double kDegPerHour = kDeg / 3600.0;    // rad/s per deg/h
+constexpr double kMilliG = 1e-3 * kStandardGravity;
+constexpr double kMetrePerHour = 1.0 / 3600.0;   // m/s per m/h
+
+[[noreturn]] void fail(const std::string& pointer, const std::string& problem,
+                       std::string_view expected) {
+  throw ConfigError(fmt::format("{}: {}; expected {}", pointer.empty() ? "(root)" : pointer,
+                                problem, expected));
+}
+
+std::string describe_type(const json& value) {
+  return fmt::format("is {} {}", value.is_array() || value.is_object() ? "an" : "a",
+                     value.type_name());
+}
+
+enum class Range { kAny, kPositive, kNonNegative };
+
+// Reads the keys of one JSON object, remembering which it used so unknown keys are rejected.
+class ObjectReader {
+ public:
+  ObjectReader(const json& value, std::string pointer, std::string form)
+      : value_(value), pointer_(std::move(pointer)), form_(std::move(form)) {
+    if (!value_.is_object()) fail(pointer_, describe_type(value_) + ", not an object", form_);
+  }
+
+  std::string at(std::string_view key) const { return pointer_ + "/" + std::string(key); }
+  const std::string& pointer() const { return pointer_; }
+
+  bool has(std::string_view key) {
+    known_.insert(std::string(key));
+    return value_.contains(key);
+  }
+
+  const json& get(std::string_view key) {
+    if (!has(key)) fail(at(key), "is missing", form_);
+    return value_.at(std::string(key));
+  }
+
+  double number(std::string_view key, std::string_view expected, Range range,
+                std::optional<double> fallback = std::nullopt) {
+    if (!has(key)) {
+      if (fallback) return *fallback;
+      fail(at(key), "is missing", expected);
+    }
+    return check_number(value_.at(std::string(key)), at(key), expected, range);
+  }
+
+  static double check_number(const json& value, const std::string& pointer,
+                             std::string_view expected, Range range) {
+    if (!value.is_number()) fail(pointer, describe_type(value) + ", not a number", expected);
+    const double x = value.get<double>();
+    if (!std::isfinite(x)) fail(pointer, "is not finite", expected);
+    if (range == Range::kPositive && !(x > 0.0)) {
+      fail(pointer, fmt::format("is {}, not > 0", x), expected);
+    }
+    if (range == Range::kNonNegative && x < 0.0) {
+      fail(pointer, fmt::format("is {}, negative", x), expected);
+    }
+    return x;
+  }
+
+  std::string string(std::string_view key, std::string_view expected,
+                     std::optional<std::string> fallback = std::nullopt) {
+    if (!has(key)) {
+      if (fallback) return *fallback;
+      fail(at(key), "is missing", expected);
+    }
+    const json& v = value_.at(std::string(key));
+    if (!v.is_string()) fail(at(key), describe_type(v) + ", not a string", expected);
+    return v.get<std::string>();
+  }
+
+  void finish() const {
+    for (const auto& [key, entry] : value_.items()) {
+      if (key == "comments" || key == "comment") continue;  // free-text documentation
+      if (!known_.contains(key)) fail(at(key), "is an unknown key", form_);
+    }
+  }
+
+ private:
+  const json& value_;
+  std::string pointer_;
+  std::string form_;
+  std::set<std::string> known_;
+};
+
+// A number for all three axes or [x, y, z].
+std::array<double, 3> axis_triple(const json& value, const std::string& pointer,
+                                  std::string_view expected, double factor) {
+  std::array<double, 3> out{};
+  if (value.is_number()) {
+    out.fill(ObjectReader::check_number(value, pointer, expected, Range::kAny) * factor);
+    return out;
+  }
+  if (!value.is_array() || value.size() != 3) {
+    fail(pointer, describe_type(value) + ", not a number or 3 numbers", expected);
+  }
+  for (std::size_t i = 0; i < 3; ++i) {
+    out[i] = ObjectReader::check_number(value[i], pointer + "/" + std::to_string(i), expected,
+                                        Range::kAny) *
+             factor;
+  }
+  return out;
+}
+
+std::array<NoiseModel, 3> axis_models(const json& value, const std::string& pointer,
+                                      Quantity quantity, bool allow_nonstationary) {
+  std::array<NoiseModel, 3> models;
+  const auto check = [&](const NoiseModel& model, const std::string& at) {
+    if (quantity_of(model.unit) != quantity) {
+      fail(at + "/units", fmt::format("is \"{}\"", unit_name(model.unit)),
+           quantity == Quantity::kAngularRate ? "a rate unit: \"deg/h\", \"deg/s\" or \"rad/s\""
+                                              : "a specific-force unit: \"m/s^2\" or \"g\"");
+    }
+    for (std::size_t t = 0; t < model.terms.size(); ++t) {
+      if (!allow_nonstationary && term_type(model.terms[t]) == TermType::kNonstationary) {
+        fail(fmt::format("{}/terms/{}", at, t), "is a nonstationary term in scheduled_noise",
+             "no nonstationary term here: the phase noise scales build it");
+      }
+    }
+  };
+  if (value.is_array()) {
+    if (value.size() != 3) {
+      fail(pointer, fmt::format("has {} models", value.size()), "one model or 3 (x, y, z)");
+    }
+    for (std::size_t i = 0; i < 3; ++i) {
+      const std::string at = pointer + "/" + std::to_string(i);
+      models[i] = noise_model_from_json(value[i], at);
+      check(models[i], at);
+    }
+  } else {
+    models[0] = noise_model_from_json(value, pointer);
+    check(models[0], pointer);
+    models[1] = models[2] = models[0];
+  }
+  return models;
+}
+
+SensorErrorConfig parse_sensor(const json& value, const std::string& pointer, bool gyro) {
+  const std::string bias_key = gyro ? "bias_dph" : "bias_mg";
+  const std::string sigma_key = gyro ? "turn_on_bias_sigma_dph" : "turn_on_bias_sigma_mg";
+  const double factor = gyro ? kDegPerHour : kMilliG;
+  ObjectReader r(value, pointer,
+                 fmt::format("{{\"noise\": MODEL | [MODEL, MODEL, MODEL], \"scheduled_noise\": "
+                             "... (optional), \"{}\": [x, y, z], \"{}\": s, "
+                             "\"scale_factor_ppm\": [x, y, z]}}",
+                             bias_key, sigma_key));
+  const Quantity quantity = gyro ? Quantity::kAngularRate : Quantity::kSpecificForce;
+  SensorErrorConfig sensor;
+  sensor.noise = axis_models(r.get("noise"), r.at("noise"), quantity, true);
+  if (r.has("scheduled_noise")) {
+    sensor.scheduled_noise =
+        axis_models(r.get("scheduled_noise"), r.at("scheduled_noise"), quantity, false);
+  } else {
+    for (auto& m : sensor.scheduled_noise) m = NoiseModel{sensor.noise[0].unit, 100.0, {}};
+  }
+  const std::string triple = gyro ? "a bias in deg/h: a number or [x, y, z]"
+                                  : "a bias in mg: a number or [x, y, z]";
+  if (r.has(bias_key)) sensor.constant_bias = axis_triple(r.get(bias_key), r.at(bias_key), triple, factor);
+  sensor.turn_on_bias_sigma =
+      r.number(sigma_key, gyro ? "a 1-sigma in deg/h >= 0" : "a 1-sigma in mg >= 0",
+               Range::kNonNegative, 0.0) *
+      factor;
+  if (r.has("scale_factor_ppm")) {
+    sensor.scale_factor = axis_triple(r.get("scale_factor_ppm"), r.at("scale_factor_ppm"),
+                                      "a scale factor in ppm: a number or [x, y, z]", 1e-6);
+  }
+  r.finish();
+  return sensor;
+}
+
+MwdAttitude parse_attitude(const json& value, const std::string& pointer) {
+  ObjectReader r(value, pointer,
+                 "{\"inclination_deg\": 0..180, \"toolface_deg\": x, \"azimuth_deg\": x}");
+  MwdAttitude a;
+  a.inclination_rad = r.number("inclination_deg", "an inclination in deg, 0..180", Range::kAny);
+  if (a.inclination_rad < 0.0 || a.inclination_rad > 180.0) {
+    fail(r.at("inclination_deg"), fmt::format("is {}", a.inclination_rad),
+         "an inclination in deg, 0..180");
+  }
+  a.inclination_rad *= kDeg;
+  a.toolface_rad = r.number("toolface_deg", "a toolface in deg", Range::kAny) * kDeg;
+  a.azimuth_rad = r.number("azimuth_deg", "an azimuth in deg", Range::kAny) * kDeg;
+  r.finish();
+  return a;
+}
+
+RandomVibrationConfig parse_random(const json& value, const std::string& pointer) {
+  ObjectReader r(value, pointer,
+                 "{\"psd\": [[f_hz, g2_per_hz], ...], \"rms_g\": x, \"components\": n}");
+  RandomVibrationConfig random;
+  const json& psd = r.get("psd");
+  constexpr std::string_view kRow = "[frequency Hz > 0, PSD g^2/Hz > 0], frequencies ascending";
+  if (!psd.is_array() || psd.empty()) {
+    fail(r.at("psd"), psd.is_array() ? "is empty" : describe_type(psd) + ", not an array",
+         "a PSD table [[f_hz, g2_per_hz], ...] with at least one row");
+  }
+  for (std::size_t i = 0; i < psd.size(); ++i) {
+    const std::string at = r.at("psd") + "/" + std::to_string(i);
+    if (!psd[i].is_array() || psd[i].size() != 2) fail(at, "is not a pair", kRow);
+    const double f = ObjectReader::check_number(psd[i][0], at + "/0", kRow, Range::kPositive);
+    const double s = ObjectReader::check_number(psd[i][1], at + "/1", kRow, Range::kPositive);
+    if (!random.psd.empty() && !(f > random.psd.back()[0])) {
+      fail(at + "/0", fmt::format("is {} Hz, not above the previous row", f), kRow);
+    }
+    random.psd.push_back({f, s * kStandardGravity * kStandardGravity});
+  }
+  random.rms_mps2 = r.number("rms_g", "an RMS acceleration in g > 0", Range::kPositive) *
+                    kStandardGravity;
+  const double components =
+      r.number("components", "an integer number of sinusoids, 1..4096", Range::kPositive, 128.0);
+  if (components != std::floor(components) || components > 4096) {
+    fail(r.at("components"), fmt::format("is {}", components),
+         "an integer number of sinusoids, 1..4096");
+  }
+  random.components = static_cast<int>(components);
+  r.finish();
+  return random;
+}
+
+VibrationTableConfig parse_table(const json& value, const std::string& pointer) {
+  ObjectReader r(value, pointer, "{\"attitude\": {...}, \"phases\": [{...}, ...]}");
+  VibrationTableConfig table;
+  table.attitude = parse_attitude(r.get("attitude"), r.at("attitude"));
+  const json& phases = r.get("phases");
+  if (!phases.is_array() || phases.empty()) {
+    fail(r.at("phases"), phases.is_array() ? "is empty" : describe_type(phases) + ", not an array",
+         "a list of phases [{\"duration_s\": s, \"motion\": \"static\"}, ...]");
+  }
+  for (std::size_t i = 0; i < phases.size(); ++i) {
+    const std::string at = r.at("phases") + "/" + std::to_string(i);
+    ObjectReader p(phases[i], at,
+                   "{\"name\": text, \"duration_s\": s > 0, \"motion\": \"static\" | \"sine\" | "
+                   "\"random\", \"sine\": {...}, \"random\": {...}, \"gyro_noise_scale\": x, "
+                   "\"accel_noise_scale\": x}");
+    TablePhaseConfig phase;
+    phase.name = p.string("name", "a phase name", std::string());
+    phase.duration_s = p.number("duration_s", "a duration in s > 0", Range::kPositive);
+    const std::string motion = p.string("motion", "\"static\", \"sine\" or \"random\"");
+    if (motion == "static") {
+      phase.motion = TableMotion::kStatic;
+    } else if (motion == "sine") {
+      phase.motion = TableMotion::kSine;
+      ObjectReader s(p.get("sine"), p.at("sine"), "{\"frequency_hz\": f > 0, \"amplitude_g\": a}");
+      phase.sine.frequency_hz = s.number("frequency_hz", "a frequency in Hz > 0", Range::kPositive);
+      phase.sine.amplitude_mps2 =
+          s.number("amplitude_g", "a peak acceleration in g >= 0", Range::kNonNegative) *
+          kStandardGravity;
+      s.finish();
+    } else if (motion == "random") {
+      phase.motion = TableMotion::kRandom;
+      phase.random = parse_random(p.get("random"), p.at("random"));
+    } else {
+      fail(p.at("motion"), fmt::format("is \"{}\"", motion), "\"static\", \"sine\" or \"random\"");
+    }
+    phase.gyro_noise_scale =
+        p.number("gyro_noise_scale", "a factor >= 0 on the scheduled gyro noise",
+                 Range::kNonNegative, 1.0);
+    phase.accel_noise_scale =
+        p.number("accel_noise_scale", "a factor >= 0 on the scheduled accelerometer noise",
+                 Range::kNonNegative, 1.0);
+    p.finish();
+    table.phases.push_back(std::move(phase));
+  }
+  r.finish();
+  return table;
+}
+
+NoiseScales parse_scales(ObjectReader& parent, std::string_view key) {
+  NoiseScales scales;
+  if (!parent.has(key)) return scales;
+  ObjectReader r(parent.get(key), parent.at(key), "{\"gyro\": x >= 0, \"accel\": x >= 0}");
+  scales.gyro = r.number("gyro", "a factor >= 0", Range::kNonNegative, 1.0);
+  scales.accel = r.number("accel", "a factor >= 0", Range::kNonNegative, 1.0);
+  r.finish();
+  return scales;
+}
+
+DrillingConfig parse_drilling(const json& value, const std::string& pointer) {
+  ObjectReader r(value, pointer,
+                 "{\"well\": {...}, \"start_md_m\", \"duration_s\", \"initial_static_s\", "
+                 "\"rop_mph\", \"rotation_rpm\", \"initial_toolface_deg\", \"stand_length_m\", "
+                 "\"connection_s\", \"ramp_s\", \"vibration_episodes\", \"noise_scales\"}");
+  DrillingConfig d;
+  {
+    ObjectReader w(r.get("well"), r.at("well"),
+                   "{\"kickoff_md_m\": m, \"build_rate_deg_per_30m\": x > 0, "
+                   "\"target_inclination_deg\": 0 < x <= 90, \"azimuth_deg\": x}");
+    d.well.kickoff_md_m = w.number("kickoff_md_m", "a measured depth in m >= 0", Range::kNonNegative);
+    d.well.build_rate_rad_per_m =
+        w.number("build_rate_deg_per_30m", "a build rate in deg/30 m > 0", Range::kPositive) *
+        kDeg / 30.0;
+    const double target = w.number("target_inclination_deg", "an inclination in deg, 0 < x <= 90",
+                                   Range::kPositive);
+    if (target > 90.0) {
+      fail(w.at("target_inclination_deg"), fmt::format("is {}", target),
+           "an inclination in deg, 0 < x <= 90");
+    }
+    d.well.target_inclination_rad = target * kDeg;
+    d.well.azimuth_rad = w.number("azimuth_deg", "an azimuth in deg", Range::kAny) * kDeg;
+    w.finish();
+  }
+  d.start_md_m = r.number("start_md_m", "a measured depth in m >= 0", Range::kNonNegative, 0.0);
+  d.duration_s = r.number("duration_s", "a duration in s > 0", Range::kPositive);
+  d.initial_static_s =
+      r.number("initial_static_s", "a duration in s >= 0", Range::kNonNegative, 0.0);
+  d.rop_mps = r.number("rop_mph", "a rate of penetration in m/h > 0", Range::kPositive) *
+              kMetrePerHour;
+  d.rotation_radps = r.number("rotation_rpm", "a rotation rate in rpm (0 = sliding)", Range::kAny,
+                              0.0) *
+                     2.0 * std::numbers::pi / 60.0;
+  d.initial_toolface_rad =
+      r.number("initial_toolface_deg", "a toolface in deg", Range::kAny, 0.0) * kDeg;
+  d.stand_length_m = r.number("stand_length_m", "a stand length in m > 0", Range::kPositive);
+  d.connection_s = r.number("connection_s", "a duration in s >= 0", Range::kNonNegative);
+  d.ramp_s = r.number("ramp_s", "a ramp duration in s > 0", Range::kPositive, 10.0);
+  if (!(d.stand_length_m > d.rop_mps * d.ramp_s)) {
+    fail(r.at("ramp_s"), fmt::format("is {} s: the ramps alone drill more than a stand", d.ramp_s),
+         "ramp_s < stand_length_m / rop");
+  }
+  if (r.has("vibration_episodes")) {
+    const json& episodes = r.get("vibration_episodes");
+    if (!episodes.is_array()) {
+      fail(r.at("vibration_episodes"), describe_type(episodes) + ", not an array",
+           "[{\"start_s\", \"end_s\", \"axial_g\", \"frequency_hz\"}, ...]");
+    }
+    for (std::size_t i = 0; i < episodes.size(); ++i) {
+      const std::string at = r.at("vibration_episodes") + "/" + std::to_string(i);
+      ObjectReader e(episodes[i], at,
+                     "{\"start_s\": s >= 0, \"end_s\": s > start_s, \"axial_g\": a >= 0, "
+                     "\"frequency_hz\": f > 0}, ascending and not overlapping");
+      VibrationEpisodeConfig episode;
+      episode.start_s = e.number("start_s", "a time in s >= 0", Range::kNonNegative);
+      episode.end_s = e.number("end_s", "a time in s > start_s", Range::kPositive);
+      if (!(episode.end_s > episode.start_s)) {
+        fail(e.at("end_s"), fmt::format("is {}, not after start_s", episode.end_s),
+             "a time in s > start_s");
+      }
+      if (!d.vibration_episodes.empty() && episode.start_s < d.vibration_episodes.back().end_s) {
+        fail(e.at("start_s"), "overlaps the previous episode",
+             "episodes ascending and not overlapping");
+      }
+      episode.axial_amplitude_mps2 =
+          e.number("axial_g", "a peak axial acceleration in g >= 0", Range::kNonNegative) *
+          kStandardGravity;
+      episode.frequency_hz = e.number("frequency_hz", "a frequency in Hz > 0", Range::kPositive);
+      e.finish();
+      d.vibration_episodes.push_back(episode);
+    }
+  }
+  if (r.has("noise_scales")) {
+    ObjectReader n(r.get("noise_scales"), r.at("noise_scales"),
+                   "{\"static\": {...}, \"drilling\": {...}, \"vibration\": {...}}");
+    d.static_noise = parse_scales(n, "static");
+    d.drilling_noise = parse_scales(n, "drilling");
+    d.vibration_noise = parse_scales(n, "vibration");
+    n.finish();
+  }
+  r.finish();
+  return d;
+}
+
+void check_rate_divides(ObjectReader& r, std::string_view key, double rate, double imu_rate) {
+  const double ratio = imu_rate / rate;
+  if (std::abs(ratio - std::round(ratio)) > 1e-9 * ratio) {
+    fail(r.at(key), fmt::format("is {} Hz, which does not divide rate_hz {} Hz", rate, imu_rate),
+         "a rate such that rate_hz / rate is an integer");
+  }
+}
+
+ScenarioConfig parse(const json& value) {
+  ObjectReader r(value, "",
+                 "a scenario {\"kind\", \"imu\", \"site\", \"sensors\", \"vibration_table\" | "
+                 "\"drilling\", ...}");
+  ScenarioConfig config;
+  config.description = r.string("description", "a text", std::string());
+  const std::string kind = r.string("kind", "\"vibration_table\" or \"drilling\"");
+  if (kind == "vibration_table") {
+    config.kind = ScenarioKind::kVibrationTable;
+  } else if (kind == "drilling") {
+    config.kind = ScenarioKind::kDrilling;
+  } else {
+    fail(r.at("kind"), fmt::format("is \"{}\"", kind), "\"vibration_table\" or \"drilling\"");
+  }
+  if (r.has("seed")) {
+    const json& seed = r.get("seed");
+    if (!seed.is_number_unsigned() && !(seed.is_number_integer() && seed.get<long long>() >= 0)) {
+      fail(r.at("seed"), describe_type(seed), "an integer >= 0");
+    }
+    config.seed = seed.get<std::uint64_t>();
+  }
+  {
+    ObjectReader imu(r.get("imu"), r.at("imu"),
+                     "{\"rate_hz\": 100..1000, \"output\": \"increments\" | \"rates\", "
+                     "\"truth_rate_hz\": f, \"aid_rate_hz\": f}");
+    config.imu.rate_hz = imu.number("rate_hz", "an IMU rate in Hz, 100..1000", Range::kPositive);
+    if (config.imu.rate_hz < 100.0 || config.imu.rate_hz > 1000.0) {
+      fail(imu.at("rate_hz"), fmt::format("is {}", config.imu.rate_hz),
+           "an IMU rate in Hz, 100..1000");
+    }
+    const std::string output =
+        imu.string("output", "\"increments\" or \"rates\"", std::string("increments"));
+    if (output == "increments") {
+      config.imu.output = ImuOutput::kIncrements;
+    } else if (output == "rates") {
+      config.imu.output = ImuOutput::kRates;
+    } else {
+      fail(imu.at("output"), fmt::format("is \"{}\"", output), "\"increments\" or \"rates\"");
+    }
+    config.imu.truth_rate_hz =
+        imu.number("truth_rate_hz", "a rate in Hz > 0 dividing rate_hz", Range::kPositive,
+                   config.imu.rate_hz);
+    check_rate_divides(imu, "truth_rate_hz", config.imu.truth_rate_hz, config.imu.rate_hz);
+    config.imu.aid_rate_hz =
+        imu.number("aid_rate_hz", "a rate in Hz > 0 dividing rate_hz", Range::kPositive, 1.0);
+    check_rate_divides(imu, "aid_rate_hz", config.imu.aid_rate_hz, config.imu.rate_hz);
+    imu.finish();
+  }
+  {
+    ObjectReader site(r.get("site"), r.at("site"),
+                      "{\"latitude_deg\": -89..89, \"longitude_deg\": x, \"height_m\": h}");
+    const double latitude = site.number("latitude_deg", "a latitude in deg, -89..89", Range::kAny);
+    if (std::abs(latitude) > 89.0) {
+      fail(site.at("latitude_deg"), fmt::format("is {}", latitude), "a latitude in deg, -89..89");
+    }
+    config.site.latitude_rad = latitude * kDeg;
+    config.site.longitude_rad =
+        site.number("longitude_deg", "a longitude in deg", Range::kAny) * kDeg;
+    config.site.height_m = site.number("height_m", "an ellipsoidal height in m", Range::kAny, 0.0);
+    site.finish();
+  }
+  {
+    ObjectReader sensors(r.get("sensors"), r.at("sensors"), "{\"gyro\": {...}, \"accel\": {...}}");
+    config.gyro = parse_sensor(sensors.get("gyro"), sensors.at("gyro"), true);
+    config.accel = parse_sensor(sensors.get("accel"), sensors.at("accel"), false);
+    sensors.finish();
+  }
+  if (r.has("aids")) {
+    ObjectReader aids(r.get("aids"), r.at("aids"),
+                      "{\"depth_scale_error\": x, \"depth_noise_m\": s >= 0, "
+                      "\"rop_noise_mph\": s >= 0}");
+    config.aids.depth_scale_error =
+        aids.number("depth_scale_error", "a relative error (1e-3 = 0.1 %)", Range::kAny, 0.0);
+    config.aids.depth_noise_m =
+        aids.number("depth_noise_m", "a 1-sigma in m >= 0", Range::kNonNegative, 0.0);
+    config.aids.rop_noise_mps =
+        aids.number("rop_noise_mph", "a 1-sigma in m/h >= 0", Range::kNonNegative, 0.0) *
+        kMetrePerHour;
+    aids.finish();
+  }
+  if (config.kind == ScenarioKind::kVibrationTable) {
+    config.vibration_table = parse_table(r.get("vibration_table"), r.at("vibration_table"));
+  } else {
+    config.drilling = parse_drilling(r.get("drilling"), r.at("drilling"));
+  }
+  r.finish();
+  const double epochs = scenario_duration_s(config) * config.imu.rate_hz;
+  if (epochs < 2.0 || epochs > 1e12) {
+    fail(config.kind == ScenarioKind::kDrilling ? "/drilling/duration_s" : "/vibration_table/phases",
+         fmt::format("gives {} IMU epochs", epochs), "a duration of at least 2 epochs");
+  }
+  return config;
+}
+
+json sensor_json(const SensorErrorConfig& sensor, bool gyro) {
+  const double factor = gyro ? kDegPerHour : kMilliG;
+  json noise = json::array();
+  json scheduled = json::array();
+  for (std::size_t i = 0; i < 3; ++i) {
+    noise.push_back(to_json(sensor.noise[i]));
+    scheduled.push_back(to_json(sensor.scheduled_noise[i]));
+  }
+  json out;
+  out["noise"] = noise;
+  out["scheduled_noise"] = scheduled;
+  json bias = json::array();
+  json scale = json::array();
+  for (std::size_t i = 0; i < 3; ++i) {
+    bias.push_back(sensor.constant_bias[i] / factor);
+    scale.push_back(sensor.scale_factor[i] / 1e-6);
+  }
+  out[gyro ? "bias_dph" : "bias_mg"] = bias;
+  out[gyro ? "turn_on_bias_sigma_dph" : "turn_on_bias_sigma_mg"] =
+      sensor.turn_on_bias_sigma / factor;
+  out["scale_factor_ppm"] = scale;
+  return out;
+}
+
+std::string_view motion_name(TableMotion motion) {
+  switch (motion) {
+    case TableMotion::kSine:
+      return "sine";
+    case TableMotion::kRandom:
+      return "random";
+    case TableMotion::kStatic:
+      break;
+  }
+  return "static";
+}
+
+}  // namespace
+
+double scenario_duration_s(const ScenarioConfig& config) {
+  if (config.kind == ScenarioKind::kDrilling) return config.drilling ? config.drilling->duration_s : 0.0;
+  double total = 0.0;
+  if (config.vibration_table) {
+    for (const auto& phase : config.vibration_table->phases) total += phase.duration_s;
+  }
+  return total;
+}
+
+ScenarioConfig scenario_config_from_json(const json& value, std::string_view source) {
+  try {
+    return parse(value);
+  } catch (const ConfigError& error) {
+    throw ConfigError(fmt::format("{}: {}", source, error.what()));
+  }
+}
+
+json to_json(const ScenarioConfig& config) {
+  json out;
+  out["description"] = config.description;
+  out["kind"] = config.kind == ScenarioKind::kDrilling ? "drilling" : "vibration_table";
+  out["seed"] = config.seed;
+  out["imu"] = {{"rate_hz", config.imu.rate_hz},
+                {"output", config.imu.output == ImuOutput::kRates ? "rates" : "increments"},
+                {"truth_rate_hz", config.imu.truth_rate_hz},
+                {"aid_rate_hz", config.imu.aid_rate_hz}};
+  out["site"] = {{"latitude_deg", config.site.latitude_rad / kDeg},
+                 {"longitude_deg", config.site.longitude_rad / kDeg},
+                 {"height_m", config.site.height_m}};
+  out["sensors"] = {{"gyro", sensor_json(config.gyro, true)},
+                    {"accel", sensor_json(config.accel, false)}};
+  out["aids"] = {{"depth_scale_error", config.aids.depth_scale_error},
+                 {"depth_noise_m", config.aids.depth_noise_m},
+                 {"rop_noise_mph", config.aids.rop_noise_mps / kMetrePerHour}};
+  if (config.vibration_table) {
+    const auto& t = *config.vibration_table;
+    json phases = json::array();
+    for (const auto& p : t.phases) {
+      json phase = {{"name", p.name},
+                    {"duration_s", p.duration_s},
+                    {"motion", motion_name(p.motion)},
+                    {"gyro_noise_scale", p.gyro_noise_scale},
+                    {"accel_noise_scale", p.accel_noise_scale}};
+      if (p.motion == TableMotion::kSine) {
+        phase["sine"] = {{"frequency_hz", p.sine.frequency_hz},
+                         {"amplitude_g", p.sine.amplitude_mps2 / kStandardGravity}};
+      } else if (p.motion == TableMotion::kRandom) {
+        json psd = json::array();
+        for (const auto& row : p.random.psd) {
+          psd.push_back({row[0], row[1] / (kStandardGravity * kStandardGravity)});
+        }
+        phase["random"] = {{"psd", psd},
+                           {"rms_g", p.random.rms_mps2 / kStandardGravity},
+                           {"components", p.random.components}};
+      }
+      phases.push_back(std::move(phase));
+    }
+    out["vibration_table"] = {{"attitude",
+                               {{"inclination_deg", t.attitude.inclination_rad / kDeg},
+                                {"toolface_deg", t.attitude.toolface_rad / kDeg},
+                                {"azimuth_deg", t.attitude.azimuth_rad / kDeg}}},
+                              {"phases", phases}};
+  }
+  if (config.drilling) {
+    const auto& d = *config.drilling;
+    json episodes = json::array();
+    for (const auto& e : d.vibration_episodes) {
+      episodes.push_back({{"start_s", e.start_s},
+                          {"end_s", e.end_s},
+                          {"axial_g", e.axial_amplitude_mps2 / kStandardGravity},
+                          {"frequency_hz", e.frequency_hz}});
+    }
+    const auto scales = [](const NoiseScales& s) {
+      return json{{"gyro", s.gyro}, {"accel", s.accel}};
+    };
+    out["drilling"] = {
+        {"well",
+         {{"kickoff_md_m", d.well.kickoff_md_m},
+          {"build_rate_deg_per_30m", d.well.build_rate_rad_per_m * 30.0 / kDeg},
+          {"target_inclination_deg", d.well.target_inclination_rad / kDeg},
+          {"azimuth_deg", d.well.azimuth_rad / kDeg}}},
+        {"start_md_m", d.start_md_m},
+        {"duration_s", d.duration_s},
+        {"initial_static_s", d.initial_static_s},
+        {"rop_mph", d.rop_mps / kMetrePerHour},
+        {"rotation_rpm", d.rotation_radps * 60.0 / (2.0 * std::numbers::pi)},
+        {"initial_toolface_deg", d.initial_toolface_rad / kDeg},
+        {"stand_length_m", d.stand_length_m},
+        {"connection_s", d.connection_s},
+        {"ramp_s", d.ramp_s},
+        {"vibration_episodes", episodes},
+        {"noise_scales",
+         {{"static", scales(d.static_noise)},
+          {"drilling", scales(d.drilling_noise)},
+          {"vibration", scales(d.vibration_noise)}}}};
+  }
+  return out;
+}
+
+}  // namespace stochnav

@@ -1,0 +1,256 @@
+#include "stochnav/scenario/scenario_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <numbers>
+#include <optional>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/ins/earth.hpp"
+#include "stochnav/ins/mwd_attitude.hpp"
+#include "stochnav/io/atomic_file.hpp"
+#include "stochnav/model/noise_model_json.hpp"
+#include "stochnav/scenario/scenario_config_json.hpp"
+#include "stochnav/scenario/scenario_simulator.hpp"
+#include "stochnav/sim/normal_generator.hpp"
+#include "stochnav/version.hpp"
+
+namespace stochnav {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+constexpr double kMpsToMph = 3600.0;
+
+// A CSV file written through a large buffer into a PendingFile's temporary path.
+class CsvStream {
+ public:
+  CsvStream(const std::filesystem::path& path, std::string_view header)
+      : pending_(path), display_(path.string()) {
+    file_ = std::fopen(pending_.temporary_path().c_str(), "wb");
+    if (file_ == nullptr) {
+      throw InputError(display_ + ": cannot create the file; check that the output folder is "
+                                  "writable");
+    }
+    buffer_.append(header);
+    buffer_.push_back('\n');
+  }
+  ~CsvStream() {
+    if (file_ != nullptr) std::fclose(file_);
+  }
+  CsvStream(const CsvStream&) = delete;
+  CsvStream& operator=(const CsvStream&) = delete;
+
+  fmt::memory_buffer& buffer() { return buffer_; }
+  void maybe_flush() {
+    if (buffer_.size() > (1u << 20)) flush();
+  }
+  void flush() {
+    if (buffer_.size() > 0 && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
+      throw InputError(display_ + ": write failed (disk full?); free space or choose another "
+                                  "--out folder");
+    }
+    buffer_.clear();
+  }
+  /// Flushes and closes; the rename happens in commit().
+  void close() {
+    flush();
+    const int status = std::fclose(file_);
+    file_ = nullptr;
+    if (status != 0) throw InputError(display_ + ": cannot finish writing; check the disk");
+  }
+  void commit() { pending_.commit(); }
+
+ private:
+  PendingFile pending_;
+  std::string display_;
+  std::FILE* file_ = nullptr;
+  fmt::memory_buffer buffer_;
+};
+
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled) {}
+  void update(std::uint64_t done, std::uint64_t total) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (done < total && now - last_ < std::chrono::milliseconds(200)) return;
+    last_ = now;
+    const double fraction = total == 0 ? 1.0 : static_cast<double>(done) / static_cast<double>(total);
+    constexpr int kWidth = 40;
+    const int filled = static_cast<int>(fraction * kWidth);
+    std::fprintf(stderr, "\rsimulate scenario [%s%s] %5.1f%%", std::string(filled, '#').c_str(),
+                 std::string(kWidth - filled, ' ').c_str(), 100.0 * fraction);
+    std::fflush(stderr);
+  }
+  void finish() {
+    if (enabled_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool enabled_;
+  std::chrono::steady_clock::time_point last_{};
+};
+
+void append_truth(fmt::memory_buffer& out, const TruthSample& truth) {
+  const MwdAttitude attitude = mwd_from_dcm(truth.C_nb);
+  fmt::format_to(std::back_inserter(out), "{},{},{},{},{},{},{},{},{},{}\n", truth.t_s,
+                 truth.latitude_rad * kRadToDeg, truth.longitude_rad * kRadToDeg, truth.height_m,
+                 truth.v_n.x(), truth.v_n.y(), truth.v_n.z(),
+                 attitude.inclination_rad * kRadToDeg, attitude.toolface_rad * kRadToDeg,
+                 attitude.azimuth_rad * kRadToDeg);
+}
+
+}  // namespace
+
+ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
+                                          const ScenarioOutputOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  std::error_code error;
+  std::filesystem::create_directories(options.out_dir, error);
+  if (error || !std::filesystem::is_directory(options.out_dir)) {
+    throw InputError(options.out_dir.string() + ": cannot create the output folder (" +
+                     error.message() + "); give a writable --out folder");
+  }
+  ScenarioConfig run_config = config;
+  run_config.seed = options.seed;
+  ScenarioSimulator simulator(run_config, options.seed);
+
+  CsvStream imu(options.out_dir / "imu.csv", "t,gx,gy,gz,ax,ay,az");
+  CsvStream truth(options.out_dir / "truth.csv",
+                  "t,lat,lon,h,ve,vn,vu,inclination,toolface,azimuth");
+  CsvStream aids(options.out_dir / "aids.csv",
+                 "t,measured_depth_m,rop_mph,zupt,measured_depth_true_m,rop_true_mph");
+  PendingFile scenario_json(options.out_dir / "scenario.json");
+
+  const double rate = simulator.rate_hz();
+  const auto truth_every =
+      static_cast<std::uint64_t>(std::llround(rate / config.imu.truth_rate_hz));
+  const auto aid_every = static_cast<std::uint64_t>(std::llround(rate / config.imu.aid_rate_hz));
+  NormalGenerator aid_noise(derive_stream_seed(options.seed, 4000));
+  const auto append_aid = [&](const TruthSample& t) {
+    const double depth = t.measured_depth_m * (1.0 + config.aids.depth_scale_error) +
+                         config.aids.depth_noise_m * aid_noise();
+    const double rop = t.rop_mps + config.aids.rop_noise_mps * aid_noise();
+    fmt::format_to(std::back_inserter(aids.buffer()), "{},{},{},{},{},{}\n", t.t_s, depth,
+                   rop * kMpsToMph, t.stationary ? 1 : 0, t.measured_depth_m,
+                   t.rop_mps * kMpsToMph);
+  };
+  const TruthSample initial = simulator.initial_truth();
+  append_truth(truth.buffer(), initial);
+  append_aid(initial);
+
+  const bool rates = config.imu.output == ImuOutput::kRates;
+  ProgressBar progress(options.progress);
+  ScenarioEpoch epoch;
+  const std::uint64_t count = simulator.epoch_count();
+  for (std::uint64_t k = 1; k <= count; ++k) {
+    simulator.next(epoch);
+    const ImuIncrement& m = epoch.measured;
+    const double factor = rates ? 1.0 / m.dt_s : 1.0;
+    fmt::format_to(std::back_inserter(imu.buffer()), "{},{},{},{},{},{},{}\n", m.t_s,
+                   m.delta_theta_b.x() * factor, m.delta_theta_b.y() * factor,
+                   m.delta_theta_b.z() * factor, m.delta_v_b.x() * factor,
+                   m.delta_v_b.y() * factor, m.delta_v_b.z() * factor);
+    imu.maybe_flush();
+    if (k % truth_every == 0) {
+      append_truth(truth.buffer(), epoch.truth);
+      truth.maybe_flush();
+    }
+    if (k % aid_every == 0) {
+      append_aid(epoch.truth);
+      aids.maybe_flush();
+    }
+    if ((k & 0xFFFF) == 0) progress.update(k, count);
+  }
+  progress.update(count, count);
+  progress.finish();
+
+  nlohmann::json document;
+  document["stochnav_version"] = std::string(kVersion);
+  document["source"] = options.source;
+  document["seed"] = options.seed;
+  document["epochs"] = count;
+  document["duration_s"] = simulator.motion().duration_s();
+  document["config"] = to_json(run_config);
+  document["files"] = {
+      {"imu.csv",
+       {{"columns", {"t", "gx", "gy", "gz", "ax", "ay", "az"}},
+        {"units", rates ? nlohmann::json({"s", "rad/s", "rad/s", "rad/s", "m/s^2", "m/s^2",
+                                          "m/s^2"})
+                        : nlohmann::json({"s", "rad", "rad", "rad", "m/s", "m/s", "m/s"})},
+        {"meaning", rates ? "mean angular rate and specific force over (t - 1/rate_hz, t], "
+                            "body frame"
+                          : "delta-theta and delta-v over (t - 1/rate_hz, t], body frame"}}},
+      {"truth.csv",
+       {{"columns",
+         {"t", "lat", "lon", "h", "ve", "vn", "vu", "inclination", "toolface", "azimuth"}},
+        {"units", {"s", "deg", "deg", "m", "m/s", "m/s", "m/s", "deg", "deg", "deg"}},
+        {"meaning",
+         "true state at t: WGS-84 geodetic position, ellipsoidal height, ENU velocity, MWD "
+         "attitude (near vertical: azimuth 0 and the gyro toolface)"}}},
+      {"aids.csv",
+       {{"columns", {"t", "measured_depth_m", "rop_mph", "zupt", "measured_depth_true_m",
+                     "rop_true_mph"}},
+        {"units", {"s", "m", "m/h", "flag", "m", "m/h"}},
+        {"meaning",
+         "measured depth = true (1 + depth_scale_error) + N(0, depth_noise_m^2); ROP with "
+         "N(0, rop_noise^2); zupt = 1 when the tool is stationary; then the true values"}}}};
+  constexpr double kDegPerHour = std::numbers::pi / 180.0 / 3600.0;
+  constexpr double kMilliG = 9.80665e-3;
+  nlohmann::json gyro_bias = nlohmann::json::array();
+  nlohmann::json accel_bias = nlohmann::json::array();
+  for (std::size_t i = 0; i < 3; ++i) {
+    gyro_bias.push_back(simulator.gyro_turn_on_bias()[i] / kDegPerHour);
+    accel_bias.push_back(simulator.accel_turn_on_bias()[i] / kMilliG);
+  }
+  document["turn_on_bias"] = {{"gyro_dph", gyro_bias}, {"accel_mg", accel_bias}};
+  nlohmann::json scheduled_gyro = nlohmann::json::array();
+  nlohmann::json scheduled_accel = nlohmann::json::array();
+  for (std::size_t axis = 0; axis < 6; ++axis) {
+    (axis < 3 ? scheduled_gyro : scheduled_accel)
+        .push_back(to_json(simulator.scheduled_noise_model(axis)));
+  }
+  document["scheduled_noise_models"] = {
+      {"explanation",
+       "the scheduled noise as simulated: its terms with a nonstationary term whose segments are "
+       "the phases and their noise scales"},
+      {"gyro", scheduled_gyro},
+      {"accel", scheduled_accel}};
+  document["noise_schedule"] = simulator.noise_schedule_json();
+  document["motion"] = simulator.motion().describe();
+  const double lat = config.site.latitude_rad;
+  const Eigen::Vector3d omega_ie = earth_rate_n(lat);
+  document["earth"] = {
+      {"model", "WGS-84, normal gravity (Somigliana + height correction), no deflection"},
+      {"normal_gravity_at_site_mps2", normal_gravity(lat, config.site.height_m)},
+      {"earth_rate_n_radps", {omega_ie.x(), omega_ie.y(), omega_ie.z()}}};
+
+  imu.close();
+  truth.close();
+  aids.close();
+  {
+    std::FILE* file = std::fopen(scenario_json.temporary_path().c_str(), "wb");
+    const std::string text = document.dump(2) + "\n";
+    if (file == nullptr || std::fwrite(text.data(), 1, text.size(), file) != text.size() ||
+        std::fclose(file) != 0) {
+      throw InputError((options.out_dir / "scenario.json").string() +
+                       ": cannot write; check the output folder");
+    }
+  }
+  // Everything is complete: move the four files into place.
+  imu.commit();
+  truth.commit();
+  aids.commit();
+  scenario_json.commit();
+  ScenarioRunSummary summary;
+  summary.epochs = count;
+  summary.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace stochnav

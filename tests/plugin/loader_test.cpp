@@ -1,0 +1,175 @@
+// The plugin loader: discovery, the real reason of every load failure, object lifetime, and the
+// `stochnav plugins` command.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "run_cli.hpp"
+#include "stochnav/core/errors.hpp"
+#include "stochnav/plugin/plugin_registry.hpp"
+#include "temp_dir.hpp"
+
+namespace stochnav::plugin {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fixture(const std::string& folder, const std::string& name) {
+  return fs::path(STOCHNAV_TEST_FIXTURE_DIR) / folder / ("stochnav_test_" + name + ".so");
+}
+
+std::string load_error(const fs::path& file) {
+  try {
+    check_plugin_file(file);
+  } catch (const ConfigError& error) {
+    return error.what();
+  }
+  return "(loaded)";
+}
+
+TEST(PluginLoader, BundledFolderIsBesideTheLibraryAndHoldsTheInTreePlugins) {
+  EXPECT_EQ(fs::weakly_canonical(bundled_plugin_dir()),
+            fs::weakly_canonical(STOCHNAV_BUILD_PLUGIN_DIR));
+  const PluginRegistry registry({bundled_plugin_dir()});
+  EXPECT_TRUE(registry.problems().empty());
+  const auto& white = registry.find(PluginKind::kNoiseModel, "white", "/p");
+  EXPECT_EQ(white.api_version, kPluginApiVersion);
+  EXPECT_TRUE(white.can_fit);
+  EXPECT_EQ(registry.find(PluginKind::kNoiseModel, "gauss_markov", "/p").kind,
+            PluginKind::kNoiseModel);
+}
+
+TEST(PluginLoader, SearchPathOrderIsConfigFolderEnvironmentThenBundled) {
+  ::setenv("STOCHNAV_PLUGIN_PATH", "/tmp/a::/tmp/b", 1);
+  const auto path = default_search_path("/cfg");
+  ::unsetenv("STOCHNAV_PLUGIN_PATH");
+  ASSERT_EQ(path.size(), 4u);
+  EXPECT_EQ(path[0], fs::path("/cfg"));
+  EXPECT_EQ(path[1], fs::path("/tmp/a"));
+  EXPECT_EQ(path[2], fs::path("/tmp/b"));
+  EXPECT_EQ(path[3], bundled_plugin_dir());
+}
+
+TEST(PluginLoader, MissingFileSaysNotFound) {
+  EXPECT_NE(load_error("/nonexistent/stochnav_x.so").find("plugin library not found"),
+            std::string::npos);
+}
+
+TEST(PluginLoader, WrongApiVersionIsRefused) {
+  const std::string message = load_error(fixture("wrong_api", "wrong_api"));
+  EXPECT_NE(message.find("plugin API version 999"), std::string::npos) << message;
+  EXPECT_NE(message.find("needs version " + std::to_string(kPluginApiVersion)), std::string::npos);
+}
+
+TEST(PluginLoader, UnresolvedSymbolNamesTheSymbol) {
+  const std::string message = load_error(fixture("unresolved", "unresolved"));
+  EXPECT_NE(message.find("undefined symbol"), std::string::npos) << message;
+  EXPECT_NE(message.find("stochnav_test_symbol_nobody_defines"), std::string::npos) << message;
+  EXPECT_EQ(message.find("Bad file descriptor"), std::string::npos) << message;
+}
+
+TEST(PluginLoader, LibraryWithoutInfoIsNotAPlugin) {
+  const std::string message = load_error(fixture("not_a_plugin", "not_a_plugin"));
+  EXPECT_NE(message.find("not a stochnav plugin"), std::string::npos) << message;
+}
+
+TEST(PluginLoader, FactoryExceptionBecomesConfigErrorWithItsMessage) {
+  const PluginRegistry registry({fixture("factory_throws", "factory_throws").parent_path()});
+  NoiseModelContext context;
+  context.params_pointer = "/noise/gyro/params";
+  try {
+    registry.create_noise_model("factory_throws", {}, context, "/noise/gyro/plugin");
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("/noise/gyro/params"), std::string::npos) << message;
+    EXPECT_NE(message.find("factory exploded on purpose"), std::string::npos) << message;
+  }
+}
+
+TEST(PluginLoader, DuplicateTypeIsReportedAndRefused) {
+  const PluginRegistry registry({fixture("duplicate", "duplicate_a").parent_path()});
+  ASSERT_EQ(registry.problems().size(), 1u);
+  EXPECT_NE(registry.problems()[0].reason.find("duplicate noise plugin type 'duplicate'"),
+            std::string::npos);
+  try {
+    registry.find(PluginKind::kNoiseModel, "duplicate", "/noise/gyro/plugin");
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what()).find("provided by two libraries"), std::string::npos);
+  }
+}
+
+TEST(PluginLoader, UnknownTypeListsKnownOnes) {
+  const PluginRegistry registry({bundled_plugin_dir()});
+  try {
+    registry.create_noise_model("whte", {}, {}, "/noise/gyro/plugin");
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("/noise/gyro/plugin: unknown noise plugin type 'whte'"),
+              std::string::npos) << message;
+    EXPECT_NE(message.find("white"), std::string::npos);
+  }
+}
+
+TEST(PluginLoader, ObjectsOutliveTheRegistry) {
+  std::shared_ptr<NoiseModelPlugin> model;
+  {
+    const PluginRegistry registry({bundled_plugin_dir()});
+    NoiseModelContext context;
+    model = registry.create_noise_model("white", {{"N", 0.1}}, context, "/p");
+  }
+  Eigen::MatrixXd q(3, 3);
+  model->white_noise_covariance(0.0, 1.0, q);
+  EXPECT_GT(q(0, 0), 0.0);
+  EXPECT_EQ(model->type(), "white");
+}
+
+TEST(PluginsCommand, ListShowsTheBundledPlugins) {
+  testing::TempDir scratch;
+  const auto result = testing::run_cli("plugins list", scratch.path().string());
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("noise  white"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("noise  gauss_markov"), std::string::npos) << result.out;
+}
+
+TEST(PluginsCommand, CheckGivesExitCode2AndTheReason) {
+  testing::TempDir scratch;
+  struct Case {
+    fs::path file;
+    std::string reason;
+  };
+  const Case cases[] = {
+      {"/nonexistent/stochnav_x.so", "not found"},
+      {fixture("wrong_api", "wrong_api"), "plugin API version 999"},
+      {fixture("unresolved", "unresolved"), "undefined symbol: stochnav_test_symbol_nobody_defines"},
+      {fixture("not_a_plugin", "not_a_plugin"), "not a stochnav plugin"},
+  };
+  for (const auto& c : cases) {
+    const auto result = testing::run_cli("plugins check '" + c.file.string() + "'",
+                                         scratch.path().string());
+    EXPECT_EQ(result.exit_code, 2) << c.file;
+    EXPECT_NE(result.err.find(c.reason), std::string::npos) << result.err;
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  }
+  const auto good = testing::run_cli(
+      "plugins check '" + (bundled_plugin_dir() / "stochnav_noise_white.so").string() + "'",
+      scratch.path().string());
+  EXPECT_EQ(good.exit_code, 0) << good.err;
+  EXPECT_NE(good.out.find("white"), std::string::npos);
+}
+
+TEST(PluginsCommand, ListWithADuplicateFails) {
+  testing::TempDir scratch;
+  const auto result = testing::run_cli(
+      "plugins list --path '" + fixture("duplicate", "duplicate_a").parent_path().string() + "'",
+      scratch.path().string());
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_NE(result.err.find("duplicate noise plugin type"), std::string::npos) << result.err;
+}
+
+}  // namespace
+}  // namespace stochnav::plugin

@@ -1,0 +1,248 @@
+// The in-tree noise plugins, loaded through the runtime like the filter will: the properties
+// every noise model must have, params round trips, clear errors, and fitting from data.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <numbers>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/model/noise_model.hpp"
+#include "stochnav/plugin/plugin_registry.hpp"
+#include "stochnav/plugin/state_layout.hpp"
+#include "stochnav/sim/noise_generator.hpp"
+
+namespace stochnav::plugin {
+namespace {
+
+const PluginRegistry& registry() {
+  static const PluginRegistry instance({bundled_plugin_dir()});
+  return instance;
+}
+
+NoiseModelContext context_for(SensorGroup group) {
+  NoiseModelContext context;
+  context.group = group;
+  context.imu_rate_hz = 100.0;
+  context.params_pointer = "/noise/" + std::string(sensor_group_name(group)) + "/params";
+  return context;
+}
+
+std::shared_ptr<NoiseModelPlugin> make(const std::string& type, const nlohmann::json& params,
+                                       SensorGroup group = SensorGroup::kGyro) {
+  return registry().create_noise_model(type, params, context_for(group), "/noise/x/plugin");
+}
+
+struct Case {
+  std::string type;
+  nlohmann::json params;
+  SensorGroup group;
+};
+
+class NoiseModelProperties : public ::testing::TestWithParam<Case> {
+ protected:
+  void SetUp() override {
+    model_ = make(GetParam().type, GetParam().params, GetParam().group);
+    n_ = model_->augmented_size();
+  }
+
+  struct Step {
+    Eigen::MatrixXd q_white = Eigen::MatrixXd(3, 3);
+    Eigen::MatrixXd q_bias = Eigen::MatrixXd(3, 3);
+    Eigen::MatrixXd phi, q_d;
+  };
+
+  Step step(double t, double dt) const {
+    Step s;
+    s.phi.resize(n_, n_);
+    s.q_d.resize(n_, n_);
+    model_->white_noise_covariance(t, dt, s.q_white);
+    model_->bias_walk_covariance(t, dt, s.q_bias);
+    model_->augmented_transition(t, dt, s.phi, s.q_d);
+    return s;
+  }
+
+  std::shared_ptr<NoiseModelPlugin> model_;
+  int n_ = 0;
+};
+
+void expect_symmetric_psd(const Eigen::MatrixXd& q, const char* what) {
+  if (q.size() == 0) return;
+  const double scale = std::max(q.cwiseAbs().maxCoeff(), 1e-300);
+  EXPECT_LE((q - q.transpose()).cwiseAbs().maxCoeff(), 1e-14 * scale) << what;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(q);
+  EXPECT_GE(solver.eigenvalues().minCoeff(), -1e-14 * scale) << what;
+}
+
+void expect_close(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double rel, const char* what) {
+  const double scale = std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), 1e-300});
+  EXPECT_LE((a - b).cwiseAbs().maxCoeff(), rel * scale) << what << "\n" << a << "\n" << b;
+}
+
+TEST_P(NoiseModelProperties, CovariancesAreSymmetricPositiveSemiDefinite) {
+  for (double dt : {1e-4, 0.01, 1.0, 100.0}) {
+    const Step s = step(3.0, dt);
+    expect_symmetric_psd(s.q_white, "q_white");
+    expect_symmetric_psd(s.q_bias, "q_bias");
+    expect_symmetric_psd(s.q_d, "q_d");
+    EXPECT_GT(s.q_white.trace() + s.q_bias.trace() + s.q_d.trace(), 0.0);
+  }
+  Eigen::MatrixXd p0(n_, n_);
+  model_->augmented_initial_covariance(p0);
+  expect_symmetric_psd(p0, "p0");
+}
+
+TEST_P(NoiseModelProperties, ZeroStepGivesZeroNoiseAndIdentityTransition) {
+  const Step s = step(7.0, 0.0);
+  EXPECT_EQ(s.q_white.cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(s.q_bias.cwiseAbs().maxCoeff(), 0.0);
+  if (n_ > 0) {
+    EXPECT_EQ(s.q_d.cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_TRUE(s.phi.isIdentity(0.0));
+  }
+}
+
+TEST_P(NoiseModelProperties, ConsecutiveStepsComposeIntoOne) {
+  const double t = 5.0, dt1 = 0.37, dt2 = 1.9;
+  const Step first = step(t, dt1), second = step(t + dt1, dt2), whole = step(t, dt1 + dt2);
+  expect_close(first.q_white + second.q_white, whole.q_white, 1e-12, "q_white");
+  expect_close(first.q_bias + second.q_bias, whole.q_bias, 1e-12, "q_bias");
+  if (n_ > 0) {
+    expect_close(second.phi * first.phi, whole.phi, 1e-12, "phi");
+    expect_close(second.phi * first.q_d * second.phi.transpose() + second.q_d, whole.q_d, 1e-12,
+                 "q_d");
+  }
+}
+
+TEST_P(NoiseModelProperties, StationaryCovarianceIsPreservedOverManySteps) {
+  if (n_ == 0) GTEST_SKIP() << "no augmented states";
+  Eigen::MatrixXd p0(n_, n_), p(n_, n_), phi(n_, n_), q_d(n_, n_);
+  model_->augmented_initial_covariance(p0);
+  p = p0;
+  for (int k = 0; k < 100000; ++k) {
+    model_->augmented_transition(k * 0.01, 0.01, phi, q_d);
+    p = phi * p * phi.transpose() + q_d;
+  }
+  expect_close(p, p0, 1e-9, "P after 1e5 steps");
+}
+
+TEST_P(NoiseModelProperties, ParamsRebuildAnEqualModel) {
+  const auto rebuilt = make(GetParam().type, model_->params(), GetParam().group);
+  EXPECT_TRUE(model_->equals(*rebuilt, 1e-12)) << model_->describe() << "\n"
+                                               << rebuilt->describe();
+  EXPECT_TRUE(rebuilt->equals(*model_, 1e-12));
+  EXPECT_NE(model_->describe().find(GetParam().type), std::string::npos);
+  Eigen::MatrixXd map(3, n_);
+  model_->augmented_sensor_map(map);
+  if (n_ > 0) {
+    EXPECT_GT(map.cwiseAbs().maxCoeff(), 0.0);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    InTree, NoiseModelProperties,
+    ::testing::Values(Case{"white", {{"N", 0.05}}, SensorGroup::kGyro},
+                      Case{"white", {{"N", {0.02, 0.03, 0.04}}, {"K", 0.01}}, SensorGroup::kAccel},
+                      Case{"gauss_markov", {{"sigma", 0.5}, {"tau_c", 30}}, SensorGroup::kGyro},
+                      Case{"gauss_markov",
+                           {{"sigma", {1, 2, 3}}, {"tau_c", {10, 100, 1000}}, {"N", 0.02},
+                            {"K", 0.1}},
+                           SensorGroup::kAccel}));
+
+TEST(WhiteNoise, DatasheetValuesBecomeSiCovariances) {
+  const auto gyro = make("white", {{"N", 0.05}, {"K", 0.3}});
+  Eigen::Matrix3d q;
+  gyro->white_noise_covariance(0.0, 0.01, q);
+  const double n_si = 0.05 * std::numbers::pi / 180.0 / 60.0;  // rad/sqrt(s)
+  EXPECT_NEAR(q(1, 1), n_si * n_si * 0.01, 1e-12 * n_si * n_si);
+  gyro->bias_walk_covariance(0.0, 2.0, q);
+  const double k_si = 0.3 * std::numbers::pi / 180.0 / 3600.0 / 60.0;  // rad/s/sqrt(s)
+  EXPECT_NEAR(q(2, 2), k_si * k_si * 2.0, 1e-12 * k_si * k_si);
+  EXPECT_FALSE(gyro->time_varying());
+  EXPECT_FALSE(gyro->equals(*make("white", {{"N", 0.06}, {"K", 0.3}}), 1e-6));
+  EXPECT_FALSE(gyro->equals(*make("gauss_markov", {{"sigma", 1}, {"tau_c", 1}}), 1e-6));
+}
+
+TEST(NoiseParamsErrors, NameTheJsonPointerAndTheExpectedForm) {
+  const auto message = [](const std::string& type, const nlohmann::json& params) {
+    try {
+      make(type, params);
+    } catch (const ConfigError& error) {
+      return std::string(error.what());
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_EQ(message("white", {{"N", 0.05}, {"NN", 1}}),
+            "/noise/gyro/params/NN: unknown key; expected only K, N");
+  EXPECT_NE(message("gauss_markov", {{"sigma", 1}, {"tau_c", -1}})
+                .find("/noise/gyro/params/tau_c: found -1; expected a number > 0 (s)"),
+            std::string::npos);
+  EXPECT_NE(message("gauss_markov", {{"tau_c", 1}})
+                .find("/noise/gyro/params/sigma: missing; expected a number > 0 (deg/h)"),
+            std::string::npos);
+  EXPECT_NE(message("white", {{"N", {1, 2}}}).find("an array of 3"), std::string::npos);
+  EXPECT_NE(message("white", {{"N", {1, "x", 2}}}).find("/noise/gyro/params/N/1: found \"x\""),
+            std::string::npos);
+}
+
+TEST(StateLayout, RuntimeAssignsOffsetsAfterTheCoreStates) {
+  const auto gyro = make("gauss_markov", {{"sigma", 1}, {"tau_c", 10}}, SensorGroup::kGyro);
+  const auto accel = make("gauss_markov", {{"sigma", 1}, {"tau_c", 10}}, SensorGroup::kAccel);
+  const StateLayout layout = assign_state_layout(*gyro, *accel);
+  EXPECT_EQ(layout.size(), 21);
+  EXPECT_EQ(gyro->placement().augmented_offset, 15);
+  EXPECT_EQ(accel->placement().augmented_offset, 18);
+  EXPECT_EQ(gyro->placement().bias_offset, core_state::kGyroBias);
+  EXPECT_EQ(accel->placement().bias_offset, core_state::kAccelBias);
+  EXPECT_EQ(layout.find("gyro.gauss_markov")->offset, 15);
+  const auto white_gyro = make("white", {{"N", 1}}, SensorGroup::kGyro);
+  const StateLayout mixed = assign_state_layout(*white_gyro, *accel);
+  EXPECT_EQ(mixed.size(), 18);
+  EXPECT_EQ(white_gyro->placement().augmented_offset, -1);
+  EXPECT_EQ(accel->placement().augmented_offset, 15);
+  EXPECT_THROW(assign_state_layout(*accel, *gyro), std::invalid_argument);
+}
+
+CalibrationRecord simulated_record(const NoiseModel& model, double duration_s) {
+  CalibrationRecord record;
+  record.group = SensorGroup::kGyro;
+  record.rate_hz = model.rate_hz;
+  record.source = "simulated";
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    record.axes[axis] = simulate_noise(model, duration_s, model.rate_hz, 11 + axis);
+  }
+  return record;
+}
+
+TEST(GaussMarkovFit, RecoversSigmaAndCorrelationTimeThroughTheAllanEngine) {
+  const double deg_h = std::numbers::pi / 180.0 / 3600.0;           // rad/s per deg/h
+  const double deg_rt_h = std::numbers::pi / 180.0 / 60.0;          // rad/sqrt(s) per deg/sqrt(h)
+  NoiseModel truth{Unit::kRadPerSecond, 100.0,
+                   {AngleRandomWalkTerm{0.05 * deg_rt_h}, GaussMarkovTerm{10.0 * deg_h, 5.0}}};
+  const auto record = simulated_record(truth, 2000.0);
+  const auto model = registry().fit_noise_model("gauss_markov", record, {}, context_for(SensorGroup::kGyro),
+                                                "/noise/gyro/plugin");
+  const auto params = model->params();
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(params["sigma"][axis].get<double>(), 10.0, 2.5) << model->describe();
+    EXPECT_NEAR(params["tau_c"][axis].get<double>(), 5.0, 1.5) << model->describe();
+    EXPECT_NEAR(params["N"][axis].get<double>(), 0.05, 0.01) << model->describe();
+  }
+  // The fitted model behaves like any other: it rebuilds from its params.
+  EXPECT_TRUE(model->equals(*make("gauss_markov", params), 1e-12));
+}
+
+TEST(WhiteFit, RecoversTheAngleRandomWalk) {
+  const double deg_rt_h = std::numbers::pi / 180.0 / 60.0;
+  NoiseModel truth{Unit::kRadPerSecond, 100.0, {AngleRandomWalkTerm{0.2 * deg_rt_h}}};
+  const auto record = simulated_record(truth, 300.0);
+  const auto model =
+      registry().fit_noise_model("white", record, {}, context_for(SensorGroup::kGyro), "/p");
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(model->params()["N"][axis].get<double>(), 0.2, 0.01) << model->describe();
+  }
+}
+
+}  // namespace
+}  // namespace stochnav::plugin
