@@ -1,0 +1,56 @@
+#pragma once
+// Static alignment of a strapdown IMU: coarse analytic alignment (levelling from the
+// accelerometers, gyrocompassing from the gyros) and fine alignment (the navigation filter run
+// over the static period with zero-velocity and known-position updates, which estimates the
+// residual tilt, heading and the sensor biases).
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <span>
+#include <vector>
+
+#include "stochnav/filter/filter_options.hpp"
+#include "stochnav/ins/nav_state.hpp"
+#include "stochnav/ins/strapdown.hpp"
+#include "stochnav/plugin/aid_plugin.hpp"
+#include "stochnav/plugin/noise_model_plugin.hpp"
+
+namespace stochnav {
+
+/// Mean body rates of a static period.
+struct StaticMeans {
+  Eigen::Vector3d omega_ib_b = Eigen::Vector3d::Zero();  ///< mean angular rate (rad/s)
+  Eigen::Vector3d f_ib_b = Eigen::Vector3d::Zero();      ///< mean specific force (m/s^2)
+  double duration_s = 0.0;                               ///< length of the period (s)
+};
+
+/// Means of the increments (sum of increments / sum of intervals). Throws ConfigError when the
+/// span is empty or its intervals sum to zero.
+StaticMeans static_means(std::span<const ImuIncrement> increments);
+
+/// Coarse alignment: the C_nb (as q_nb) that maps the measured mean specific force to
+/// (0, 0, g) and the measured mean rate to the Earth rate (0, W cos lat, W sin lat) in ENU,
+/// by TRIAD (gravity trusted first, the Earth rate fixing heading). Heading error is about
+/// gyro bias / (W cos lat) rad: 0.06 deg per 0.01 deg/h of bias at 40 deg latitude.
+/// Throws ConfigError when the specific force or the horizontal Earth rate vanishes (not
+/// static, or at a pole).
+Eigen::Quaterniond coarse_alignment(const StaticMeans& means, double latitude_rad);
+
+/// Fine alignment: runs the navigation filter over the static period from `initial` (position
+/// known, velocity zero, attitude from coarse_alignment), with the given noise models and aids
+/// (typically a zero-velocity / static-position aid). Returns the navigator's final state and
+/// estimates.
+struct FineAlignmentResult {
+  NavState state;
+  Eigen::Vector3d gyro_bias_b = Eigen::Vector3d::Zero();   ///< rad/s
+  Eigen::Vector3d accel_bias_b = Eigen::Vector3d::Zero();  ///< m/s^2
+  Eigen::Vector3d attitude_sigma_rad = Eigen::Vector3d::Zero();  ///< 1-sigma of phi, E N U
+};
+FineAlignmentResult fine_alignment(const NavState& initial,
+                                   std::span<const ImuIncrement> increments,
+                                   plugin::NoiseModelPlugin& gyro_noise,
+                                   plugin::NoiseModelPlugin& accel_noise,
+                                   std::vector<plugin::AidPlugin*> aids,
+                                   const FilterOptions& options);
+
+}  // namespace stochnav

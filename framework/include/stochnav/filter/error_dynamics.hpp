@@ -1,0 +1,43 @@
+#pragma once
+// Linearised dynamics of the 15 core INS error states (plugin/state_layout.hpp, core_state):
+//   dr    ENU position error (m): dr_E = (R_N + h) cos(lat) dlon, dr_N = (R_M + h) dlat, dr_U = dh
+//   dv_n  ENU velocity error (m/s)
+//   phi   attitude error in n (rad), defined by C_nb_est = (I - [phi x]) C_nb_true
+//   db_a  accelerometer bias error in b (m/s^2), db_g gyro bias error in b (rad/s)
+// every error being estimate - truth. With the IMU compensated by the estimated biases, the
+// sensor errors are d omega_ib_b = -db_g + w_g and d f_b = -db_a + w_a, and (Savage; Yan,
+// "Principles of inertial navigation", ENU phi-angle form):
+//   d phi/dt = -omega_in_n x phi + d omega_in_n + C_nb db_g - C_nb w_g
+//   d dv/dt  = f_n x phi + v_n x (2 d omega_ie_n + d omega_en_n)
+//              - (2 omega_ie_n + omega_en_n) x dv - C_nb db_a + d g_n + C_nb w_a
+//   d dr/dt  = dv + (position terms of order v / R)
+//   d db/dt  = bias random walk.
+// d g_n keeps the vertical gravity gradient (+2 g / R dh on the up axis: the vertical channel's
+// instability); horizontal gravity errors are neglected.
+//
+// The dynamics are split by how fast their inputs change. C_nb and f_n change at the IMU rate
+// (vibration, toolface rotation): the filter accumulates their integrals over a covariance
+// interval exactly, from the increments. Everything else changes with position and velocity,
+// slowly, and is evaluated once per interval.
+
+#include <Eigen/Core>
+
+#include "stochnav/ins/nav_state.hpp"
+
+namespace stochnav {
+
+using CoreMatrix = Eigen::Matrix<double, 15, 15>;
+
+/// Integrals over one covariance interval [t, t + T] of the fast-changing inputs.
+struct FastInputIntegrals {
+  double interval_s = 0.0;                                   ///< T (s)
+  Eigen::Matrix3d c_nb_dt = Eigen::Matrix3d::Zero();         ///< integral of C_nb dt (s)
+  Eigen::Vector3d f_n_dt = Eigen::Vector3d::Zero();          ///< integral of f_n dt (m/s)
+};
+
+/// The integral of the core error-dynamics matrix F over the interval, F_bar T (15 x 15,
+/// dimensionless), with the slow terms evaluated at `state` (take the state at the interval's
+/// end: position and velocity hardly change within it).
+CoreMatrix integrated_core_dynamics(const NavState& state, const FastInputIntegrals& fast);
+
+}  // namespace stochnav

@@ -1,0 +1,25 @@
+#pragma once
+// Options of the MWD navigation filter (filter/mwd_navigator.hpp), with units. The run config's
+// "filter" section fills this struct; the defaults here are the documented defaults.
+
+#include <Eigen/Core>
+
+namespace stochnav {
+
+struct FilterOptions {
+  /// P is propagated once per interval of this length (s), with the transition and noise of
+  /// the whole interval accumulated from every IMU epoch in it (the fast inputs, C_nb and f_n,
+  /// integrated exactly; see filter/error_dynamics.hpp). 0 propagates at every IMU epoch. The
+  /// INS itself always runs at the IMU rate. At 0.1 s the covariance differs from the
+  /// every-epoch propagation by far less than its own uncertainty (tests/filter).
+  double covariance_interval_s = 0.1;
+
+  // Initial 1-sigma uncertainties of the core error states.
+  Eigen::Vector3d position_sigma_m{0.1, 0.1, 0.1};        ///< ENU (m)
+  Eigen::Vector3d velocity_sigma_mps{0.01, 0.01, 0.01};   ///< ENU (m/s)
+  Eigen::Vector3d attitude_sigma_rad{1e-3, 1e-3, 1e-2};   ///< phi about E, N, U (rad)
+  Eigen::Vector3d accel_bias_sigma_mps2{1e-3, 1e-3, 1e-3};  ///< body axes (m/s^2)
+  Eigen::Vector3d gyro_bias_sigma_radps{5e-6, 5e-6, 5e-6};  ///< body axes (rad/s) (~1 deg/h)
+};
+
+}  // namespace stochnav

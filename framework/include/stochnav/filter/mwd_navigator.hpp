@@ -1,0 +1,112 @@
+#pragma once
+// The MWD navigation filter: a strapdown INS (ins/strapdown.hpp) corrected by a closed-loop
+// error-state Kalman filter whose 15 core states (plugin/state_layout.hpp) are followed by the
+// augmented states of the gyro and accelerometer noise models (plugins). The noise models give
+// the system noise, possibly time-varying (DAVAR); the aiding plugins give the measurements.
+//
+// Per IMU epoch (step): the raw increments are compensated by the estimated biases and
+// augmented sensor errors, the INS advances, and the fast inputs of the error dynamics and the
+// white-noise covariances (mapped through C_nb) are accumulated. Once per covariance interval,
+// and before any measurement, P is propagated over the accumulated interval. Every aid with a
+// measurement at the epoch's time is then applied in turn; each accepted update is fed back at
+// once (position, velocity, attitude, biases, augmented states) and the error state reset.
+//
+// Lifetime: the navigator keeps references to the plugins; they must outlive it.
+
+#include <Eigen/Core>
+#include <span>
+#include <vector>
+
+#include "stochnav/filter/error_dynamics.hpp"
+#include "stochnav/filter/error_state_filter.hpp"
+#include "stochnav/filter/filter_options.hpp"
+#include "stochnav/ins/nav_state.hpp"
+#include "stochnav/ins/strapdown.hpp"
+#include "stochnav/plugin/aid_plugin.hpp"
+#include "stochnav/plugin/noise_model_plugin.hpp"
+#include "stochnav/plugin/state_layout.hpp"
+
+namespace stochnav {
+
+/// One measurement update attempt, as recorded in innovations.csv.
+struct InnovationRecord {
+  double t_s = 0.0;        ///< time (s)
+  int aid_index = 0;       ///< position of the aid in the run's list
+  bool accepted = false;   ///< passed the NIS gate and S was positive definite
+  double nis = 0.0;        ///< normalised innovation squared (NaN when S was singular)
+  int size = 0;            ///< measurement size m (<= kMaxSize)
+  static constexpr int kMaxSize = 6;
+  double innovation[kMaxSize] = {};        ///< z (aid units)
+  double innovation_sigma[kMaxSize] = {};  ///< sqrt(diag S)
+};
+
+class MwdNavigator final {
+ public:
+  /// `initial`: the initial navigation state (its t_s is the start time). The plugins are
+  /// laid out in the error state here (set_placement); `aids` may be empty.
+  MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gyro_noise,
+               plugin::NoiseModelPlugin& accel_noise, std::vector<plugin::AidPlugin*> aids,
+               const FilterOptions& options);
+
+  /// Advances over one IMU epoch of raw (uncompensated) increments.
+  void step(const ImuIncrement& raw);
+
+  const NavState& state() const { return ins_.state(); }
+  const Eigen::Vector3d& gyro_bias_b() const { return gyro_bias_b_; }    ///< rad/s
+  const Eigen::Vector3d& accel_bias_b() const { return accel_bias_b_; }  ///< m/s^2
+  /// P of the error state (n x n), propagated up to the last covariance interval or update.
+  const Eigen::MatrixXd& covariance() const { return filter_.covariance(); }
+  const plugin::StateLayout& layout() const { return layout_; }
+  const FilterHealth& health() const { return filter_.health(); }
+  /// The update attempts of the last step.
+  std::span<const InnovationRecord> innovations() const { return innovations_; }
+
+ private:
+  struct AugmentedGroup {
+    plugin::NoiseModelPlugin* model = nullptr;
+    int offset = -1;
+    int size = 0;
+    Eigen::MatrixXd sensor_map;  // 3 x size
+    Eigen::VectorXd estimate;    // nominal augmented states
+    Eigen::MatrixXd phi, q_d;    // scratch, size x size
+  };
+
+  void accumulate_noise(plugin::NoiseModelPlugin& model, double t_s, double dt_s,
+                        const Eigen::Matrix3d& c_nb, Eigen::Matrix3d& cache, double& cached_dt,
+                        Eigen::Matrix3d& sum);
+  void propagate_covariance();
+  void apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b, const Eigen::Vector3d& f_ib_b);
+  void feed_back(const Eigen::VectorXd& correction);
+  Eigen::Vector3d sensor_correction(const AugmentedGroup& group) const;
+
+  plugin::NoiseModelPlugin& gyro_noise_;
+  plugin::NoiseModelPlugin& accel_noise_;
+  std::vector<plugin::AidPlugin*> aids_;
+  FilterOptions options_;
+  plugin::StateLayout layout_;
+  StrapdownIntegrator ins_;
+  ErrorStateFilter filter_;
+  Eigen::Vector3d gyro_bias_b_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_bias_b_ = Eigen::Vector3d::Zero();
+  AugmentedGroup gyro_augmented_;
+  AugmentedGroup accel_augmented_;
+
+  // Accumulated over the current covariance interval.
+  double interval_start_s_ = 0.0;
+  FastInputIntegrals fast_;
+  Eigen::Matrix3d attitude_noise_ = Eigen::Matrix3d::Zero();  // integral of C Qw_g C^T (rad^2)
+  Eigen::Matrix3d velocity_noise_ = Eigen::Matrix3d::Zero();  // integral of C Qw_a C^T
+  Eigen::Matrix3d gyro_white_cache_, accel_white_cache_;      // Qw at cached dt (constant models)
+  double gyro_cached_dt_ = -1.0;
+  double accel_cached_dt_ = -1.0;
+  Eigen::Matrix3d c_nb_;  // attitude at the start of the current epoch
+
+  Eigen::MatrixXd phi_, q_d_;  // n x n scratch
+  Eigen::Matrix3d bias_walk_;
+  Eigen::VectorXd correction_;
+  Eigen::VectorXd residual_;
+  Eigen::MatrixXd h_core_, h_full_, r_;
+  std::vector<InnovationRecord> innovations_;
+};
+
+}  // namespace stochnav

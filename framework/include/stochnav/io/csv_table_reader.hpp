@@ -1,0 +1,39 @@
+#pragma once
+// Streams a numeric CSV table with a header row, row by row, picking columns by name: for
+// records too long to hold (an IMU file of 200 h at 100 Hz), read once, front to back.
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "stochnav/io/line_reader.hpp"
+
+namespace stochnav {
+
+class CsvTableReader final {
+ public:
+  /// Opens `path` (plain or .gz) and reads its header, skipping blank and '#' lines before it.
+  /// `columns`: the names wanted, in the order next() returns them. Throws InputError naming
+  /// the file, line and the columns found when the file is empty or a column is missing.
+  CsvTableReader(const std::string& path, std::span<const std::string_view> columns);
+
+  /// Reads the next data row into `values` (one per requested column). Returns false at the
+  /// end of the file. Throws InputError "file:line: ..." for a short row, a non-numeric cell
+  /// or a NaN / infinite value.
+  bool next(std::span<double> values);
+
+  /// Whether the header has this column.
+  bool has_column(std::string_view name) const;
+  const std::vector<std::string>& header() const { return header_; }
+  const std::string& path() const { return lines_.path(); }
+  std::size_t line_number() const { return lines_.line_number(); }
+
+ private:
+  LineReader lines_;
+  std::vector<std::string> header_;
+  std::vector<std::size_t> indices_;  // header index of each requested column
+  std::vector<std::string_view> cells_;
+};
+
+}  // namespace stochnav

@@ -1,0 +1,71 @@
+#include "stochnav/experiment/navigation_errors.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "stochnav/ins/earth.hpp"
+
+namespace stochnav {
+namespace {
+
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+
+double wrapped_degrees(double angle_rad) {
+  double degrees = std::remainder(angle_rad * kDegPerRad, 360.0);  // [-180, 180]
+  if (degrees == -180.0) degrees = 180.0;
+  return degrees;
+}
+
+}  // namespace
+
+std::array<double, kErrorMetricCount> navigation_errors(const NavState& estimate,
+                                                       const NavState& truth,
+                                                       double vertical_inclination_deg) {
+  const EarthRadii radii = earth_radii(truth.latitude_rad);
+  const MwdAttitude est = mwd_from_quaternion(estimate.q_nb);
+  const MwdAttitude tru = mwd_from_quaternion(truth.q_nb);
+  const bool vertical = tru.inclination_rad * kDegPerRad < vertical_inclination_deg;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const Eigen::Vector3d dv = estimate.v_n - truth.v_n;
+  return {
+      (estimate.latitude_rad - truth.latitude_rad) * (radii.meridian_m + truth.height_m),
+      std::remainder(estimate.longitude_rad - truth.longitude_rad, 2.0 * std::numbers::pi) *
+          (radii.transverse_m + truth.height_m) * std::cos(truth.latitude_rad),
+      estimate.height_m - truth.height_m,
+      (est.inclination_rad - tru.inclination_rad) * kDegPerRad,
+      vertical ? nan : wrapped_degrees(est.toolface_rad - tru.toolface_rad),
+      vertical ? nan : wrapped_degrees(est.azimuth_rad - tru.azimuth_rad),
+      dv.x(),
+      dv.y(),
+      dv.z()};
+}
+
+void ErrorStatistics::add(const std::array<double, kErrorMetricCount>& errors) {
+  for (std::size_t i = 0; i < kErrorMetricCount; ++i) {
+    if (std::isnan(errors[i])) continue;
+    max_abs_[i] = std::max(max_abs_[i], std::abs(errors[i]));
+    sum_squares_[i] += errors[i] * errors[i];
+    ++count_[i];
+  }
+}
+
+double ErrorStatistics::rms(std::size_t metric) const {
+  if (count_[metric] == 0) return std::numeric_limits<double>::quiet_NaN();
+  return std::sqrt(sum_squares_[metric] / static_cast<double>(count_[metric]));
+}
+
+nlohmann::json ErrorStatistics::to_json() const {
+  nlohmann::json out = nlohmann::json::object();
+  for (std::size_t i = 0; i < kErrorMetricCount; ++i) {
+    const std::string name(kErrorMetricNames[i]);
+    if (count_[i] == 0) {
+      out[name] = {{"max_abs", nullptr}, {"rms", nullptr}, {"samples", 0}};
+    } else {
+      out[name] = {{"max_abs", max_abs_[i]}, {"rms", rms(i)}, {"samples", count_[i]}};
+    }
+  }
+  return out;
+}
+
+}  // namespace stochnav

@@ -1,0 +1,68 @@
+#include "stochnav/filter/alignment.hpp"
+
+#include <cmath>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/filter/mwd_navigator.hpp"
+#include "stochnav/ins/earth.hpp"
+
+namespace stochnav {
+namespace {
+
+// Orthonormal triad from a primary and a secondary direction.
+Eigen::Matrix3d triad(const Eigen::Vector3d& primary, const Eigen::Vector3d& secondary) {
+  const Eigen::Vector3d first = primary.normalized();
+  const Eigen::Vector3d second = primary.cross(secondary).normalized();
+  Eigen::Matrix3d frame;
+  frame << first, second, first.cross(second);
+  return frame;
+}
+
+}  // namespace
+
+StaticMeans static_means(std::span<const ImuIncrement> increments) {
+  StaticMeans means;
+  for (const ImuIncrement& increment : increments) {
+    means.omega_ib_b += increment.delta_theta_b;
+    means.f_ib_b += increment.delta_v_b;
+    means.duration_s += increment.dt_s;
+  }
+  if (!(means.duration_s > 0.0)) {
+    throw ConfigError("alignment: the static period is empty; give it a positive duration");
+  }
+  means.omega_ib_b /= means.duration_s;
+  means.f_ib_b /= means.duration_s;
+  return means;
+}
+
+Eigen::Quaterniond coarse_alignment(const StaticMeans& means, double latitude_rad) {
+  const Eigen::Vector3d f_n(0.0, 0.0, 1.0);  // direction of the specific force at rest: up
+  const Eigen::Vector3d omega_n = earth_rate_n(latitude_rad);
+  if (means.f_ib_b.norm() < 1.0 || means.omega_ib_b.cross(means.f_ib_b).norm() == 0.0 ||
+      std::cos(latitude_rad) < 1e-6) {
+    throw ConfigError(
+        "alignment: the specific force or the horizontal Earth rate vanishes; align on a static "
+        "period away from the poles");
+  }
+  const Eigen::Matrix3d c_nb =
+      triad(f_n, omega_n) * triad(means.f_ib_b, means.omega_ib_b).transpose();
+  return Eigen::Quaterniond(c_nb).normalized();
+}
+
+FineAlignmentResult fine_alignment(const NavState& initial,
+                                   std::span<const ImuIncrement> increments,
+                                   plugin::NoiseModelPlugin& gyro_noise,
+                                   plugin::NoiseModelPlugin& accel_noise,
+                                   std::vector<plugin::AidPlugin*> aids,
+                                   const FilterOptions& options) {
+  MwdNavigator navigator(initial, gyro_noise, accel_noise, std::move(aids), options);
+  for (const ImuIncrement& increment : increments) navigator.step(increment);
+  FineAlignmentResult result;
+  result.state = navigator.state();
+  result.gyro_bias_b = navigator.gyro_bias_b();
+  result.accel_bias_b = navigator.accel_bias_b();
+  result.attitude_sigma_rad = navigator.covariance().diagonal().segment<3>(6).cwiseSqrt();
+  return result;
+}
+
+}  // namespace stochnav

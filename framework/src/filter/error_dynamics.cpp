@@ -1,0 +1,77 @@
+#include "stochnav/filter/error_dynamics.hpp"
+
+#include <cmath>
+
+#include "stochnav/ins/earth.hpp"
+#include "stochnav/plugin/state_layout.hpp"
+
+namespace stochnav {
+namespace {
+
+namespace cs = plugin::core_state;
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
+}  // namespace
+
+CoreMatrix integrated_core_dynamics(const NavState& state, const FastInputIntegrals& fast) {
+  const double t = fast.interval_s;
+  const double lat = state.latitude_rad;
+  const double h = state.height_m;
+  const EarthRadii radii = earth_radii(lat);
+  const double rm = radii.meridian_m + h;
+  const double rn = radii.transverse_m + h;
+  const double tan_lat = std::tan(lat);
+  const double sec_lat = 1.0 / std::cos(lat);
+  const double w = wgs84::kEarthRate_radps;
+  const double ve = state.v_n.x();
+  const double vn = state.v_n.y();
+  const double vu = state.v_n.z();
+  const Eigen::Vector3d omega_ie_n = earth_rate_n(lat);
+  const Eigen::Vector3d omega_en_n = transport_rate_n(lat, h, state.v_n);
+
+  // Partial derivatives of the rates with respect to dv and dr (dlat = dr_N / rm, dh = dr_U).
+  Eigen::Matrix3d d_omega_en_dv;
+  d_omega_en_dv << 0.0, -1.0 / rm, 0.0,  //
+      1.0 / rn, 0.0, 0.0,                //
+      tan_lat / rn, 0.0, 0.0;
+  Eigen::Matrix3d d_omega_ie_dr = Eigen::Matrix3d::Zero();
+  d_omega_ie_dr(1, 1) = -w * std::sin(lat) / rm;
+  d_omega_ie_dr(2, 1) = w * std::cos(lat) / rm;
+  Eigen::Matrix3d d_omega_en_dr = Eigen::Matrix3d::Zero();
+  d_omega_en_dr(0, 2) = vn / (rm * rm);
+  d_omega_en_dr(1, 2) = -ve / (rn * rn);
+  d_omega_en_dr(2, 1) = ve * sec_lat * sec_lat / (rn * rm);
+  d_omega_en_dr(2, 2) = -ve * tan_lat / (rn * rn);
+
+  const Eigen::Matrix3d v_cross = skew(state.v_n);
+  CoreMatrix f_t = CoreMatrix::Zero();
+  // Position.
+  f_t.block<3, 3>(cs::kPosition, cs::kVelocity) = Eigen::Matrix3d::Identity() * t;
+  Eigen::Matrix3d rr;
+  rr << vu / rn - tan_lat * vn / rm, ve * tan_lat / rm, -ve / rn,  //
+      0.0, vu / rm, -vn / rm,                                      //
+      0.0, 0.0, 0.0;
+  f_t.block<3, 3>(cs::kPosition, cs::kPosition) = rr * t;
+  // Velocity.
+  f_t.block<3, 3>(cs::kVelocity, cs::kAttitude) = skew(fast.f_n_dt);
+  f_t.block<3, 3>(cs::kVelocity, cs::kVelocity) =
+      (v_cross * d_omega_en_dv - skew(2.0 * omega_ie_n + omega_en_n)) * t;
+  Eigen::Matrix3d vr = v_cross * (2.0 * d_omega_ie_dr + d_omega_en_dr);
+  const double mean_radius = std::sqrt(radii.meridian_m * radii.transverse_m) + h;
+  vr(2, 2) += 2.0 * normal_gravity(lat, h) / mean_radius;
+  f_t.block<3, 3>(cs::kVelocity, cs::kPosition) = vr * t;
+  f_t.block<3, 3>(cs::kVelocity, cs::kAccelBias) = -fast.c_nb_dt;
+  // Attitude.
+  f_t.block<3, 3>(cs::kAttitude, cs::kAttitude) = -skew(omega_ie_n + omega_en_n) * t;
+  f_t.block<3, 3>(cs::kAttitude, cs::kVelocity) = d_omega_en_dv * t;
+  f_t.block<3, 3>(cs::kAttitude, cs::kPosition) = (d_omega_ie_dr + d_omega_en_dr) * t;
+  f_t.block<3, 3>(cs::kAttitude, cs::kGyroBias) = fast.c_nb_dt;
+  return f_t;
+}
+
+}  // namespace stochnav

@@ -1,0 +1,214 @@
+#include "stochnav/filter/mwd_navigator.hpp"
+
+#include <cmath>
+#include <utility>
+
+#include "stochnav/ins/earth.hpp"
+
+namespace stochnav {
+namespace {
+
+namespace cs = plugin::core_state;
+
+Eigen::MatrixXd initial_covariance(const plugin::StateLayout& layout, const FilterOptions& o,
+                                   plugin::NoiseModelPlugin& gyro,
+                                   plugin::NoiseModelPlugin& accel) {
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero(layout.size(), layout.size());
+  p.diagonal().segment<3>(cs::kPosition) = o.position_sigma_m.array().square().matrix();
+  p.diagonal().segment<3>(cs::kVelocity) = o.velocity_sigma_mps.array().square().matrix();
+  p.diagonal().segment<3>(cs::kAttitude) = o.attitude_sigma_rad.array().square().matrix();
+  p.diagonal().segment<3>(cs::kAccelBias) = o.accel_bias_sigma_mps2.array().square().matrix();
+  p.diagonal().segment<3>(cs::kGyroBias) = o.gyro_bias_sigma_radps.array().square().matrix();
+  for (plugin::NoiseModelPlugin* model : {&gyro, &accel}) {
+    const int size = model->augmented_size();
+    if (size == 0) continue;
+    const int offset = model->placement().augmented_offset;
+    model->augmented_initial_covariance(p.block(offset, offset, size, size));
+  }
+  return p;
+}
+
+}  // namespace
+
+MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gyro_noise,
+                           plugin::NoiseModelPlugin& accel_noise,
+                           std::vector<plugin::AidPlugin*> aids, const FilterOptions& options)
+    : gyro_noise_(gyro_noise),
+      accel_noise_(accel_noise),
+      aids_(std::move(aids)),
+      options_(options),
+      layout_(plugin::assign_state_layout(gyro_noise, accel_noise)),
+      ins_(initial),
+      filter_(initial_covariance(layout_, options, gyro_noise, accel_noise)),
+      interval_start_s_(initial.t_s),
+      c_nb_(initial.q_nb.toRotationMatrix()) {
+  for (auto [group, model] : {std::pair{&gyro_augmented_, &gyro_noise},
+                              std::pair{&accel_augmented_, &accel_noise}}) {
+    group->model = model;
+    group->size = model->augmented_size();
+    group->offset = model->placement().augmented_offset;
+    group->sensor_map = Eigen::MatrixXd::Zero(3, group->size);
+    group->estimate = Eigen::VectorXd::Zero(group->size);
+    group->phi = Eigen::MatrixXd::Identity(group->size, group->size);
+    group->q_d = Eigen::MatrixXd::Zero(group->size, group->size);
+    if (group->size > 0) model->augmented_sensor_map(group->sensor_map);
+  }
+  const int n = layout_.size();
+  phi_ = Eigen::MatrixXd::Identity(n, n);
+  q_d_ = Eigen::MatrixXd::Zero(n, n);
+  correction_ = Eigen::VectorXd::Zero(n);
+  innovations_.reserve(aids_.size());
+}
+
+Eigen::Vector3d MwdNavigator::sensor_correction(const AugmentedGroup& group) const {
+  if (group.size == 0) return Eigen::Vector3d::Zero();
+  return group.sensor_map * group.estimate;
+}
+
+void MwdNavigator::accumulate_noise(plugin::NoiseModelPlugin& model, double t_s, double dt_s,
+                                    const Eigen::Matrix3d& c_nb, Eigen::Matrix3d& cache,
+                                    double& cached_dt, Eigen::Matrix3d& sum) {
+  if (model.time_varying() || dt_s != cached_dt) {
+    model.white_noise_covariance(t_s, dt_s, cache);
+    if (!model.time_varying()) cached_dt = dt_s;
+  }
+  sum.noalias() += c_nb * cache * c_nb.transpose();
+}
+
+void MwdNavigator::step(const ImuIncrement& raw) {
+  innovations_.clear();
+  const double dt = raw.dt_s;
+  const double t_start = raw.t_s - dt;
+  ImuIncrement compensated = raw;
+  compensated.delta_theta_b -= (gyro_bias_b_ + sensor_correction(gyro_augmented_)) * dt;
+  compensated.delta_v_b -= (accel_bias_b_ + sensor_correction(accel_augmented_)) * dt;
+  ins_.update(compensated);
+
+  const Eigen::Matrix3d c_end = ins_.state().q_nb.toRotationMatrix();
+  const Eigen::Matrix3d c_mid = 0.5 * (c_nb_ + c_end);
+  c_nb_ = c_end;
+  fast_.interval_s += dt;
+  fast_.c_nb_dt += c_mid * dt;
+  fast_.f_n_dt += c_mid * compensated.delta_v_b;
+  accumulate_noise(gyro_noise_, t_start, dt, c_mid, gyro_white_cache_, gyro_cached_dt_,
+                   attitude_noise_);
+  accumulate_noise(accel_noise_, t_start, dt, c_mid, accel_white_cache_, accel_cached_dt_,
+                   velocity_noise_);
+
+  bool measurement_due = false;
+  for (const plugin::AidPlugin* aid : aids_) measurement_due |= aid->has_measurement(raw.t_s);
+  // The interval closes within half an epoch of its nominal length, so that a 0.1 s interval
+  // at 100 Hz is exactly 10 epochs whatever the rounding of the time stamps.
+  if (measurement_due || fast_.interval_s >= options_.covariance_interval_s - 0.5 * dt) {
+    propagate_covariance();
+  }
+  if (measurement_due && dt > 0.0) {
+    apply_aids(raw.t_s, compensated.delta_theta_b / dt, compensated.delta_v_b / dt);
+  }
+}
+
+void MwdNavigator::propagate_covariance() {
+  const double interval = fast_.interval_s;
+  if (interval <= 0.0) return;
+  const CoreMatrix f_t = integrated_core_dynamics(ins_.state(), fast_);
+  phi_.setIdentity();
+  phi_.topLeftCorner<15, 15>() += f_t + 0.5 * f_t * f_t;
+  q_d_.setZero();
+  q_d_.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_;
+  q_d_.block<3, 3>(cs::kVelocity, cs::kVelocity) = velocity_noise_;
+  gyro_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
+  q_d_.block<3, 3>(cs::kGyroBias, cs::kGyroBias) = bias_walk_;
+  accel_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
+  q_d_.block<3, 3>(cs::kAccelBias, cs::kAccelBias) = bias_walk_;
+
+  // Augmented sensor errors enter like the biases: + C M x (gyro, attitude rows) and
+  // - C M x (accelerometer, velocity rows), with the sign of d omega = -(db + M dx).
+  for (auto [group, rows, sign] : {std::tuple{&gyro_augmented_, cs::kAttitude, 1.0},
+                                   std::tuple{&accel_augmented_, cs::kVelocity, -1.0}}) {
+    if (group->size == 0) continue;
+    group->model->augmented_transition(interval_start_s_, interval, group->phi, group->q_d);
+    phi_.block(group->offset, group->offset, group->size, group->size) = group->phi;
+    q_d_.block(group->offset, group->offset, group->size, group->size) = group->q_d;
+    phi_.block(rows, group->offset, 3, group->size) = sign * fast_.c_nb_dt * group->sensor_map;
+    group->estimate = group->phi * group->estimate;
+  }
+  filter_.propagate(phi_, q_d_);
+
+  interval_start_s_ += interval;
+  fast_ = FastInputIntegrals{};
+  attitude_noise_.setZero();
+  velocity_noise_.setZero();
+}
+
+void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
+                              const Eigen::Vector3d& f_ib_b) {
+  const plugin::ImuSample imu{.t_s = t_s, .omega_ib_b = omega_ib_b, .f_ib_b = f_ib_b};
+  const int n = layout_.size();
+  for (std::size_t index = 0; index < aids_.size(); ++index) {
+    plugin::AidPlugin& aid = *aids_[index];
+    if (!aid.has_measurement(t_s)) continue;
+    const int m = aid.measurement_size();
+    residual_.resize(m);
+    h_core_.resize(m, cs::kSize);
+    r_.resize(m, m);
+    if (!aid.measure(t_s, ins_.state(), imu, residual_, h_core_, r_)) continue;
+    h_full_.setZero(m, n);
+    h_full_.leftCols<cs::kSize>() = h_core_;
+
+    const bool adaptive = gyro_noise_.time_varying() || accel_noise_.time_varying();
+    const Eigen::MatrixXd prior = adaptive ? filter_.covariance() : Eigen::MatrixXd();
+    correction_.setZero();
+    const UpdateOutcome outcome =
+        filter_.update(residual_, h_full_, r_, aid.gate().enabled ? aid.gate().threshold
+                                                                  : INFINITY,
+                       correction_);
+    InnovationRecord record{.t_s = t_s,
+                            .aid_index = static_cast<int>(index),
+                            .accepted = outcome.accepted,
+                            .nis = outcome.nis,
+                            .size = std::min(m, InnovationRecord::kMaxSize)};
+    const Eigen::MatrixXd& s = filter_.last_innovation_covariance();
+    for (int i = 0; i < record.size; ++i) {
+      record.innovation[i] = residual_(i);
+      record.innovation_sigma[i] = std::sqrt(std::max(0.0, s(i, i)));
+    }
+    innovations_.push_back(record);
+    if (adaptive) {
+      const plugin::UpdateFeedback feedback{t_s,
+                                            aid.type(),
+                                            outcome.accepted,
+                                            outcome.nis,
+                                            residual_,
+                                            s,
+                                            filter_.last_gain(),
+                                            prior,
+                                            filter_.covariance()};
+      gyro_noise_.on_update(feedback);
+      accel_noise_.on_update(feedback);
+    }
+    if (outcome.accepted) feed_back(correction_);
+  }
+}
+
+void MwdNavigator::feed_back(const Eigen::VectorXd& correction) {
+  NavState state = ins_.state();
+  const EarthRadii radii = earth_radii(state.latitude_rad);
+  const Eigen::Vector3d dr = correction.segment<3>(cs::kPosition);
+  state.latitude_rad -= dr.y() / (radii.meridian_m + state.height_m);
+  state.longitude_rad -=
+      dr.x() / ((radii.transverse_m + state.height_m) * std::cos(state.latitude_rad));
+  state.height_m -= dr.z();
+  state.v_n -= correction.segment<3>(cs::kVelocity);
+  // C_est = (I - [phi x]) C_true, so C_true = Rot(phi) C_est to first order.
+  const Eigen::Vector3d phi = correction.segment<3>(cs::kAttitude);
+  state.q_nb = (quaternion_from_rotation_vector(phi) * state.q_nb).normalized();
+  ins_.set_state(state);
+  c_nb_ = state.q_nb.toRotationMatrix();
+  accel_bias_b_ -= correction.segment<3>(cs::kAccelBias);
+  gyro_bias_b_ -= correction.segment<3>(cs::kGyroBias);
+  for (AugmentedGroup* group : {&gyro_augmented_, &accel_augmented_}) {
+    if (group->size > 0) group->estimate -= correction.segment(group->offset, group->size);
+  }
+}
+
+}  // namespace stochnav

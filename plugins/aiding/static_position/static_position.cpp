@@ -1,0 +1,112 @@
+// Aid plugin "static_position": the tool does not move (vibration-table experiments, the
+// paper's Eq. 25). At a fixed rate it measures the position error against the known site and
+// the velocity against zero:
+//   z = [dr (ENU, m, estimate - site); v_n (m/s)],  H = [I 0 0 0 0; 0 I 0 0 0],
+//   R = diag(sigma_position^2 I, sigma_velocity^2 I).
+//
+// params:
+//   "rate_hz"             measurement rate (Hz), > 0, default 1
+//   "sigma_position_m"    1-sigma of the site position (m), > 0, default 0.01
+//   "sigma_velocity_mps"  1-sigma of the zero velocity (m/s), > 0, default 0.001
+//   "site"                {"latitude_deg", "longitude_deg", "height_m"}; default: the run's
+//                         initial position
+//   gate keys: see plugin/aid_plugin.hpp (read_nis_gate)
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "stochnav/ins/earth.hpp"
+#include "stochnav/plugin/aid_plugin.hpp"
+#include "stochnav/plugin/aid_schedule.hpp"
+#include "stochnav/plugin/params.hpp"
+#include "stochnav/plugin/state_layout.hpp"
+
+namespace {
+
+namespace cs = stochnav::plugin::core_state;
+using stochnav::plugin::Bound;
+
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+
+struct StaticPositionParams {
+  double rate_hz = 1.0;
+  double sigma_position_m = 0.01;
+  double sigma_velocity_mps = 0.001;
+  double latitude_rad = 0.0;
+  double longitude_rad = 0.0;
+  double height_m = 0.0;
+};
+
+class StaticPositionAid final : public stochnav::plugin::AidPlugin {
+ public:
+  StaticPositionAid(const StaticPositionParams& params, stochnav::plugin::NisGate gate,
+                    double start_s)
+      : AidPlugin(gate),
+        params_(params),
+        schedule_(stochnav::plugin::AidSchedule::periodic(start_s, params.rate_hz)) {}
+
+  std::string_view type() const override { return "static_position"; }
+  int measurement_size() const override { return 6; }
+  bool has_measurement(double t_s) const override { return schedule_.due(t_s); }
+
+  bool measure(double, const stochnav::NavState& state, const stochnav::plugin::ImuSample&,
+               Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
+               Eigen::Ref<Eigen::MatrixXd> r) const override {
+    const stochnav::EarthRadii radii = stochnav::earth_radii(params_.latitude_rad);
+    residual(0) = std::remainder(state.longitude_rad - params_.longitude_rad, 2 * std::numbers::pi) *
+                  (radii.transverse_m + params_.height_m) * std::cos(params_.latitude_rad);
+    residual(1) = (state.latitude_rad - params_.latitude_rad) * (radii.meridian_m + params_.height_m);
+    residual(2) = state.height_m - params_.height_m;
+    residual.segment<3>(3) = state.v_n;
+    h.setZero();
+    h.block<3, 3>(0, cs::kPosition).setIdentity();
+    h.block<3, 3>(3, cs::kVelocity).setIdentity();
+    r.setZero();
+    r.diagonal().head<3>().setConstant(params_.sigma_position_m * params_.sigma_position_m);
+    r.diagonal().tail<3>().setConstant(params_.sigma_velocity_mps * params_.sigma_velocity_mps);
+    return true;
+  }
+
+  std::string describe() const override {
+    return fmt::format(
+        "static_position: site {:.7f} deg, {:.7f} deg, {:.3f} m; {} Hz; sigma {} m, {} m/s",
+        params_.latitude_rad / kRadPerDeg, params_.longitude_rad / kRadPerDeg, params_.height_m,
+        params_.rate_hz, params_.sigma_position_m, params_.sigma_velocity_mps);
+  }
+
+ private:
+  StaticPositionParams params_;
+  stochnav::plugin::AidSchedule schedule_;
+};
+
+std::unique_ptr<stochnav::plugin::AidPlugin> make_static_position(
+    const nlohmann::json& json, const stochnav::plugin::AidContext& context) {
+  stochnav::plugin::ParamReader reader(json, context.params_pointer);
+  StaticPositionParams params;
+  params.rate_hz = reader.number_or("rate_hz", params.rate_hz, Bound::kPositive, "Hz");
+  params.sigma_position_m =
+      reader.number_or("sigma_position_m", params.sigma_position_m, Bound::kPositive, "m");
+  params.sigma_velocity_mps =
+      reader.number_or("sigma_velocity_mps", params.sigma_velocity_mps, Bound::kPositive, "m/s");
+  params.latitude_rad = context.initial_state.latitude_rad;
+  params.longitude_rad = context.initial_state.longitude_rad;
+  params.height_m = context.initial_state.height_m;
+  if (reader.has("site")) {
+    stochnav::plugin::ParamReader site(reader.raw("site"), reader.pointer("site"));
+    params.latitude_rad = site.number("latitude_deg", Bound::kAny, "deg") * kRadPerDeg;
+    params.longitude_rad = site.number("longitude_deg", Bound::kAny, "deg") * kRadPerDeg;
+    params.height_m = site.number_or("height_m", 0.0, Bound::kAny, "m");
+    site.finish();
+  }
+  const auto gate = stochnav::plugin::read_nis_gate(reader, 6);
+  reader.finish();
+  return std::make_unique<StaticPositionAid>(params, gate, context.initial_state.t_s);
+}
+
+}  // namespace
+
+STOCHNAV_AID_PLUGIN("static_position",
+                    "Known fixed position and zero velocity (vibration-table experiments)",
+                    make_static_position)

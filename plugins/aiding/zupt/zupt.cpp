@@ -1,0 +1,117 @@
+// Aid plugin "zupt": zero-velocity updates while the tool is stationary (pipe connections).
+//   z = v_n (m/s, estimate - 0),  H = [0 I 0 0 0],  R = sigma_velocity^2 I.
+//
+// params:
+//   "source"              "flags" (default): at every row of the aid data whose column
+//                         "zupt" is 1 (a scenario's aids.csv, or a rig's slips/pump signal);
+//                         "detector": at "rate_hz", when the compensated IMU sample of the
+//                         epoch is stationary: | |f_b| - g | < "accel_threshold_mps2" and
+//                         |omega_ib_b| < "gyro_threshold_radps" (|omega_ib_b| of a stationary
+//                         tool is the Earth rate, 7.3e-5 rad/s). A one-sample detector: under
+//                         vibration it stays silent, which is the safe failure.
+//   "rate_hz"             detector rate (Hz), > 0, default 1
+//   "accel_threshold_mps2"  default 0.05;  "gyro_threshold_radps"  default 1e-3
+//   "sigma_velocity_mps"  1-sigma of the zero velocity (m/s), > 0, default 0.001
+//   gate keys: see plugin/aid_plugin.hpp (read_nis_gate)
+
+#include <fmt/format.h>
+
+#include "stochnav/ins/earth.hpp"
+#include "stochnav/plugin/aid_plugin.hpp"
+#include "stochnav/plugin/aid_schedule.hpp"
+#include "stochnav/plugin/params.hpp"
+#include "stochnav/plugin/state_layout.hpp"
+
+namespace {
+
+namespace cs = stochnav::plugin::core_state;
+using stochnav::plugin::Bound;
+
+struct ZuptParams {
+  bool detector = false;
+  double rate_hz = 1.0;
+  double accel_threshold_mps2 = 0.05;
+  double gyro_threshold_radps = 1e-3;
+  double sigma_velocity_mps = 0.001;
+};
+
+class ZuptAid final : public stochnav::plugin::AidPlugin {
+ public:
+  ZuptAid(const ZuptParams& params, stochnav::plugin::NisGate gate,
+          stochnav::plugin::AidSchedule schedule, std::span<const double> flags)
+      : AidPlugin(gate), params_(params), schedule_(schedule), flags_(flags) {}
+
+  std::string_view type() const override { return "zupt"; }
+  int measurement_size() const override { return 3; }
+
+  bool has_measurement(double t_s) const override {
+    const auto row = schedule_.row_at(t_s);
+    if (!row) return false;
+    return params_.detector || flags_[*row] > 0.5;
+  }
+
+  bool measure(double, const stochnav::NavState& state, const stochnav::plugin::ImuSample& imu,
+               Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
+               Eigen::Ref<Eigen::MatrixXd> r) const override {
+    if (params_.detector) {
+      const double g = stochnav::normal_gravity(state.latitude_rad, state.height_m);
+      if (std::abs(imu.f_ib_b.norm() - g) >= params_.accel_threshold_mps2 ||
+          imu.omega_ib_b.norm() >= params_.gyro_threshold_radps) {
+        return false;
+      }
+    }
+    residual = state.v_n;
+    h.setZero();
+    h.block<3, 3>(0, cs::kVelocity).setIdentity();
+    r.setZero();
+    r.diagonal().setConstant(params_.sigma_velocity_mps * params_.sigma_velocity_mps);
+    return true;
+  }
+
+  std::string describe() const override {
+    return params_.detector
+               ? fmt::format("zupt: detector at {} Hz (|f|-g < {} m/s^2, |w| < {} rad/s); "
+                             "sigma {} m/s",
+                             params_.rate_hz, params_.accel_threshold_mps2,
+                             params_.gyro_threshold_radps, params_.sigma_velocity_mps)
+               : fmt::format("zupt: aid-data flags; sigma {} m/s", params_.sigma_velocity_mps);
+  }
+
+ private:
+  ZuptParams params_;
+  stochnav::plugin::AidSchedule schedule_;
+  std::span<const double> flags_;
+};
+
+std::unique_ptr<stochnav::plugin::AidPlugin> make_zupt(
+    const nlohmann::json& json, const stochnav::plugin::AidContext& context) {
+  stochnav::plugin::ParamReader reader(json, context.params_pointer);
+  ZuptParams params;
+  constexpr std::string_view kSources[] = {"flags", "detector"};
+  params.detector = reader.choice_or("source", "flags", kSources) == "detector";
+  params.rate_hz = reader.number_or("rate_hz", params.rate_hz, Bound::kPositive, "Hz");
+  params.accel_threshold_mps2 = reader.number_or("accel_threshold_mps2",
+                                                 params.accel_threshold_mps2, Bound::kPositive,
+                                                 "m/s^2");
+  params.gyro_threshold_radps = reader.number_or("gyro_threshold_radps",
+                                                 params.gyro_threshold_radps, Bound::kPositive,
+                                                 "rad/s");
+  params.sigma_velocity_mps =
+      reader.number_or("sigma_velocity_mps", params.sigma_velocity_mps, Bound::kPositive, "m/s");
+  const auto gate = stochnav::plugin::read_nis_gate(reader, 3);
+  reader.finish();
+  if (params.detector) {
+    return std::make_unique<ZuptAid>(
+        params, gate,
+        stochnav::plugin::AidSchedule::periodic(context.initial_state.t_s, params.rate_hz),
+        std::span<const double>());
+  }
+  const auto flags = context.data->column("zupt", context.params_pointer + "/source");
+  return std::make_unique<ZuptAid>(
+      params, gate, stochnav::plugin::AidSchedule::at_rows(context.data->time_s()), flags);
+}
+
+}  // namespace
+
+STOCHNAV_AID_PLUGIN("zupt", "Zero-velocity updates from aid flags or a stationarity detector",
+                    make_zupt)

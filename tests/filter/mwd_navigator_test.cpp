@@ -1,0 +1,138 @@
+// The MWD navigator on a stationary tool with known truth: it stays on the truth without noise,
+// its covariance is consistent with its errors (NEES over Monte-Carlo seeds), and propagating P
+// once per 0.1 s agrees with propagating it at every IMU epoch.
+
+#include "stochnav/filter/mwd_navigator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <boost/math/distributions/chi_squared.hpp>
+
+#include "static_truth.hpp"
+
+namespace stochnav {
+namespace {
+
+using testing::core_error;
+using testing::kDeg;
+using testing::NoisyStaticAid;
+using testing::StaticImu;
+using testing::StaticImuErrors;
+using testing::TestWhiteNoise;
+
+constexpr double kRateHz = 100.0;
+
+NavState perturbed(const NavState& truth, const Eigen::Matrix<double, 15, 1>& dx) {
+  NavState estimate = truth;
+  const EarthRadii radii = earth_radii(truth.latitude_rad);
+  estimate.longitude_rad +=
+      dx(0) / ((radii.transverse_m + truth.height_m) * std::cos(truth.latitude_rad));
+  estimate.latitude_rad += dx(1) / (radii.meridian_m + truth.height_m);
+  estimate.height_m += dx(2);
+  estimate.v_n += dx.segment<3>(3);
+  estimate.q_nb = quaternion_from_rotation_vector(-dx.segment<3>(6)) * truth.q_nb;
+  return estimate;
+}
+
+TEST(MwdNavigator, NoiseFreeStationaryToolStaysOnTruthForAnHour) {
+  const NavState truth = testing::static_truth_state();
+  StaticImu imu(truth, {}, kRateHz, 1);
+  TestWhiteNoise gyro(plugin::SensorGroup::kGyro, 1e-6);
+  TestWhiteNoise accel(plugin::SensorGroup::kAccel, 1e-5);
+  MwdNavigator navigator(truth, gyro, accel, {}, FilterOptions{});
+  for (int k = 0; k < 3600 * 100; ++k) navigator.step(imu.next());
+  const auto dx = core_error(navigator.state(), truth, navigator.accel_bias_b(),
+                             navigator.gyro_bias_b(), {});
+  EXPECT_LT(dx.head<3>().norm(), 1e-3) << "position error (m)";
+  EXPECT_LT(dx.segment<3>(3).norm(), 1e-6) << "velocity error (m/s)";
+  EXPECT_LT(dx.segment<3>(6).norm(), 1e-8) << "attitude error (rad)";
+  EXPECT_TRUE(navigator.health().ok());
+}
+
+struct NeesRun {
+  std::vector<double> nees;  // at each check time
+};
+
+NeesRun run_seed(std::uint64_t seed, const FilterOptions& options, int seconds) {
+  std::mt19937_64 engine(seed);
+  std::normal_distribution<double> normal;
+  Eigen::Matrix<double, 15, 1> sigma;
+  sigma << options.position_sigma_m, options.velocity_sigma_mps, options.attitude_sigma_rad,
+      options.accel_bias_sigma_mps2, options.gyro_bias_sigma_radps;
+  Eigen::Matrix<double, 15, 1> initial_error;
+  for (int i = 0; i < 15; ++i) initial_error(i) = sigma(i) * normal(engine);
+
+  const NavState truth = testing::static_truth_state();
+  StaticImuErrors errors{.gyro_arw = 0.2 * kDeg / 60.0, .accel_vrw = 0.05 / 60.0};
+  // The filter starts from zero bias estimates: the true biases are minus the initial errors.
+  errors.accel_bias = -initial_error.segment<3>(9);
+  errors.gyro_bias = -initial_error.segment<3>(12);
+  StaticImu imu(truth, errors, kRateHz, seed + 1000);
+  TestWhiteNoise gyro(plugin::SensorGroup::kGyro, errors.gyro_arw);
+  TestWhiteNoise accel(plugin::SensorGroup::kAccel, errors.accel_vrw);
+  NoisyStaticAid aid(truth, 0.05, 0.002, seed + 2000);
+  MwdNavigator navigator(perturbed(truth, initial_error), gyro, accel, {&aid}, options);
+
+  NeesRun run;
+  const int steps_per_check = static_cast<int>(60 * kRateHz);
+  for (int k = 1; k <= seconds * static_cast<int>(kRateHz); ++k) {
+    navigator.step(imu.next());
+    if (k % steps_per_check == 0) {
+      const auto dx = core_error(navigator.state(), truth, navigator.accel_bias_b(),
+                                 navigator.gyro_bias_b(), errors);
+      const Eigen::MatrixXd p = navigator.covariance().topLeftCorner(15, 15);
+      run.nees.push_back(dx.dot(p.ldlt().solve(dx)));
+    }
+  }
+  EXPECT_TRUE(navigator.health().ok());
+  return run;
+}
+
+TEST(MwdNavigator, AverageNeesIsInsideItsChiSquareBounds) {
+  constexpr int kSeeds = 24;
+  constexpr int kSeconds = 600;
+  std::vector<double> sum;
+  for (int seed = 0; seed < kSeeds; ++seed) {
+    const NeesRun run = run_seed(static_cast<std::uint64_t>(seed), FilterOptions{}, kSeconds);
+    sum.resize(run.nees.size(), 0.0);
+    for (std::size_t i = 0; i < run.nees.size(); ++i) sum[i] += run.nees[i];
+  }
+  // Average NEES over seeds at one time: chi2(15 kSeeds) / kSeeds; two-sided 99 % bounds each.
+  const boost::math::chi_squared chi2(15.0 * kSeeds);
+  const double lower = boost::math::quantile(chi2, 0.005) / kSeeds;
+  const double upper = boost::math::quantile(chi2, 0.995) / kSeeds;
+  int outside = 0;
+  std::string trace;
+  for (std::size_t i = 0; i < sum.size(); ++i) {
+    const double average = sum[i] / kSeeds;
+    if (average < lower || average > upper) ++outside;
+    trace += " t=" + std::to_string(60 * (i + 1)) + "s: " + std::to_string(average);
+  }
+  // Ten check times at 99 % each: at most one outside by chance.
+  EXPECT_LE(outside, 1) << "average NEES outside [" << lower << ", " << upper << "]:" << trace;
+}
+
+TEST(MwdNavigator, IntervalPropagationMatchesEveryEpochPropagation) {
+  FilterOptions every_epoch;
+  every_epoch.covariance_interval_s = 0.0;
+  const NavState truth = testing::static_truth_state();
+  StaticImuErrors errors{.gyro_arw = 0.2 * kDeg / 60.0, .accel_vrw = 0.05 / 60.0};
+  std::vector<Eigen::MatrixXd> covariances;
+  for (const FilterOptions& options : {FilterOptions{}, every_epoch}) {
+    StaticImu imu(truth, errors, kRateHz, 7);
+    TestWhiteNoise gyro(plugin::SensorGroup::kGyro, errors.gyro_arw);
+    TestWhiteNoise accel(plugin::SensorGroup::kAccel, errors.accel_vrw);
+    NoisyStaticAid aid(truth, 0.05, 0.002, 8);
+    MwdNavigator navigator(truth, gyro, accel, {&aid}, options);
+    for (int k = 0; k < 300 * 100; ++k) navigator.step(imu.next());
+    covariances.push_back(navigator.covariance());
+  }
+  const Eigen::VectorXd a = covariances[0].diagonal();
+  const Eigen::VectorXd b = covariances[1].diagonal();
+  for (Eigen::Index i = 0; i < a.size(); ++i) {
+    EXPECT_NEAR(std::sqrt(a(i)) / std::sqrt(b(i)), 1.0, 0.01) << "state " << i;
+  }
+}
+
+}  // namespace
+}  // namespace stochnav

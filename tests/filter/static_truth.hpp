@@ -1,0 +1,157 @@
+#pragma once
+// A stationary tool with known truth for the filter tests: exact IMU increments of the Earth
+// rate and gravity, plus sensor errors drawn per seed, and test doubles of a white-noise model
+// and a noisy position / zero-velocity aid (the real plugins are tested in tests/plugin).
+
+#include <Eigen/Geometry>
+#include <random>
+
+#include "stochnav/ins/earth.hpp"
+#include "stochnav/ins/mwd_attitude.hpp"
+#include "stochnav/ins/nav_state.hpp"
+#include "stochnav/ins/strapdown.hpp"
+#include "stochnav/plugin/aid_plugin.hpp"
+#include "stochnav/plugin/noise_model_plugin.hpp"
+#include "stochnav/plugin/state_layout.hpp"
+
+namespace stochnav::testing {
+
+inline constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+inline NavState static_truth_state() {
+  NavState truth;
+  truth.latitude_rad = 39.9778 * kDeg;
+  truth.longitude_rad = 116.3448 * kDeg;
+  truth.height_m = 50.0;
+  truth.q_nb = quaternion_from_mwd({.inclination_rad = 60.0 * kDeg,
+                                    .toolface_rad = 30.0 * kDeg,
+                                    .azimuth_rad = 100.0 * kDeg});
+  return truth;
+}
+
+/// Sensor errors of one simulated IMU (SI units, body axes).
+struct StaticImuErrors {
+  double gyro_arw = 0.0;               ///< rad/sqrt(s)
+  double accel_vrw = 0.0;              ///< m/s/sqrt(s)
+  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();   ///< rad/s
+  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  ///< m/s^2
+};
+
+/// Exact increments of the stationary truth plus white noise and constant biases.
+class StaticImu {
+ public:
+  StaticImu(const NavState& truth, const StaticImuErrors& errors, double rate_hz,
+            std::uint64_t seed)
+      : errors_(errors), dt_(1.0 / rate_hz), engine_(seed) {
+    const Eigen::Matrix3d c_bn = truth.q_nb.toRotationMatrix().transpose();
+    omega_ib_b_ = c_bn * earth_rate_n(truth.latitude_rad);
+    f_ib_b_ = -(c_bn * gravity_n(truth.latitude_rad, truth.height_m));
+  }
+
+  ImuIncrement next() {
+    ++epoch_;
+    ImuIncrement increment;
+    increment.t_s = static_cast<double>(epoch_) * dt_;
+    increment.dt_s = dt_;
+    const double sd_theta = errors_.gyro_arw * std::sqrt(dt_);
+    const double sd_v = errors_.accel_vrw * std::sqrt(dt_);
+    for (int i = 0; i < 3; ++i) {
+      increment.delta_theta_b(i) =
+          (omega_ib_b_(i) + errors_.gyro_bias(i)) * dt_ + sd_theta * normal_(engine_);
+      increment.delta_v_b(i) = (f_ib_b_(i) + errors_.accel_bias(i)) * dt_ + sd_v * normal_(engine_);
+    }
+    return increment;
+  }
+
+ private:
+  StaticImuErrors errors_;
+  double dt_;
+  std::mt19937_64 engine_;
+  std::normal_distribution<double> normal_{0.0, 1.0};
+  Eigen::Vector3d omega_ib_b_, f_ib_b_;
+  std::uint64_t epoch_ = 0;
+};
+
+/// Constant white noise (angle / velocity random walk N per axis), no bias walk.
+class TestWhiteNoise final : public plugin::NoiseModelPlugin {
+ public:
+  TestWhiteNoise(plugin::SensorGroup group, double n) : NoiseModelPlugin(group), n_(n) {}
+  std::string_view type() const override { return "test_white"; }
+  void white_noise_covariance(double, double dt_s, Eigen::Ref<Eigen::MatrixXd> q) const override {
+    q.setZero();
+    q.diagonal().setConstant(n_ * n_ * dt_s);
+  }
+  nlohmann::json params() const override { return {{"N", n_}}; }
+  std::string describe() const override { return "test_white"; }
+  bool equals(const NoiseModelPlugin& other, double) const override { return &other == this; }
+
+ private:
+  double n_;
+};
+
+/// Position (ENU, against the site) and zero velocity at 1 Hz, with measurement noise drawn
+/// from exactly the R it reports, so that a consistent filter sees what it assumes.
+class NoisyStaticAid final : public plugin::AidPlugin {
+ public:
+  NoisyStaticAid(const NavState& site, double sigma_position_m, double sigma_velocity_mps,
+                 std::uint64_t seed)
+      : AidPlugin(plugin::NisGate{.enabled = false}),
+        site_(site),
+        sigma_position_m_(sigma_position_m),
+        sigma_velocity_mps_(sigma_velocity_mps),
+        engine_(seed) {}
+  std::string_view type() const override { return "noisy_static"; }
+  int measurement_size() const override { return 6; }
+  bool has_measurement(double t_s) const override {
+    return std::abs(t_s - std::round(t_s)) < 1e-6 && t_s > 0.5;
+  }
+  bool measure(double, const NavState& state, const plugin::ImuSample&,
+               Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::MatrixXd> h,
+               Eigen::Ref<Eigen::MatrixXd> r) const override {
+    const EarthRadii radii = earth_radii(site_.latitude_rad);
+    z(0) = (state.longitude_rad - site_.longitude_rad) * (radii.transverse_m + site_.height_m) *
+           std::cos(site_.latitude_rad);
+    z(1) = (state.latitude_rad - site_.latitude_rad) * (radii.meridian_m + site_.height_m);
+    z(2) = state.height_m - site_.height_m;
+    z.segment<3>(3) = state.v_n;
+    for (int i = 0; i < 6; ++i) {
+      z(i) -= (i < 3 ? sigma_position_m_ : sigma_velocity_mps_) * normal_(engine_);
+    }
+    h.setZero();
+    h.block<3, 3>(0, plugin::core_state::kPosition).setIdentity();
+    h.block<3, 3>(3, plugin::core_state::kVelocity).setIdentity();
+    r.setZero();
+    r.diagonal().head<3>().setConstant(sigma_position_m_ * sigma_position_m_);
+    r.diagonal().tail<3>().setConstant(sigma_velocity_mps_ * sigma_velocity_mps_);
+    return true;
+  }
+  std::string describe() const override { return "noisy_static"; }
+
+ private:
+  NavState site_;
+  double sigma_position_m_, sigma_velocity_mps_;
+  mutable std::mt19937_64 engine_;
+  mutable std::normal_distribution<double> normal_{0.0, 1.0};
+};
+
+/// Estimate - truth as the filter's 15 core error states (see filter/error_dynamics.hpp).
+inline Eigen::Matrix<double, 15, 1> core_error(const NavState& estimate, const NavState& truth,
+                                               const Eigen::Vector3d& accel_bias_estimate,
+                                               const Eigen::Vector3d& gyro_bias_estimate,
+                                               const StaticImuErrors& errors) {
+  Eigen::Matrix<double, 15, 1> dx;
+  const EarthRadii radii = earth_radii(truth.latitude_rad);
+  dx(0) = (estimate.longitude_rad - truth.longitude_rad) * (radii.transverse_m + truth.height_m) *
+          std::cos(truth.latitude_rad);
+  dx(1) = (estimate.latitude_rad - truth.latitude_rad) * (radii.meridian_m + truth.height_m);
+  dx(2) = estimate.height_m - truth.height_m;
+  dx.segment<3>(3) = estimate.v_n - truth.v_n;
+  // C_est = (I - [phi x]) C_true: C_true C_est^T = Rot(phi).
+  const Eigen::AngleAxisd rotation(truth.q_nb * estimate.q_nb.conjugate());
+  dx.segment<3>(6) = rotation.angle() * rotation.axis();
+  dx.segment<3>(9) = accel_bias_estimate - errors.accel_bias;
+  dx.segment<3>(12) = gyro_bias_estimate - errors.gyro_bias;
+  return dx;
+}
+
+}  // namespace stochnav::testing
