@@ -41,6 +41,43 @@ std::array<double, kErrorMetricCount> navigation_errors(const NavState& estimate
       dv.z()};
 }
 
+std::array<double, kErrorMetricCount> navigation_error_sigmas(
+    const NavState& estimate, const Eigen::Matrix<double, 9, 9>& covariance,
+    double vertical_inclination_deg) {
+  const Eigen::Matrix<double, 9, 1> variance = covariance.diagonal();
+  std::array<double, kErrorMetricCount> sigma{};
+  // lat, lon, height errors are the north, east and up position errors.
+  sigma[0] = std::sqrt(variance(1));
+  sigma[1] = std::sqrt(variance(0));
+  sigma[2] = std::sqrt(variance(2));
+  // d(angles)/d(phi) by central differences: C_est = (I - [phi x]) C_true.
+  constexpr double kStep = 1e-6;
+  Eigen::Matrix3d jacobian;
+  for (int k = 0; k < 3; ++k) {
+    const MwdAttitude plus = mwd_from_quaternion(
+        Eigen::Quaterniond(Eigen::AngleAxisd(-kStep, Eigen::Vector3d::Unit(k))) * estimate.q_nb);
+    const MwdAttitude minus = mwd_from_quaternion(
+        Eigen::Quaterniond(Eigen::AngleAxisd(kStep, Eigen::Vector3d::Unit(k))) * estimate.q_nb);
+    jacobian(0, k) = (plus.inclination_rad - minus.inclination_rad) / (2 * kStep);
+    jacobian(1, k) = std::remainder(plus.toolface_rad - minus.toolface_rad, 2 * std::numbers::pi) /
+                     (2 * kStep);
+    jacobian(2, k) = std::remainder(plus.azimuth_rad - minus.azimuth_rad, 2 * std::numbers::pi) /
+                     (2 * kStep);
+  }
+  const Eigen::Matrix3d angles =
+      jacobian * covariance.block<3, 3>(6, 6) * jacobian.transpose();
+  const bool vertical =
+      mwd_from_quaternion(estimate.q_nb).inclination_rad * kDegPerRad < vertical_inclination_deg;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  sigma[3] = std::sqrt(angles(0, 0)) * kDegPerRad;
+  sigma[4] = vertical ? nan : std::sqrt(angles(1, 1)) * kDegPerRad;
+  sigma[5] = vertical ? nan : std::sqrt(angles(2, 2)) * kDegPerRad;
+  sigma[6] = std::sqrt(variance(3));
+  sigma[7] = std::sqrt(variance(4));
+  sigma[8] = std::sqrt(variance(5));
+  return sigma;
+}
+
 void ErrorStatistics::add(const std::array<double, kErrorMetricCount>& errors) {
   for (std::size_t i = 0; i < kErrorMetricCount; ++i) {
     if (std::isnan(errors[i])) continue;

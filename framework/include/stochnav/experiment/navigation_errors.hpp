@@ -29,6 +29,14 @@ std::array<double, kErrorMetricCount> navigation_errors(const NavState& estimate
                                                        const NavState& truth,
                                                        double vertical_inclination_deg = 1.0);
 
+/// The filter's 1-sigma of each metric, from the covariance of the first nine core error
+/// states (dr ENU m, dv ENU m/s, phi rad; plugin/state_layout.hpp), in the metrics' units. The
+/// MWD angles' sigmas come from linearising the angles about `estimate` (numerically); NaN for
+/// toolface and azimuth near vertical, as in navigation_errors.
+std::array<double, kErrorMetricCount> navigation_error_sigmas(
+    const NavState& estimate, const Eigen::Matrix<double, 9, 9>& covariance,
+    double vertical_inclination_deg = 1.0);
+
 /// Running maximum absolute value and RMS of each metric, NaNs skipped.
 class ErrorStatistics final {
  public:

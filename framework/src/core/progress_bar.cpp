@@ -1,0 +1,48 @@
+#include "stochnav/core/progress_bar.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+
+namespace stochnav {
+
+ProgressBar::ProgressBar(std::string label, std::uint64_t total, bool enabled)
+    : label_(std::move(label)),
+      total_(total),
+      active_(enabled && ::isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()),
+      last_draw_(start_) {}
+
+ProgressBar::~ProgressBar() {
+  if (active_ && !finished_) std::fputc('\n', stderr);
+}
+
+void ProgressBar::finish(std::uint64_t done) {
+  if (!active_ || finished_) return;
+  draw(done, true);
+  finished_ = true;
+}
+
+void ProgressBar::draw(std::uint64_t done, bool last) {
+  const auto now = std::chrono::steady_clock::now();
+  if (!last && now - last_draw_ < std::chrono::milliseconds(100)) return;
+  last_draw_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  if (total_ > 0) {
+    const double fraction = std::min(1.0, static_cast<double>(done) / static_cast<double>(total_));
+    constexpr int kWidth = 30;
+    const int filled = static_cast<int>(fraction * kWidth);
+    std::string bar(static_cast<std::size_t>(filled), '#');
+    bar.resize(kWidth, '.');
+    std::fprintf(stderr, "\r%s [%s] %5.1f %%  %.0f s", label_.c_str(), bar.c_str(),
+                 100.0 * fraction, elapsed);
+  } else {
+    std::fprintf(stderr, "\r%s %llu  %.0f s", label_.c_str(),
+                 static_cast<unsigned long long>(done), elapsed);
+  }
+  if (last) std::fputc('\n', stderr);
+  std::fflush(stderr);
+}
+
+}  // namespace stochnav

@@ -1,0 +1,201 @@
+#include "run_files.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/ins/mwd_attitude.hpp"
+#include "stochnav/report/gnuplot.hpp"
+
+namespace stochnav {
+namespace {
+
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+constexpr double kDegPerHourPerRadPerSecond = kDegPerRad * 3600.0;
+
+std::string error_header() {
+  std::string header = "t";
+  for (auto name : kErrorMetricNames) header += fmt::format(",{}", name);
+  for (auto name : kErrorMetricNames) header += fmt::format(",{}_sigma", name);
+  return header + ",nees";
+}
+
+std::filesystem::path prepared(const std::filesystem::path& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) {
+    throw InputError(dir.string() + ": cannot create the output folder (" + error.message() +
+                     "); choose another --out");
+  }
+  return dir;
+}
+
+// Three panels (position, velocity, attitude) of errors with their 3-sigma bounds.
+void plot_errors(const std::vector<ErrorSample>& series, const std::filesystem::path& path) {
+  std::string script = "$errors << EOD\n";
+  for (const ErrorSample& s : series) {
+    script += fmt::format("{:.3f}", s.t_s);
+    for (double e : s.errors) script += fmt::format(" {:.6g}", e);
+    for (double e : s.sigma) script += fmt::format(" {:.6g}", 3.0 * e);
+    script += '\n';
+  }
+  script += "EOD\n";
+  script +=
+      "set multiplot layout 3,1 title 'navigation errors and 3-sigma bounds' noenhanced\n"
+      "set key outside right noenhanced\nset grid\n";
+  const char* panels[3][2] = {{"position error (m)", ""},
+                              {"velocity error (m/s)", ""},
+                              {"attitude error (deg)", "time (s)"}};
+  const char* colours[3] = {"#1f77b4", "#d62728", "#2ca02c"};
+  for (int panel = 0; panel < 3; ++panel) {
+    script += fmt::format("set ylabel '{}'\nset xlabel '{}'\nplot ", panels[panel][0],
+                          panels[panel][1]);
+    const int metric0 = panel == 0 ? 0 : panel == 1 ? 6 : 3;
+    for (int k = 0; k < 3; ++k) {
+      const int column = 2 + metric0 + k;
+      const int sigma_column = column + static_cast<int>(kErrorMetricCount);
+      script += fmt::format(
+          "$errors using 1:{} with lines lc rgb '{}' title '{}', "
+          "'' using 1:{} with lines dt 2 lc rgb '{}' notitle, "
+          "'' using 1:(-${}) with lines dt 2 lc rgb '{}' notitle{}",
+          column, colours[k], kErrorMetricNames[static_cast<std::size_t>(metric0 + k)],
+          sigma_column, colours[k], sigma_column, colours[k], k < 2 ? ", " : "\n");
+    }
+  }
+  script += "unset multiplot\n";
+  render_gnuplot(script, path);
+}
+
+}  // namespace
+
+CsvOutput::CsvOutput(const std::filesystem::path& path, const std::string& header)
+    : pending_(path), out_(pending_.temporary_path(), std::ios::binary) {
+  if (!out_) {
+    throw InputError(path.string() + ": cannot be written; check the --out folder");
+  }
+  buffer_ = header + '\n';
+}
+
+void CsvOutput::flush() {
+  out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+  buffer_.clear();
+}
+
+void CsvOutput::commit() {
+  flush();
+  out_.close();
+  if (!out_) throw InputError(pending_.temporary_path().string() + ": write failed (disk full?)");
+  pending_.commit();
+}
+
+RunFiles::RunFiles(const std::filesystem::path& out_dir, const plugin::OutputConfig& config,
+                   const std::vector<std::shared_ptr<plugin::AidPlugin>>& aids)
+    : out_dir_(prepared(out_dir)),
+      config_(config),
+      nav_(out_dir / "nav.csv", "t,lat,lon,h,ve,vn,vu,inclination,toolface,azimuth"),
+      biases_(out_dir / "biases.csv",
+              "t,accel_bias_x,accel_bias_y,accel_bias_z,gyro_bias_x_deg_h,gyro_bias_y_deg_h,"
+              "gyro_bias_z_deg_h"),
+      innovations_(out_dir / "innovations.csv",
+                   "t,aid,type,accepted,nis,z0,z1,z2,z3,z4,z5,sigma0,sigma1,sigma2,sigma3,"
+                   "sigma4,sigma5"),
+      errors_(out_dir / "errors.csv", error_header()) {
+  for (const auto& aid : aids) aid_types_.emplace_back(aid->type());
+  if (config.covariance) {
+    covariance_ = std::make_unique<CsvOutput>(
+        out_dir / "covariance.csv",
+        "t,pos_e_m,pos_n_m,pos_u_m,vel_e_mps,vel_n_mps,vel_u_mps,att_e_deg,att_n_deg,att_u_deg,"
+        "accel_bias_x,accel_bias_y,accel_bias_z,gyro_bias_x_deg_h,gyro_bias_y_deg_h,"
+        "gyro_bias_z_deg_h");
+  }
+}
+
+void RunFiles::write_state(const MwdNavigator& navigator) {
+  const NavState& s = navigator.state();
+  const MwdAttitude a = mwd_from_quaternion(s.q_nb);
+  fmt::format_to(std::back_inserter(nav_.buffer()),
+                 "{:.3f},{:.9f},{:.9f},{:.4f},{:.6g},{:.6g},{:.6g},{:.6f},{:.6f},{:.6f}\n", s.t_s,
+                 s.latitude_rad * kDegPerRad, s.longitude_rad * kDegPerRad, s.height_m, s.v_n.x(),
+                 s.v_n.y(), s.v_n.z(), a.inclination_rad * kDegPerRad, a.toolface_rad * kDegPerRad,
+                 a.azimuth_rad * kDegPerRad);
+  nav_.flush_if_full();
+  const Eigen::Vector3d& ba = navigator.accel_bias_b();
+  const Eigen::Vector3d bg = navigator.gyro_bias_b() * kDegPerHourPerRadPerSecond;
+  fmt::format_to(std::back_inserter(biases_.buffer()), "{:.3f},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
+                 s.t_s, ba.x(), ba.y(), ba.z(), bg.x(), bg.y(), bg.z());
+  biases_.flush_if_full();
+  if (covariance_) {
+    const Eigen::VectorXd sigma = navigator.covariance().diagonal().head<15>().cwiseSqrt();
+    auto out = std::back_inserter(covariance_->buffer());
+    fmt::format_to(out, "{:.3f}", s.t_s);
+    for (int i = 0; i < 15; ++i) {
+      const double scale = i >= 6 && i < 9    ? kDegPerRad
+                           : i >= 12 ? kDegPerHourPerRadPerSecond
+                                     : 1.0;
+      fmt::format_to(out, ",{:.6g}", sigma(i) * scale);
+    }
+    covariance_->buffer() += '\n';
+    covariance_->flush_if_full();
+  }
+}
+
+void RunFiles::write_innovations(std::span<const InnovationRecord> records) {
+  for (const InnovationRecord& r : records) {
+    auto out = std::back_inserter(innovations_.buffer());
+    fmt::format_to(out, "{:.3f},{},{},{},{:.6g}", r.t_s, r.aid_index,
+                   aid_types_[static_cast<std::size_t>(r.aid_index)], r.accepted ? 1 : 0, r.nis);
+    for (int i = 0; i < InnovationRecord::kMaxSize; ++i) {
+      if (i < r.size) {
+        fmt::format_to(out, ",{:.6g}", r.innovation[i]);
+      } else {
+        innovations_.buffer() += ',';
+      }
+    }
+    for (int i = 0; i < InnovationRecord::kMaxSize; ++i) {
+      if (i < r.size) {
+        fmt::format_to(out, ",{:.6g}", r.innovation_sigma[i]);
+      } else {
+        innovations_.buffer() += ',';
+      }
+    }
+    innovations_.buffer() += '\n';
+  }
+  innovations_.flush_if_full();
+}
+
+void RunFiles::write_errors(const ErrorSample& sample, double nees) {
+  auto out = std::back_inserter(errors_.buffer());
+  fmt::format_to(out, "{:.3f}", sample.t_s);
+  for (double e : sample.errors) fmt::format_to(out, ",{:.6g}", e);
+  for (double e : sample.sigma) fmt::format_to(out, ",{:.6g}", e);
+  if (config_.nees) {
+    fmt::format_to(out, ",{:.6g}\n", nees);
+  } else {
+    errors_.buffer() += ",\n";
+  }
+  errors_.flush_if_full();
+}
+
+void RunFiles::commit(const NavigationRunResult& result, bool plot) {
+  const std::filesystem::path plot_path = out_dir_ / "errors.png";
+  if (plot && result.has_truth && result.error_series.size() > 1) {
+    try {
+      check_plot_request(plot_path);
+      plot_errors(result.error_series, plot_path);
+    } catch (const ConfigError&) {
+      // gnuplot missing: the run's numbers are still complete; the plot is optional.
+    }
+  }
+  nlohmann::json metrics = result.metrics_json();
+  metrics["aids"] = aid_types_;
+  write_file_atomically(out_dir_ / "metrics.json", metrics.dump(2) + "\n");
+  nav_.commit();
+  biases_.commit();
+  innovations_.commit();
+  errors_.commit();
+  if (covariance_) covariance_->commit();
+}
+
+}  // namespace stochnav

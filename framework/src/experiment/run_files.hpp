@@ -1,0 +1,57 @@
+#pragma once
+// The files of one navigation run (experiment/navigation_run.hpp lists them), streamed into
+// temporary files and renamed into place together by commit().
+
+#include <array>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "stochnav/experiment/navigation_run.hpp"
+#include "stochnav/filter/mwd_navigator.hpp"
+#include "stochnav/io/atomic_file.hpp"
+
+namespace stochnav {
+
+/// A CSV file written through a large buffer into a PendingFile.
+class CsvOutput final {
+ public:
+  CsvOutput(const std::filesystem::path& path, const std::string& header);
+  std::string& buffer() { return buffer_; }
+  void flush_if_full() {
+    if (buffer_.size() > (1u << 20)) flush();
+  }
+  void flush();
+  void commit();
+
+ private:
+  PendingFile pending_;
+  std::ofstream out_;
+  std::string buffer_;
+};
+
+class RunFiles final {
+ public:
+  RunFiles(const std::filesystem::path& out_dir, const plugin::OutputConfig& config,
+           const std::vector<std::shared_ptr<plugin::AidPlugin>>& aids);
+
+  void write_state(const MwdNavigator& navigator);
+  void write_innovations(std::span<const InnovationRecord> records);
+  void write_errors(const ErrorSample& sample, double nees);
+
+  /// metrics.json, errors.png (when `plot` and gnuplot is present), then every file renamed
+  /// into place.
+  void commit(const NavigationRunResult& result, bool plot);
+
+ private:
+  std::filesystem::path out_dir_;
+  plugin::OutputConfig config_;
+  std::vector<std::string> aid_types_;
+  CsvOutput nav_, biases_, innovations_, errors_;
+  std::unique_ptr<CsvOutput> covariance_;
+};
+
+}  // namespace stochnav
