@@ -129,7 +129,9 @@ fs::path bundled_plugin_dir() {
   std::error_code error;
   const fs::path library = boost::dll::symbol_location(bundled_plugin_dir, error);
   if (error) return {};
-  return library.parent_path() / "stochnav" / "plugins";
+  const fs::path folder = library.parent_path() / "stochnav" / "plugins";
+  const fs::path canonical = fs::weakly_canonical(folder, error);
+  return error ? folder : canonical;
 }
 
 std::vector<fs::path> default_search_path(const fs::path& config_dir) {
