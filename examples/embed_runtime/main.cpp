@@ -10,7 +10,8 @@
 //                                      covariance and P stays symmetric positive definite
 //
 // The error-state model is the static, stationary part of the 15-state ESKF (ENU, body = nav):
-//   dr' = dv,  dv' = f_n x phi + db_a + M_a x_a + w_a,  phi' = -w_ie_n x phi - (db_g + M_g x_g + w_g),
+//   dr' = dv,  dv' = f_n x phi + db_a + M_a x_a + w_a,  phi' = -w_ie_n x phi - (db_g + M_g x_g +
+//   w_g),
 // discretised as Phi = I + F dt with the plugins' exact augmented blocks. The lead's filter
 // (filter/) replaces this loop; the plugin calls are the ones it makes.
 
@@ -34,8 +35,8 @@ namespace sp = stochnav::plugin;
 namespace {
 
 constexpr double kDegPerHour = std::numbers::pi / 180.0 / 3600.0;  // rad/s
-constexpr double kGravity = 9.80665;                                // m/s^2
-constexpr double kEarthRate = 7.292115e-5;                          // rad/s
+constexpr double kGravity = 9.80665;                               // m/s^2
+constexpr double kEarthRate = 7.292115e-5;                         // rad/s
 
 Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d m;
@@ -46,7 +47,8 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
 /// The models of the default demo: a gyro Gauss-Markov model fitted from simulated data.
 sp::RunPlugins demo_plugins(const sp::PluginRegistry& registry) {
   const double deg_rt_h = std::numbers::pi / 180.0 / 60.0;
-  const stochnav::NoiseModel truth{stochnav::Unit::kRadPerSecond, 100.0,
+  const stochnav::NoiseModel truth{stochnav::Unit::kRadPerSecond,
+                                   100.0,
                                    {stochnav::AngleRandomWalkTerm{0.05 * deg_rt_h},
                                     stochnav::GaussMarkovTerm{5.0 * kDegPerHour, 20.0}}};
   sp::CalibrationRecord record;
@@ -61,7 +63,8 @@ sp::RunPlugins demo_plugins(const sp::PluginRegistry& registry) {
   sp::RunPlugins plugins;
   context.group = sp::SensorGroup::kGyro;
   context.params_pointer = "/noise/gyro/params";
-  plugins.gyro = registry.fit_noise_model("gauss_markov", record, {}, context, "/noise/gyro/plugin");
+  plugins.gyro =
+      registry.fit_noise_model("gauss_markov", record, {}, context, "/noise/gyro/plugin");
   context.group = sp::SensorGroup::kAccel;
   context.params_pointer = "/noise/accel/params";
   plugins.accel = registry.create_noise_model("white", {{"N", 0.02}, {"K", 0.001}}, context,
@@ -114,7 +117,8 @@ int run(int argc, char** argv) {
   const double dt = 0.1, duration_s = 3600.0, latitude = 30.0 * std::numbers::pi / 180.0;
   const int n = plugins.layout.size();
   const Eigen::Vector3d f_n(0.0, 0.0, kGravity);
-  const Eigen::Vector3d w_ie_n(0.0, kEarthRate * std::cos(latitude), kEarthRate * std::sin(latitude));
+  const Eigen::Vector3d w_ie_n(0.0, kEarthRate * std::cos(latitude),
+                               kEarthRate * std::sin(latitude));
   namespace cs = sp::core_state;
   const int ga = plugins.gyro->placement().augmented_offset;
   const int aa = plugins.accel->placement().augmented_offset;
@@ -127,7 +131,9 @@ int run(int argc, char** argv) {
   p.block<3, 3>(cs::kAttitude, cs::kAttitude).diagonal() << std::pow(0.05 * deg, 2),
       std::pow(0.05 * deg, 2), std::pow(0.5 * deg, 2);
   p.block<3, 3>(cs::kAccelBias, cs::kAccelBias).diagonal().setConstant(1e-6);
-  p.block<3, 3>(cs::kGyroBias, cs::kGyroBias).diagonal().setConstant(std::pow(0.05 * kDegPerHour, 2));
+  p.block<3, 3>(cs::kGyroBias, cs::kGyroBias)
+      .diagonal()
+      .setConstant(std::pow(0.05 * kDegPerHour, 2));
   Eigen::MatrixXd map_g(3, ng), map_a(3, na);
   plugins.gyro->augmented_sensor_map(map_g);
   plugins.accel->augmented_sensor_map(map_a);
@@ -161,7 +167,8 @@ int run(int argc, char** argv) {
       plugins.gyro->augmented_transition(t, dt, phi.block(ga, ga, ng, ng), q.block(ga, ga, ng, ng));
     }
     if (na > 0) {
-      plugins.accel->augmented_transition(t, dt, phi.block(aa, aa, na, na), q.block(aa, aa, na, na));
+      plugins.accel->augmented_transition(t, dt, phi.block(aa, aa, na, na),
+                                          q.block(aa, aa, na, na));
     }
     tmp.noalias() = phi * p;
     p.noalias() = tmp * phi.transpose();
@@ -178,7 +185,8 @@ int run(int argc, char** argv) {
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(0.5 * (p + p.transpose()));
   std::printf("augmented stationarity error: gyro %.2e, accel %.2e; min eigenvalue of P %.3e\n",
               gyro_drift, accel_drift, eigen.eigenvalues().minCoeff());
-  if (check && (gyro_drift > 1e-8 || accel_drift > 1e-8 || !(eigen.eigenvalues().minCoeff() > 0.0))) {
+  if (check &&
+      (gyro_drift > 1e-8 || accel_drift > 1e-8 || !(eigen.eigenvalues().minCoeff() > 0.0))) {
     std::fprintf(stderr, "embed_runtime: check failed\n");
     return 1;
   }

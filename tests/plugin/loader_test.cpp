@@ -110,7 +110,8 @@ TEST(PluginLoader, UnknownTypeListsKnownOnes) {
   } catch (const ConfigError& error) {
     const std::string message = error.what();
     EXPECT_NE(message.find("/noise/gyro/plugin: unknown noise plugin type 'whte'"),
-              std::string::npos) << message;
+              std::string::npos)
+        << message;
     EXPECT_NE(message.find("white"), std::string::npos);
   }
 }
@@ -145,12 +146,13 @@ TEST(PluginsCommand, CheckGivesExitCode2AndTheReason) {
   const Case cases[] = {
       {"/nonexistent/stochnav_x.so", "not found"},
       {fixture("wrong_api", "wrong_api"), "plugin API version 999"},
-      {fixture("unresolved", "unresolved"), "undefined symbol: stochnav_test_symbol_nobody_defines"},
+      {fixture("unresolved", "unresolved"),
+       "undefined symbol: stochnav_test_symbol_nobody_defines"},
       {fixture("not_a_plugin", "not_a_plugin"), "not a stochnav plugin"},
   };
   for (const auto& c : cases) {
-    const auto result = testing::run_cli("plugins check '" + c.file.string() + "'",
-                                         scratch.path().string());
+    const auto result =
+        testing::run_cli("plugins check '" + c.file.string() + "'", scratch.path().string());
     EXPECT_EQ(result.exit_code, 2) << c.file;
     EXPECT_NE(result.err.find(c.reason), std::string::npos) << result.err;
     EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;

@@ -18,17 +18,17 @@ namespace stochnav::cli {
 namespace {
 
 struct PluginsArguments {
-  std::string config;                 // a config file: its folder leads the search path
-  std::vector<std::string> folders;   // extra folders, searched first
-  std::string library;                // check: the library file
+  std::string config;                // a config file: its folder leads the search path
+  std::vector<std::string> folders;  // extra folders, searched first
+  std::string library;               // check: the library file
 };
 
 std::string row(const plugin::PluginDescriptor& plugin) {
-  return fmt::format("{:<6} {:<20} {:<4} {:<4} {}\n", plugin::plugin_kind_name(plugin.kind),
-                     plugin.type, plugin.api_version,
-                     plugin.kind == plugin::PluginKind::kNoiseModel ? (plugin.can_fit ? "yes" : "no")
-                                                                    : "-",
-                     plugin.file.string());
+  return fmt::format(
+      "{:<6} {:<20} {:<4} {:<4} {}\n", plugin::plugin_kind_name(plugin.kind), plugin.type,
+      plugin.api_version,
+      plugin.kind == plugin::PluginKind::kNoiseModel ? (plugin.can_fit ? "yes" : "no") : "-",
+      plugin.file.string());
 }
 
 constexpr const char* kHeader = "kind   type                 api  fit  file\n";
@@ -71,7 +71,8 @@ void run_show(const PluginsArguments& arguments) {
   const plugin::PluginRegistry registry(plugin::default_search_path(config.config_dir));
   const plugin::AidData aids =
       config.data.aids ? plugin::read_aid_data(*config.data.aids) : plugin::AidData();
-  const plugin::RunPlugins plugins = plugin::build_run_plugins(config, registry, aids, NavState(), 0.0);
+  const plugin::RunPlugins plugins =
+      plugin::build_run_plugins(config, registry, aids, NavState(), 0.0);
   std::string out;
   out += "noise gyro:  " + plugins.gyro->describe() + "\n";
   out += "noise accel: " + plugins.accel->describe() + "\n";
@@ -91,8 +92,7 @@ void add_plugins_command(CLI::App& app) {
   command->require_subcommand(1);
   CLI::App* list = command->add_subcommand(
       "list", "Every plugin on the search path: kind, type, API version, fit support, file");
-  list->add_option("--config", arguments->config,
-                   "Config file whose folder leads the search path");
+  list->add_option("--config", arguments->config, "Config file whose folder leads the search path");
   list->add_option("--path", arguments->folders, "Extra plugin folders, searched first");
   list->callback([arguments] { run_list(*arguments); });
   CLI::App* check = command->add_subcommand("check", "Load one plugin library and report it");

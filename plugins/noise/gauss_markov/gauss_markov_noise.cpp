@@ -79,9 +79,7 @@ class GaussMarkovNoise final : public stochnav::plugin::NoiseModelPlugin {
     for (int i = 0; i < 3; ++i) p0(i, i) = params_.sigma[i] * params_.sigma[i];
   }
 
-  void augmented_sensor_map(Eigen::Ref<Eigen::MatrixXd> map) const override {
-    map.setIdentity();
-  }
+  void augmented_sensor_map(Eigen::Ref<Eigen::MatrixXd> map) const override { map.setIdentity(); }
 
   nlohmann::json params() const override {
     nlohmann::json sigma = nlohmann::json::array(), tau = nlohmann::json::array(),
@@ -154,8 +152,8 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_gauss_markov(
   stochnav::plugin::ParamReader reader(json, context.params_pointer);
   const Axes zero{0.0, 0.0, 0.0};
   GaussMarkovParams params;
-  params.sigma =
-      read_natural(reader, context.group, "sigma", ParameterDimension::kRate, Bound::kPositive, nullptr);
+  params.sigma = read_natural(reader, context.group, "sigma", ParameterDimension::kRate,
+                              Bound::kPositive, nullptr);
   params.tau_c = reader.axes("tau_c", Bound::kPositive, "s");
   params.n = read_natural(reader, context.group, "N", ParameterDimension::kAnglePerRootTime,
                           Bound::kNonNegative, &zero);
