@@ -9,6 +9,7 @@
 #include "run_cli.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
+#include "stochnav/plugin/state_layout.hpp"
 #include "temp_dir.hpp"
 
 namespace stochnav::plugin {
@@ -171,6 +172,46 @@ TEST(PluginsCommand, ListWithADuplicateFails) {
       scratch.path().string());
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.err.find("duplicate noise plugin type"), std::string::npos) << result.err;
+}
+
+}  // namespace
+}  // namespace stochnav::plugin
+
+namespace stochnav::plugin {
+namespace {
+
+TEST(AidPlugins, AreBuiltWithTheRunsAidDataAndGate) {
+  const PluginRegistry registry({fs::path(STOCHNAV_TEST_FIXTURE_DIR) / "aid"});
+  ASSERT_TRUE(registry.problems().empty());
+  EXPECT_EQ(registry.find(PluginKind::kAid, "test_zupt", "/aids/0/plugin").kind, PluginKind::kAid);
+  const AidData data("aids.csv", {"t", "zupt"}, {{0.0, 1.0, 2.0}, {1.0, 0.0, 1.0}});
+  NavState initial;
+  const AidContext context{"/aids/0/params", &data, initial, {}};
+  const auto aid =
+      registry.create_aid("test_zupt", {{"sigma_m_s", 0.02}}, context, "/aids/0/plugin");
+  EXPECT_TRUE(aid->has_measurement(0.0));
+  EXPECT_FALSE(aid->has_measurement(1.0));
+  EXPECT_FALSE(aid->has_measurement(0.5));
+  NavState state;
+  state.v_n = Eigen::Vector3d(0.1, -0.2, 0.3);
+  Eigen::VectorXd z(3);
+  Eigen::MatrixXd h(3, core_state::kSize), r(3, 3);
+  ASSERT_TRUE(aid->measure(2.0, state, ImuSample{}, z, h, r));
+  EXPECT_EQ(z, state.v_n);
+  EXPECT_EQ(h(1, core_state::kVelocity + 1), 1.0);
+  EXPECT_NEAR(r(2, 2), 4e-4, 1e-15);
+  EXPECT_NEAR(aid->gate().threshold, 16.266, 1e-3);  // chi2(3) at 99.9 %
+  try {
+    registry.create_aid("test_zupt", {{"column", "stuck"}}, context, "/aids/0/plugin");
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what())
+                  .find("/aids/0/params/column: aid data aids.csv has no "
+                        "column 'stuck'"),
+              std::string::npos)
+        << error.what();
+  }
+  EXPECT_THROW(registry.create_noise_model("test_zupt", {}, {}, "/noise/gyro/plugin"), ConfigError);
 }
 
 }  // namespace

@@ -24,6 +24,9 @@
 //   Phi(t + dt1, dt2) Qd(t, dt1) Phi(t + dt1, dt2)^T + Qd(t + dt1, dt2) = Qd(t, dt1 + dt2),
 //   Qw(t, dt1) + Qw(t + dt1, dt2) = Qw(t, dt1 + dt2)   (same for Qb).
 //
+// Threads: an instance belongs to one filter and is called from one thread at a time; build one
+// instance per filter (compare builds one per variant and seed).
+//
 // Matrices cross the library boundary as dynamic-size Eigen types (Eigen::Ref<MatrixXd> binds
 // fixed-size caller matrices such as Matrix3d too, without copies).
 
