@@ -216,3 +216,41 @@ TEST(AidPlugins, AreBuiltWithTheRunsAidDataAndGate) {
 
 }  // namespace
 }  // namespace stochnav::plugin
+
+namespace stochnav::plugin {
+namespace {
+
+TEST(PluginsCommand, ShowFindsPluginsInTheConfigFolderAndReportsFactoryErrors) {
+  testing::TempDir scratch;
+  fs::copy_file(fixture("factory_throws", "factory_throws"),
+                scratch.path() / "stochnav_test_factory_throws.so");
+  scratch.write("imu.csv", "t,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_z\n0,0,0,0,0,0,0\n");
+  scratch.write("good.json", R"({"data": {"imu": "imu.csv"},
+    "noise": {"gyro": {"plugin": "gauss_markov", "params": {"sigma": 1, "tau_c": 10}},
+              "accel": {"plugin": "white", "params": {"N": 0.02}}}})");
+  scratch.write("throws.json", R"({"data": {"imu": "imu.csv"},
+    "noise": {"gyro": {"plugin": "factory_throws"},
+              "accel": {"plugin": "white", "params": {"N": 0.02}}}})");
+  scratch.write("bad_param.json", R"({"data": {"imu": "imu.csv"},
+    "noise": {"gyro": {"plugin": "white", "params": {"N": -1}},
+              "accel": {"plugin": "white", "params": {"N": 0.02}}}})");
+  const auto good =
+      testing::run_cli("plugins show '" + scratch.file("good.json") + "'", scratch.path().string());
+  EXPECT_EQ(good.exit_code, 0) << good.err;
+  EXPECT_NE(good.out.find("error state: 18 states"), std::string::npos) << good.out;
+  const auto throws = testing::run_cli("plugins show '" + scratch.file("throws.json") + "'",
+                                       scratch.path().string());
+  EXPECT_EQ(throws.exit_code, 2);
+  EXPECT_NE(throws.err.find("/noise/gyro/params: plugin 'factory_throws'"), std::string::npos)
+      << throws.err;
+  EXPECT_NE(throws.err.find("factory exploded on purpose"), std::string::npos) << throws.err;
+  const auto bad = testing::run_cli("plugins show '" + scratch.file("bad_param.json") + "'",
+                                    scratch.path().string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("/noise/gyro/params/N: found -1; expected a number >= 0 (deg/sqrt(h))"),
+            std::string::npos)
+      << bad.err;
+}
+
+}  // namespace
+}  // namespace stochnav::plugin
