@@ -9,6 +9,7 @@
 #include "run_cli.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
+#include "stochnav/plugin/state_layout.hpp"
 #include "temp_dir.hpp"
 
 namespace stochnav::plugin {
@@ -110,7 +111,8 @@ TEST(PluginLoader, UnknownTypeListsKnownOnes) {
   } catch (const ConfigError& error) {
     const std::string message = error.what();
     EXPECT_NE(message.find("/noise/gyro/plugin: unknown noise plugin type 'whte'"),
-              std::string::npos) << message;
+              std::string::npos)
+        << message;
     EXPECT_NE(message.find("white"), std::string::npos);
   }
 }
@@ -145,12 +147,13 @@ TEST(PluginsCommand, CheckGivesExitCode2AndTheReason) {
   const Case cases[] = {
       {"/nonexistent/stochnav_x.so", "not found"},
       {fixture("wrong_api", "wrong_api"), "plugin API version 999"},
-      {fixture("unresolved", "unresolved"), "undefined symbol: stochnav_test_symbol_nobody_defines"},
+      {fixture("unresolved", "unresolved"),
+       "undefined symbol: stochnav_test_symbol_nobody_defines"},
       {fixture("not_a_plugin", "not_a_plugin"), "not a stochnav plugin"},
   };
   for (const auto& c : cases) {
-    const auto result = testing::run_cli("plugins check '" + c.file.string() + "'",
-                                         scratch.path().string());
+    const auto result =
+        testing::run_cli("plugins check '" + c.file.string() + "'", scratch.path().string());
     EXPECT_EQ(result.exit_code, 2) << c.file;
     EXPECT_NE(result.err.find(c.reason), std::string::npos) << result.err;
     EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
@@ -169,6 +172,84 @@ TEST(PluginsCommand, ListWithADuplicateFails) {
       scratch.path().string());
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.err.find("duplicate noise plugin type"), std::string::npos) << result.err;
+}
+
+}  // namespace
+}  // namespace stochnav::plugin
+
+namespace stochnav::plugin {
+namespace {
+
+TEST(AidPlugins, AreBuiltWithTheRunsAidDataAndGate) {
+  const PluginRegistry registry({fs::path(STOCHNAV_TEST_FIXTURE_DIR) / "aid"});
+  ASSERT_TRUE(registry.problems().empty());
+  EXPECT_EQ(registry.find(PluginKind::kAid, "test_zupt", "/aids/0/plugin").kind, PluginKind::kAid);
+  const AidData data("aids.csv", {"t", "zupt"}, {{0.0, 1.0, 2.0}, {1.0, 0.0, 1.0}});
+  NavState initial;
+  const AidContext context{"/aids/0/params", &data, initial, {}};
+  const auto aid =
+      registry.create_aid("test_zupt", {{"sigma_m_s", 0.02}}, context, "/aids/0/plugin");
+  EXPECT_TRUE(aid->has_measurement(0.0));
+  EXPECT_FALSE(aid->has_measurement(1.0));
+  EXPECT_FALSE(aid->has_measurement(0.5));
+  NavState state;
+  state.v_n = Eigen::Vector3d(0.1, -0.2, 0.3);
+  Eigen::VectorXd z(3);
+  Eigen::MatrixXd h(3, core_state::kSize), r(3, 3);
+  ASSERT_TRUE(aid->measure(2.0, state, ImuSample{}, z, h, r));
+  EXPECT_EQ(z, state.v_n);
+  EXPECT_EQ(h(1, core_state::kVelocity + 1), 1.0);
+  EXPECT_NEAR(r(2, 2), 4e-4, 1e-15);
+  EXPECT_NEAR(aid->gate().threshold, 16.266, 1e-3);  // chi2(3) at 99.9 %
+  try {
+    registry.create_aid("test_zupt", {{"column", "stuck"}}, context, "/aids/0/plugin");
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what())
+                  .find("/aids/0/params/column: aid data aids.csv has no "
+                        "column 'stuck'"),
+              std::string::npos)
+        << error.what();
+  }
+  EXPECT_THROW(registry.create_noise_model("test_zupt", {}, {}, "/noise/gyro/plugin"), ConfigError);
+}
+
+}  // namespace
+}  // namespace stochnav::plugin
+
+namespace stochnav::plugin {
+namespace {
+
+TEST(PluginsCommand, ShowFindsPluginsInTheConfigFolderAndReportsFactoryErrors) {
+  testing::TempDir scratch;
+  fs::copy_file(fixture("factory_throws", "factory_throws"),
+                scratch.path() / "stochnav_test_factory_throws.so");
+  scratch.write("imu.csv", "t,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_z\n0,0,0,0,0,0,0\n");
+  scratch.write("good.json", R"({"data": {"imu": "imu.csv"},
+    "noise": {"gyro": {"plugin": "gauss_markov", "params": {"sigma": 1, "tau_c": 10}},
+              "accel": {"plugin": "white", "params": {"N": 0.02}}}})");
+  scratch.write("throws.json", R"({"data": {"imu": "imu.csv"},
+    "noise": {"gyro": {"plugin": "factory_throws"},
+              "accel": {"plugin": "white", "params": {"N": 0.02}}}})");
+  scratch.write("bad_param.json", R"({"data": {"imu": "imu.csv"},
+    "noise": {"gyro": {"plugin": "white", "params": {"N": -1}},
+              "accel": {"plugin": "white", "params": {"N": 0.02}}}})");
+  const auto good =
+      testing::run_cli("plugins show '" + scratch.file("good.json") + "'", scratch.path().string());
+  EXPECT_EQ(good.exit_code, 0) << good.err;
+  EXPECT_NE(good.out.find("error state: 18 states"), std::string::npos) << good.out;
+  const auto throws = testing::run_cli("plugins show '" + scratch.file("throws.json") + "'",
+                                       scratch.path().string());
+  EXPECT_EQ(throws.exit_code, 2);
+  EXPECT_NE(throws.err.find("/noise/gyro/params: plugin 'factory_throws'"), std::string::npos)
+      << throws.err;
+  EXPECT_NE(throws.err.find("factory exploded on purpose"), std::string::npos) << throws.err;
+  const auto bad = testing::run_cli("plugins show '" + scratch.file("bad_param.json") + "'",
+                                    scratch.path().string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("/noise/gyro/params/N: found -1; expected a number >= 0 (deg/sqrt(h))"),
+            std::string::npos)
+      << bad.err;
 }
 
 }  // namespace

@@ -40,6 +40,14 @@ struct Case {
   SensorGroup group;
 };
 
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.type << " " << sensor_group_name(c.group) << " " << c.params.dump();
+}
+
+std::string case_name(const ::testing::TestParamInfo<Case>& info) {
+  return info.param.type + "_" + std::string(sensor_group_name(info.param.group));
+}
+
 class NoiseModelProperties : public ::testing::TestWithParam<Case> {
  protected:
   void SetUp() override {
@@ -75,7 +83,8 @@ void expect_symmetric_psd(const Eigen::MatrixXd& q, const char* what) {
   EXPECT_GE(solver.eigenvalues().minCoeff(), -1e-14 * scale) << what;
 }
 
-void expect_close(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double rel, const char* what) {
+void expect_close(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double rel,
+                  const char* what) {
   const double scale = std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), 1e-300});
   EXPECT_LE((a - b).cwiseAbs().maxCoeff(), rel * scale) << what << "\n" << a << "\n" << b;
 }
@@ -129,8 +138,7 @@ TEST_P(NoiseModelProperties, StationaryCovarianceIsPreservedOverManySteps) {
 
 TEST_P(NoiseModelProperties, ParamsRebuildAnEqualModel) {
   const auto rebuilt = make(GetParam().type, model_->params(), GetParam().group);
-  EXPECT_TRUE(model_->equals(*rebuilt, 1e-12)) << model_->describe() << "\n"
-                                               << rebuilt->describe();
+  EXPECT_TRUE(model_->equals(*rebuilt, 1e-12)) << model_->describe() << "\n" << rebuilt->describe();
   EXPECT_TRUE(rebuilt->equals(*model_, 1e-12));
   EXPECT_NE(model_->describe().find(GetParam().type), std::string::npos);
   Eigen::MatrixXd map(3, n_);
@@ -142,13 +150,14 @@ TEST_P(NoiseModelProperties, ParamsRebuildAnEqualModel) {
 
 INSTANTIATE_TEST_SUITE_P(
     InTree, NoiseModelProperties,
-    ::testing::Values(Case{"white", {{"N", 0.05}}, SensorGroup::kGyro},
-                      Case{"white", {{"N", {0.02, 0.03, 0.04}}, {"K", 0.01}}, SensorGroup::kAccel},
-                      Case{"gauss_markov", {{"sigma", 0.5}, {"tau_c", 30}}, SensorGroup::kGyro},
-                      Case{"gauss_markov",
-                           {{"sigma", {1, 2, 3}}, {"tau_c", {10, 100, 1000}}, {"N", 0.02},
-                            {"K", 0.1}},
-                           SensorGroup::kAccel}));
+    ::testing::Values(
+        Case{"white", {{"N", 0.05}}, SensorGroup::kGyro},
+        Case{"white", {{"N", {0.02, 0.03, 0.04}}, {"K", 0.01}}, SensorGroup::kAccel},
+        Case{"gauss_markov", {{"sigma", 0.5}, {"tau_c", 30}}, SensorGroup::kGyro},
+        Case{"gauss_markov",
+             {{"sigma", {1, 2, 3}}, {"tau_c", {10, 100, 1000}}, {"N", 0.02}, {"K", 0.1}},
+             SensorGroup::kAccel}),
+    case_name);
 
 TEST(WhiteNoise, DatasheetValuesBecomeSiCovariances) {
   const auto gyro = make("white", {{"N", 0.05}, {"K", 0.3}});
@@ -216,13 +225,14 @@ CalibrationRecord simulated_record(const NoiseModel& model, double duration_s) {
 }
 
 TEST(GaussMarkovFit, RecoversSigmaAndCorrelationTimeThroughTheAllanEngine) {
-  const double deg_h = std::numbers::pi / 180.0 / 3600.0;           // rad/s per deg/h
-  const double deg_rt_h = std::numbers::pi / 180.0 / 60.0;          // rad/sqrt(s) per deg/sqrt(h)
-  NoiseModel truth{Unit::kRadPerSecond, 100.0,
+  const double deg_h = std::numbers::pi / 180.0 / 3600.0;   // rad/s per deg/h
+  const double deg_rt_h = std::numbers::pi / 180.0 / 60.0;  // rad/sqrt(s) per deg/sqrt(h)
+  NoiseModel truth{Unit::kRadPerSecond,
+                   100.0,
                    {AngleRandomWalkTerm{0.05 * deg_rt_h}, GaussMarkovTerm{10.0 * deg_h, 5.0}}};
   const auto record = simulated_record(truth, 2000.0);
-  const auto model = registry().fit_noise_model("gauss_markov", record, {}, context_for(SensorGroup::kGyro),
-                                                "/noise/gyro/plugin");
+  const auto model = registry().fit_noise_model(
+      "gauss_markov", record, {}, context_for(SensorGroup::kGyro), "/noise/gyro/plugin");
   const auto params = model->params();
   for (int axis = 0; axis < 3; ++axis) {
     EXPECT_NEAR(params["sigma"][axis].get<double>(), 10.0, 2.5) << model->describe();

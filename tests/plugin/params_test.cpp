@@ -1,10 +1,11 @@
 // ParamReader: strict reading of params objects, and the NIS gate keys shared by every aid.
 
+#include "stochnav/plugin/params.hpp"
+
 #include <gtest/gtest.h>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/plugin/aid_plugin.hpp"
-#include "stochnav/plugin/params.hpp"
 
 namespace stochnav::plugin {
 namespace {

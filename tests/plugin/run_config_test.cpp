@@ -89,19 +89,22 @@ TEST_F(RunConfigTest, EveryErrorNamesItsPointer) {
     document[nlohmann::json::json_pointer(pointer)] = value;
     return error_of(document);
   };
-  EXPECT_EQ(with("/extra", 1), "/extra: unknown key; expected only aids, data, filter, noise, output");
+  EXPECT_EQ(with("/extra", 1),
+            "/extra: unknown key; expected only aids, data, filter, noise, output");
   EXPECT_EQ(with("/noise/gyro/plugn", "x").substr(0, 30), "/noise/gyro/plugn: unknown key");
   EXPECT_EQ(with("/noise/gyro/params", 3),
             "/noise/gyro/params: not an object; expected the plugin's parameters as an object");
-  EXPECT_EQ(with("/data/imu", "nope.csv").substr(0, 31), "/data/imu: file not found: " +
-                                                             dir_.path().string().substr(0, 4));
-  EXPECT_NE(with("/filter/feedback", "loop").find("/filter/feedback: found \"loop\"; expected one of"),
-            std::string::npos);
-  EXPECT_EQ(with("/output/decimation", 0),
-            "/output/decimation: found 0; expected an integer >= 1");
-  EXPECT_NE(with("/filter/initial_sigma/attitude_deg", -1).find("/filter/initial_sigma/attitude_deg"),
-            std::string::npos);
-  EXPECT_EQ(with("/aids", {{{"params", {}}}}), "/aids/0/plugin: missing; expected a non-empty string");
+  EXPECT_EQ(with("/data/imu", "nope.csv").substr(0, 31),
+            "/data/imu: file not found: " + dir_.path().string().substr(0, 4));
+  EXPECT_NE(
+      with("/filter/feedback", "loop").find("/filter/feedback: found \"loop\"; expected one of"),
+      std::string::npos);
+  EXPECT_EQ(with("/output/decimation", 0), "/output/decimation: found 0; expected an integer >= 1");
+  EXPECT_NE(
+      with("/filter/initial_sigma/attitude_deg", -1).find("/filter/initial_sigma/attitude_deg"),
+      std::string::npos);
+  EXPECT_EQ(with("/aids", {{{"params", {}}}}),
+            "/aids/0/plugin: missing; expected a non-empty string");
   EXPECT_EQ(with("/noise/gyro/fit", {{"start_s", 5}, {"end_s", 1}}).substr(0, 24),
             "/noise/gyro/fit/end_s: 1");
   nlohmann::json no_accel = minimal();
@@ -133,7 +136,8 @@ TEST_F(RunConfigTest, BuildsThePluginsAndFitsFromTheCalibrationRecord) {
   document["noise"]["gyro"]["fit"]["start_s"] = 100;
   document["noise"]["gyro"]["fit"]["end_s"] = 200;
   try {
-    build_run_plugins(parse_run_config(document, dir_.path()), registry, AidData(), NavState(), 100.0);
+    build_run_plugins(parse_run_config(document, dir_.path()), registry, AidData(), NavState(),
+                      100.0);
     FAIL() << "expected ConfigError";
   } catch (const ConfigError& error) {
     EXPECT_NE(std::string(error.what()).find("/noise/gyro/fit: the window"), std::string::npos);

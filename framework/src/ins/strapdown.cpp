@@ -27,6 +27,7 @@ void StrapdownIntegrator::set_state(const NavState& state) {
   state_.q_nb.normalize();
   previous_state_ = state_;
   has_previous_ = false;
+  has_second_previous_ = false;
 }
 
 void StrapdownIntegrator::update(const ImuIncrement& increment) {
@@ -41,22 +42,39 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
   const Eigen::Vector3d& dv_prev = has_previous_ ? previous_delta_v_b_ : dv;
   const NavState old = state_;
 
-  // Mid-interval extrapolation from k-1 and k-2 for the Earth terms of the velocity update.
+  // Mid-interval latitude and height extrapolated from k-1 and k-2 (they change smoothly).
   const double lat_mid = 1.5 * old.latitude_rad - 0.5 * previous_state_.latitude_rad;
   const double h_mid = 1.5 * old.height_m - 0.5 * previous_state_.height_m;
-  const Eigen::Vector3d v_mid = 1.5 * old.v_n - 0.5 * previous_state_.v_n;
   const Eigen::Vector3d omega_ie_mid = earth_rate_n(lat_mid);
-  const Eigen::Vector3d omega_en_mid = transport_rate_n(lat_mid, h_mid, v_mid);
-  const Eigen::Vector3d zeta_mid = (omega_ie_mid + omega_en_mid) * dt;
+  const Eigen::Vector3d g_mid = gravity_n(lat_mid, h_mid);
 
-  // Velocity.
-  const Eigen::Vector3d dv_corrected = dv + 0.5 * dtheta.cross(dv) +
-                                       (dtheta_prev.cross(dv) + dv_prev.cross(dtheta)) / 12.0;
+  // Velocity: specific force with rotation and sculling corrections, carried to the mid-interval
+  // navigation frame.
+  // Rotation compensation to second order (Savage: (1 - cos a)/a^2 a x dv + (1 - sin a/a)/a^2
+  // a x (a x dv)); the second-order term removes a bias of (theta^2/6) |f_perp| that a
+  // spinning tool (drill-string rotation) would otherwise see from the first-order form.
+  const double angle_squared = dtheta.squaredNorm();
+  const double first = 0.5 - angle_squared / 24.0;
+  const double second = 1.0 / 6.0 - angle_squared / 120.0;
+  const Eigen::Vector3d dtheta_x_dv = dtheta.cross(dv);
+  // Two-sample sculling. (A three-sample form, exact for quadratic rate and force, is worse for
+  // a spinning tool: the two-sample form and the (1 - cos a)/a^2 coefficient cancel each
+  // other's third-order terms exactly for a constant spin, tests/ins/strapdown_test.cpp.)
+  const Eigen::Vector3d sculling = (dtheta_prev.cross(dv) + dv_prev.cross(dtheta)) / 12.0;
+  const Eigen::Vector3d dv_corrected =
+      dv + first * dtheta_x_dv + second * dtheta.cross(dtheta_x_dv) + sculling;
   const Eigen::Vector3d dv_body_n = old.q_nb * dv_corrected;
-  const Eigen::Vector3d dv_sf_n = dv_body_n - 0.5 * zeta_mid.cross(dv_body_n);
-  const Eigen::Vector3d dv_gravity_coriolis_n =
-      (gravity_n(lat_mid, h_mid) - (2.0 * omega_ie_mid + omega_en_mid).cross(v_mid)) * dt;
-  state_.v_n = old.v_n + dv_sf_n + dv_gravity_coriolis_n;
+  const Eigen::Vector3d omega_en_old = transport_rate_n(lat_mid, h_mid, old.v_n);
+  const Eigen::Vector3d dv_sf_n =
+      dv_body_n - 0.5 * ((omega_ie_mid + omega_en_old) * dt).cross(dv_body_n);
+  // Coriolis and gravity with the trapezoid velocity of a predictor step: exact for a velocity
+  // changing linearly, and never amplifying vibration aliased into the samples (an
+  // extrapolation from k-1 and k-2 would double it at the Nyquist frequency).
+  const Eigen::Vector3d v_predicted =
+      old.v_n + dv_sf_n + (g_mid - (2.0 * omega_ie_mid + omega_en_old).cross(old.v_n)) * dt;
+  const Eigen::Vector3d v_mid = 0.5 * (old.v_n + v_predicted);
+  const Eigen::Vector3d omega_en_mid = transport_rate_n(lat_mid, h_mid, v_mid);
+  state_.v_n = old.v_n + dv_sf_n + (g_mid - (2.0 * omega_ie_mid + omega_en_mid).cross(v_mid)) * dt;
 
   // Position: trapezoid of the velocity, radii at the mid-interval height and latitude.
   const Eigen::Vector3d v_average = 0.5 * (old.v_n + state_.v_n);
@@ -74,7 +92,17 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
                                                  dt;
 
   // Attitude with the Earth and transport rates at the (now known) mid-interval state.
-  const Eigen::Vector3d phi = dtheta + dtheta_prev.cross(dtheta) / 12.0;
+  Eigen::Vector3d phi;
+  if (has_second_previous_) {
+    // Coning term exact for an angular rate varying quadratically over the last three intervals
+    // (the integral of alpha x omega / 2 written with the three increments).
+    const Eigen::Vector3d& dtheta_prev2 = second_previous_delta_theta_b_;
+    phi = dtheta + (121.0 / 720.0) * dtheta_prev.cross(dtheta) -
+          (31.0 / 720.0) * dtheta_prev2.cross(dtheta) +
+          (1.0 / 720.0) * dtheta_prev2.cross(dtheta_prev);
+  } else {
+    phi = dtheta + dtheta_prev.cross(dtheta) / 12.0;  // two-sample form
+  }
   const double lat_new_mid = 0.5 * (old.latitude_rad + state_.latitude_rad);
   const Eigen::Vector3d zeta = (earth_rate_n(lat_new_mid) +
                                 transport_rate_n(lat_new_mid, h_average, v_average)) *
@@ -85,6 +113,8 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
   state_.t_s = increment.t_s;
 
   previous_state_ = old;
+  has_second_previous_ = has_previous_;
+  second_previous_delta_theta_b_ = previous_delta_theta_b_;
   previous_delta_theta_b_ = dtheta;
   previous_delta_v_b_ = dv;
   has_previous_ = true;

@@ -18,8 +18,8 @@ AidData::AidData(std::string source, std::vector<std::string> names,
   for (std::size_t i = 0; i < columns_.size(); ++i) {
     if (columns_[i].size() != columns_.front().size()) {
       throw InputError(source_ + ": column '" + names_[i] + "' has " +
-                       std::to_string(columns_[i].size()) + " rows, '" + names_.front() +
-                       "' has " + std::to_string(columns_.front().size()) +
+                       std::to_string(columns_[i].size()) + " rows, '" + names_.front() + "' has " +
+                       std::to_string(columns_.front().size()) +
                        "; give every column the same number of rows");
     }
   }
@@ -46,8 +46,8 @@ std::span<const double> AidData::column(std::string_view name, std::string_view 
     for (const auto& column_name : names_) known += (known.empty() ? "" : ", ") + column_name;
     throw ConfigError(std::string(pointer) + ": aid data " +
                       (source_.empty() ? std::string("(none given)") : source_) +
-                      " has no column '" + std::string(name) + "'; columns: " +
-                      (known.empty() ? std::string("(none)") : known) +
+                      " has no column '" + std::string(name) +
+                      "'; columns: " + (known.empty() ? std::string("(none)") : known) +
                       " (give the run an aids file with that column)");
   }
   return columns_[static_cast<std::size_t>(it - names_.begin())];

@@ -19,8 +19,9 @@ std::array<FitResult, 3> fit_calibration_axes(const CalibrationRecord& record,
   for (std::size_t axis = 0; axis < 3; ++axis) {
     const auto& values = record.axes[axis];
     if (values.size() != record.axes[0].size()) {
-      throw InputError(record.source + ": calibration axes differ in length; give three equal "
-                                       "columns");
+      throw InputError(record.source +
+                       ": calibration axes differ in length; give three equal "
+                       "columns");
     }
     const std::vector<double> phase = phase_from_rate(values, tau0);
     const auto m_values =

@@ -103,8 +103,7 @@ double ParamReader::number_or(std::string_view key, double fallback, Bound bound
   return has(key) ? number(key, bound, unit) : fallback;
 }
 
-std::array<double, 3> ParamReader::axes(std::string_view key, Bound bound,
-                                        std::string_view unit) {
+std::array<double, 3> ParamReader::axes(std::string_view key, Bound bound, std::string_view unit) {
   const nlohmann::json* value = find(key);
   const std::string expected =
       bound_text(bound, unit) + " for all axes, or an array of 3 such numbers [x, y, z]";

@@ -1,6 +1,8 @@
 // Out-of-line pieces of the plugin interfaces. The destructors live here so that one typeinfo
 // and one vtable anchor of each interface exist, in the core library, for every plugin.
 
+#include "stochnav/plugin/plugin_api.hpp"
+
 #include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
 
@@ -8,7 +10,6 @@
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
 #include "stochnav/plugin/params.hpp"
-#include "stochnav/plugin/plugin_api.hpp"
 
 namespace stochnav::plugin {
 
@@ -52,8 +53,7 @@ void NoiseModelPlugin::augmented_sensor_map(Eigen::Ref<Eigen::MatrixXd>) const {
 
 void NoiseModelPlugin::on_update(const UpdateFeedback&) {}
 
-std::unique_ptr<NoiseModelPlugin> fit_not_supported(const CalibrationRecord&,
-                                                    const nlohmann::json&,
+std::unique_ptr<NoiseModelPlugin> fit_not_supported(const CalibrationRecord&, const nlohmann::json&,
                                                     const NoiseModelContext& context) {
   throw ConfigError(context.params_pointer +
                     ": this noise-model plugin cannot fit its model from data; remove the "

@@ -41,8 +41,9 @@ LoadedPlugin load_plugin(const fs::path& file) {
   const std::string name = file.string();
   std::error_code status_error;
   if (!fs::exists(file, status_error)) {
-    throw ConfigError(name + ": plugin library not found; check the file name, or build and "
-                             "install the plugin");
+    throw ConfigError(name +
+                      ": plugin library not found; check the file name, or build and "
+                      "install the plugin");
   }
   if (!fs::is_regular_file(file, status_error)) {
     throw ConfigError(name + ": not a regular file; give the path of a plugin library (.so)");
@@ -64,7 +65,8 @@ LoadedPlugin load_plugin(const fs::path& file) {
                       " symbol); register it with STOCHNAV_NOISE_PLUGIN or STOCHNAV_AID_PLUGIN");
   }
   const PluginInfo* info = library->get_alias<const PluginInfo*()>(kInfoAlias)();
-  if (info == nullptr) throw ConfigError(name + ": " + kInfoAlias + " returned null; fix the plugin");
+  if (info == nullptr)
+    throw ConfigError(name + ": " + kInfoAlias + " returned null; fix the plugin");
   // The API version is read first and alone: nothing else of the struct is trusted before.
   const std::uint32_t api_version = info->api_version;
   if (api_version != kPluginApiVersion) {
@@ -77,8 +79,9 @@ LoadedPlugin load_plugin(const fs::path& file) {
   descriptor.api_version = api_version;
   descriptor.file = fs::absolute(file);
   if (!valid_type_name(info->type)) {
-    throw ConfigError(name + ": plugin type name must be non-empty, of a-z, 0-9 and _; fix the "
-                             "registration macro");
+    throw ConfigError(name +
+                      ": plugin type name must be non-empty, of a-z, 0-9 and _; fix the "
+                      "registration macro");
   }
   descriptor.type = info->type;
   descriptor.description = info->description != nullptr ? info->description : "";
@@ -129,7 +132,9 @@ fs::path bundled_plugin_dir() {
   std::error_code error;
   const fs::path library = boost::dll::symbol_location(bundled_plugin_dir, error);
   if (error) return {};
-  return library.parent_path() / "stochnav" / "plugins";
+  const fs::path folder = library.parent_path() / "stochnav" / "plugins";
+  const fs::path canonical = fs::weakly_canonical(folder, error);
+  return error ? folder : canonical;
 }
 
 std::vector<fs::path> default_search_path(const fs::path& config_dir) {
@@ -179,18 +184,18 @@ struct PluginRegistry::Impl {
       for (const auto& folder : search_path) {
         folders += (folders.empty() ? "" : ", ") + folder.string();
       }
-      throw ConfigError(std::string(type_pointer) + ": unknown " +
-                        std::string(plugin_kind_name(kind)) + " plugin type '" +
-                        std::string(type) + "'; expected one of: " +
-                        (known.empty() ? std::string("(none found)") : known) +
-                        " (searched " + folders + "; add folders with " +
-                        std::string(kPluginPathVariable) + ")");
+      throw ConfigError(
+          std::string(type_pointer) + ": unknown " + std::string(plugin_kind_name(kind)) +
+          " plugin type '" + std::string(type) +
+          "'; expected one of: " + (known.empty() ? std::string("(none found)") : known) +
+          " (searched " + folders + "; add folders with " + std::string(kPluginPathVariable) + ")");
     }
     return *found;
   }
 };
 
-PluginRegistry::PluginRegistry(std::vector<fs::path> search_path) : impl_(std::make_unique<Impl>()) {
+PluginRegistry::PluginRegistry(std::vector<fs::path> search_path)
+    : impl_(std::make_unique<Impl>()) {
   impl_->search_path = std::move(search_path);
   std::vector<fs::path> seen;
   for (const auto& folder : impl_->search_path) {
@@ -220,8 +225,8 @@ PluginRegistry::PluginRegistry(std::vector<fs::path> search_path) : impl_(std::m
       impl_->problems.push_back(
           {plugin.descriptor.file, plugin.descriptor.file.string() + ": duplicate " +
                                        std::string(plugin_kind_name(plugin.descriptor.kind)) +
-                                       " plugin type '" + plugin.descriptor.type +
-                                       "', also in " + it->second->descriptor.file.string() +
+                                       " plugin type '" + plugin.descriptor.type + "', also in " +
+                                       it->second->descriptor.file.string() +
                                        "; remove one of them"});
     }
   }
@@ -265,8 +270,7 @@ auto run_factory(const PluginDescriptor& plugin, std::string_view pointer, Call&
     throw;
   } catch (const std::exception& failure) {
     throw ConfigError(std::string(pointer) + ": plugin '" + plugin.type + "' (" +
-                      plugin.file.string() + ") failed: " + failure.what() +
-                      "; check its params");
+                      plugin.file.string() + ") failed: " + failure.what() + "; check its params");
   }
 }
 
@@ -277,8 +281,8 @@ std::shared_ptr<NoiseModelPlugin> PluginRegistry::create_noise_model(
     std::string_view type_pointer) const {
   const LoadedPlugin& plugin = impl_->find(PluginKind::kNoiseModel, type, type_pointer);
   auto& factory = plugin.library->get_alias<NoiseModelFactory>(kNoiseFactoryAlias);
-  auto object =
-      run_factory(plugin.descriptor, context.params_pointer, [&] { return factory(params, context); });
+  auto object = run_factory(plugin.descriptor, context.params_pointer,
+                            [&] { return factory(params, context); });
   return hold_library(std::move(object), plugin.library);
 }
 
@@ -298,8 +302,8 @@ std::shared_ptr<AidPlugin> PluginRegistry::create_aid(std::string_view type,
                                                       std::string_view type_pointer) const {
   const LoadedPlugin& plugin = impl_->find(PluginKind::kAid, type, type_pointer);
   auto& factory = plugin.library->get_alias<AidFactory>(kAidFactoryAlias);
-  auto object =
-      run_factory(plugin.descriptor, context.params_pointer, [&] { return factory(params, context); });
+  auto object = run_factory(plugin.descriptor, context.params_pointer,
+                            [&] { return factory(params, context); });
   return hold_library(std::move(object), plugin.library);
 }
 

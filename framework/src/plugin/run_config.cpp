@@ -42,18 +42,18 @@ DataConfig parse_data(const nlohmann::json& json, const std::string& pointer,
   const bool scenario = reader.has("scenario");
   const bool imu = reader.has("imu");
   if (scenario == imu) {
-    throw ConfigError(pointer + ": " +
-                      (scenario ? std::string("both \"scenario\" and \"imu\" given")
-                                : std::string("no data")) +
-                      "; expected {\"scenario\": FOLDER} or {\"imu\": FILE, \"truth\": FILE, "
-                      "\"aids\": FILE}");
+    throw ConfigError(
+        pointer + ": " +
+        (scenario ? std::string("both \"scenario\" and \"imu\" given") : std::string("no data")) +
+        "; expected {\"scenario\": FOLDER} or {\"imu\": FILE, \"truth\": FILE, "
+        "\"aids\": FILE}");
   }
   if (scenario) {
     data.scenario_dir = resolve(config_dir, reader.text("scenario"));
     std::error_code error;
     if (!fs::is_directory(data.scenario_dir, error)) {
-      throw ConfigError(reader.pointer("scenario") + ": folder not found: " +
-                        data.scenario_dir.string() +
+      throw ConfigError(reader.pointer("scenario") +
+                        ": folder not found: " + data.scenario_dir.string() +
                         "; give the folder written by `stochnav simulate scenario`");
     }
     data.imu = data.scenario_dir / kScenarioImuFile;
@@ -84,8 +84,9 @@ PluginConfig parse_plugin_entry(ParamReader& reader, const std::string& pointer)
   const nlohmann::json& params = reader.raw("params");
   if (!params.is_null()) {
     if (!params.is_object()) {
-      throw ConfigError(reader.pointer("params") + ": not an object; expected the plugin's "
-                                                   "parameters as an object");
+      throw ConfigError(reader.pointer("params") +
+                        ": not an object; expected the plugin's "
+                        "parameters as an object");
     }
     entry.params = params;
   }
@@ -151,7 +152,8 @@ NoiseSection parse_noise_section(const nlohmann::json& json, const std::string& 
   return noise;
 }
 
-std::vector<PluginConfig> parse_aids_section(const nlohmann::json& json, const std::string& pointer) {
+std::vector<PluginConfig> parse_aids_section(const nlohmann::json& json,
+                                             const std::string& pointer) {
   if (!json.is_array()) {
     throw ConfigError(pointer + ": found " + json.dump().substr(0, 40) +
                       "; expected an array of {\"plugin\": TYPE, \"params\": {...}}");
@@ -160,7 +162,8 @@ std::vector<PluginConfig> parse_aids_section(const nlohmann::json& json, const s
   for (std::size_t i = 0; i < json.size(); ++i) {
     const std::string item_pointer = pointer + "/" + std::to_string(i);
     if (!json[i].is_object()) {
-      throw ConfigError(item_pointer + ": not an object; expected {\"plugin\": TYPE, \"params\": {...}}");
+      throw ConfigError(item_pointer +
+                        ": not an object; expected {\"plugin\": TYPE, \"params\": {...}}");
     }
     ParamReader entry(json[i], item_pointer);
     aids.push_back(parse_plugin_entry(entry, item_pointer));
@@ -171,8 +174,9 @@ std::vector<PluginConfig> parse_aids_section(const nlohmann::json& json, const s
 
 RunConfig parse_run_config(const nlohmann::json& document, const fs::path& config_dir) {
   if (!document.is_object()) {
-    throw ConfigError("/: the run config is not a JSON object; expected {\"data\": ..., "
-                      "\"noise\": ..., ...}");
+    throw ConfigError(
+        "/: the run config is not a JSON object; expected {\"data\": ..., "
+        "\"noise\": ..., ...}");
   }
   ParamReader root(document, "");
   RunConfig config;

@@ -11,8 +11,8 @@ CalibrationRecord read_calibration_record(const FitConfig& fit, SensorGroup grou
                                           std::string_view pointer) {
   CalibrationRecord calibration;
   calibration.group = group;
-  calibration.source = fit.record.string() + " (" + fit.columns[0] + ", " + fit.columns[1] +
-                       ", " + fit.columns[2] + ")";
+  calibration.source = fit.record.string() + " (" + fit.columns[0] + ", " + fit.columns[1] + ", " +
+                       fit.columns[2] + ")";
   const Unit unit =
       group == SensorGroup::kGyro ? Unit::kRadPerSecond : Unit::kMeterPerSecondSquared;
   for (std::size_t axis = 0; axis < 3; ++axis) {
@@ -27,14 +27,16 @@ CalibrationRecord read_calibration_record(const FitConfig& fit, SensorGroup grou
       throw InputError(calibration.source + ": columns have different rates; use one file");
     }
     const double first = std::ceil((fit.start_s - record.start_time_s) * record.rate_hz - 1e-9);
-    const double last = fit.end_s ? std::ceil((*fit.end_s - record.start_time_s) * record.rate_hz - 1e-9)
-                                  : static_cast<double>(record.values.size());
+    const double last = fit.end_s
+                            ? std::ceil((*fit.end_s - record.start_time_s) * record.rate_hz - 1e-9)
+                            : static_cast<double>(record.values.size());
     const auto begin = static_cast<std::size_t>(std::max(0.0, first));
     const auto end = static_cast<std::size_t>(
         std::min(static_cast<double>(record.values.size()), std::max(0.0, last)));
     if (end <= begin + 1) {
-      throw ConfigError(std::string(pointer) + ": the window [start_s, end_s) holds no samples of " +
-                        fit.record.string() + "; choose times within the record");
+      throw ConfigError(std::string(pointer) +
+                        ": the window [start_s, end_s) holds no samples of " + fit.record.string() +
+                        "; choose times within the record");
     }
     calibration.start_time_s = record.start_time_s + static_cast<double>(begin) / record.rate_hz;
     calibration.axes[axis].assign(record.values.begin() + static_cast<std::ptrdiff_t>(begin),
@@ -51,7 +53,8 @@ std::shared_ptr<NoiseModelPlugin> build_noise_model(const NoiseConfig& config, S
   std::shared_ptr<NoiseModelPlugin> model;
   if (config.fit) {
     const std::string fit_pointer = config.pointer + "/fit";
-    const auto& descriptor = registry.find(PluginKind::kNoiseModel, config.type, config.type_pointer());
+    const auto& descriptor =
+        registry.find(PluginKind::kNoiseModel, config.type, config.type_pointer());
     if (!descriptor.can_fit) {
       throw ConfigError(fit_pointer + ": noise plugin '" + config.type +
                         "' cannot fit its model from data; remove \"fit\" and give \"params\"");
@@ -82,7 +85,8 @@ RunPlugins build_run_plugins(const RunConfig& config, const PluginRegistry& regi
   plugins.accel = build_noise_model(config.noise.accel, SensorGroup::kAccel, registry, context);
   for (const auto& aid : config.aids) {
     AidContext aid_context{aid.params_pointer(), &aid_data, initial_state, config.config_dir};
-    plugins.aids.push_back(registry.create_aid(aid.type, aid.params, aid_context, aid.type_pointer()));
+    plugins.aids.push_back(
+        registry.create_aid(aid.type, aid.params, aid_context, aid.type_pointer()));
   }
   plugins.layout = assign_state_layout(*plugins.gyro, *plugins.accel);
   return plugins;

@@ -39,10 +39,8 @@ StateLayout assign_state_layout(NoiseModelPlugin& gyro, NoiseModelPlugin& accel)
   StateLayout layout;
   const auto add = [&layout](NoiseModelPlugin& model) {
     const int n = model.augmented_size();
-    const int offset =
-        layout.add_block(std::string(sensor_group_name(model.group())) + "." +
-                             std::string(model.type()),
-                         n);
+    const int offset = layout.add_block(
+        std::string(sensor_group_name(model.group())) + "." + std::string(model.type()), n);
     return n > 0 ? offset : -1;
   };
   const int gyro_offset = add(gyro);

@@ -1,7 +1,10 @@
 #include "stochnav/scenario/scenario_simulator.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <future>
 #include <numbers>
+#include <thread>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/noise_model_json.hpp"
@@ -36,15 +39,6 @@ NoiseTerm scaled_term(const NoiseTerm& term, double scale) {
   return out;
 }
 
-double ScenarioSimulator::NoiseStream::next() {
-  if (!generator) return 0.0;
-  if (used == block.size()) {
-    generator->generate(block);
-    used = 0;
-  }
-  return block[used++];
-}
-
 ScenarioSimulator::ScenarioSimulator(const ScenarioConfig& config, std::uint64_t seed,
                                      bool sensor_errors)
     : config_(config),
@@ -77,25 +71,57 @@ ScenarioSimulator::ScenarioSimulator(const ScenarioConfig& config, std::uint64_t
     scheduled_[axis] = scheduled;
     if (!sensor_errors_) continue;
     if (has_signal_terms(sensor.noise[i])) {
-      noise_[axis].generator = std::make_unique<NoiseGenerator>(
+      noise_[axis] = std::make_unique<NoiseGenerator>(
           sensor.noise[i], rate_hz_, derive_stream_seed(seed, 100 + axis), duration);
-      noise_[axis].block.resize(kBlock);
-      noise_[axis].used = kBlock;
     }
     if (has_signal_terms(scheduled)) {
-      scheduled_noise_[axis].generator = std::make_unique<NoiseGenerator>(
+      scheduled_noise_[axis] = std::make_unique<NoiseGenerator>(
           scheduled, rate_hz_, derive_stream_seed(seed, 200 + axis), duration);
-      scheduled_noise_[axis].block.resize(kBlock);
-      scheduled_noise_[axis].used = kBlock;
     }
+    noise_block_[axis].assign(kBlock, 0.0);
     NormalGenerator turn_on(derive_stream_seed(seed, 2000 + axis));
     turn_on_bias_[gyro ? 0 : 1][i] = sensor.turn_on_bias_sigma * turn_on();
     bias_[axis] = sensor.constant_bias[i] + turn_on_bias_[gyro ? 0 : 1][i];
     scale_factor_[axis] = sensor.scale_factor[i];
   }
+  const auto generators = static_cast<unsigned>(
+      std::count_if(noise_.begin(), noise_.end(), [](const auto& g) { return g != nullptr; }) +
+      std::count_if(scheduled_noise_.begin(), scheduled_noise_.end(),
+                    [](const auto& g) { return g != nullptr; }));
+  noise_threads_ = generators >= 4 ? std::clamp(std::thread::hardware_concurrency(), 1u, 4u) : 1u;
+  block_used_ = kBlock;
 }
 
 ScenarioSimulator::~ScenarioSimulator() = default;
+
+void ScenarioSimulator::refill_noise() {
+  const auto fill_axes = [this](unsigned first, unsigned stride) {
+    std::vector<double> scratch(kBlock);
+    for (unsigned axis = first; axis < 6; axis += stride) {
+      std::vector<double>& block = noise_block_[axis];
+      if (noise_[axis]) {
+        noise_[axis]->generate(block);
+      } else {
+        std::fill(block.begin(), block.end(), 0.0);
+      }
+      if (scheduled_noise_[axis]) {
+        scheduled_noise_[axis]->generate(scratch);
+        for (std::size_t k = 0; k < kBlock; ++k) block[k] += scratch[k];
+      }
+    }
+  };
+  if (noise_threads_ <= 1) {
+    fill_axes(0, 1);
+  } else {
+    std::vector<std::future<void>> workers;
+    for (unsigned t = 1; t < noise_threads_; ++t) {
+      workers.push_back(std::async(std::launch::async, fill_axes, t, noise_threads_));
+    }
+    fill_axes(0, noise_threads_);
+    for (auto& worker : workers) worker.get();
+  }
+  block_used_ = 0;
+}
 
 TruthSample ScenarioSimulator::initial_truth() { return motion_->truth(0.0); }
 
@@ -110,10 +136,11 @@ void ScenarioSimulator::next(ScenarioEpoch& epoch) {
   epoch.measured.t_s = t1;
   epoch.measured.dt_s = dt;
   if (sensor_errors_) {
+    if (block_used_ == kBlock) refill_noise();
     for (std::size_t axis = 0; axis < 6; ++axis) {
       const double ideal = axis < 3 ? epoch.ideal.delta_theta_b[axis]
                                     : epoch.ideal.delta_v_b[axis - 3];
-      const double noise = noise_[axis].next() + scheduled_noise_[axis].next();
+      const double noise = noise_block_[axis][block_used_];
       const double measured = (1.0 + scale_factor_[axis]) * ideal + (bias_[axis] + noise) * dt;
       if (axis < 3) {
         epoch.measured.delta_theta_b[axis] = measured;
@@ -121,6 +148,7 @@ void ScenarioSimulator::next(ScenarioEpoch& epoch) {
         epoch.measured.delta_v_b[axis - 3] = measured;
       }
     }
+    ++block_used_;
   } else {
     epoch.measured.delta_theta_b = epoch.ideal.delta_theta_b;
     epoch.measured.delta_v_b = epoch.ideal.delta_v_b;

@@ -136,19 +136,23 @@ void VibrationTableMotion::integrate(double t0_s, double t1_s, Eigen::Vector3d& 
                                      Eigen::Vector3d& delta_v_b) {
   const double dt = t1_s - t0_s;
   if (step_s_ != dt) step_s_ = dt;
+  // The state at t0 is the end of the previous interval (the left limit), so a velocity step
+  // at a phase start t0 belongs to this interval.
   const std::size_t p0 = phase_at(t0_s, false);
-  const Displacement start = displacement_at(p0, t0_s);
+  const std::size_t left = t0_s > 0.0 ? phase_at(t0_s, true) : p0;
+  const Displacement start = displacement_at(left, t0_s);
+  // Integral of s from p0's start to t0: zero when t0 is p0's start.
+  const double integral_before = left == p0 ? start.integral_from_phase_start_ms : 0.0;
   const std::size_t p1 = phase_at(t1_s, true);
   double integral = 0.0;
   for (std::size_t p = p0; p < p1; ++p) {
     // The phase's own closed form up to its end, then the next phase from its start.
     const double integral_end =
         displacement_at(p, table_phases_[p].end_s).integral_from_phase_start_ms;
-    integral += integral_end - (p == p0 ? start.integral_from_phase_start_ms : 0.0);
+    integral += integral_end - (p == p0 ? integral_before : 0.0);
   }
   const Displacement end = displacement_at(p1, t1_s);
-  integral += end.integral_from_phase_start_ms -
-              (p1 == p0 ? start.integral_from_phase_start_ms : 0.0);
+  integral += end.integral_from_phase_start_ms - (p1 == p0 ? integral_before : 0.0);
   const double delta_displacement = end.displacement_m - start.displacement_m;
   const double delta_velocity = end.velocity_mps - start.velocity_mps;
   const double speed_squared_integral =

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "stochnav/core/errors.hpp"
@@ -64,13 +65,22 @@ class GaussMarkovNoise final : public stochnav::plugin::NoiseModelPlugin {
 
   void augmented_transition(double, double dt_s, Eigen::Ref<Eigen::MatrixXd> phi,
                             Eigen::Ref<Eigen::MatrixXd> q_d) const override {
+    // The filter steps with a constant dt: the exponentials are computed once per distinct dt
+    // (an instance is used from one thread at a time, noise_model_plugin.hpp).
+    if (dt_s != cached_dt_) {
+      for (int i = 0; i < 3; ++i) {
+        cached_decay_[i] = std::exp(-dt_s / params_.tau_c[i]);
+        // 1 - exp(-2 dt / tau) without cancellation for small steps.
+        cached_q_[i] =
+            params_.sigma[i] * params_.sigma[i] * -std::expm1(-2.0 * dt_s / params_.tau_c[i]);
+      }
+      cached_dt_ = dt_s;
+    }
     phi.setZero();
     q_d.setZero();
     for (int i = 0; i < 3; ++i) {
-      const double decay = std::exp(-dt_s / params_.tau_c[i]);
-      phi(i, i) = decay;
-      // 1 - exp(-2 dt / tau) without cancellation for small steps.
-      q_d(i, i) = params_.sigma[i] * params_.sigma[i] * -std::expm1(-2.0 * dt_s / params_.tau_c[i]);
+      phi(i, i) = cached_decay_[i];
+      q_d(i, i) = cached_q_[i];
     }
   }
 
@@ -79,9 +89,7 @@ class GaussMarkovNoise final : public stochnav::plugin::NoiseModelPlugin {
     for (int i = 0; i < 3; ++i) p0(i, i) = params_.sigma[i] * params_.sigma[i];
   }
 
-  void augmented_sensor_map(Eigen::Ref<Eigen::MatrixXd> map) const override {
-    map.setIdentity();
-  }
+  void augmented_sensor_map(Eigen::Ref<Eigen::MatrixXd> map) const override { map.setIdentity(); }
 
   nlohmann::json params() const override {
     nlohmann::json sigma = nlohmann::json::array(), tau = nlohmann::json::array(),
@@ -135,6 +143,9 @@ class GaussMarkovNoise final : public stochnav::plugin::NoiseModelPlugin {
   }
 
   GaussMarkovParams params_;
+  mutable double cached_dt_ = std::numeric_limits<double>::quiet_NaN();
+  mutable Axes cached_decay_{};  ///< exp(-dt / tau_c) per axis
+  mutable Axes cached_q_{};      ///< sigma^2 (1 - exp(-2 dt / tau_c)) per axis, natural units^2
 };
 
 Axes read_natural(stochnav::plugin::ParamReader& reader, SensorGroup group, std::string_view key,
@@ -154,8 +165,8 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_gauss_markov(
   stochnav::plugin::ParamReader reader(json, context.params_pointer);
   const Axes zero{0.0, 0.0, 0.0};
   GaussMarkovParams params;
-  params.sigma =
-      read_natural(reader, context.group, "sigma", ParameterDimension::kRate, Bound::kPositive, nullptr);
+  params.sigma = read_natural(reader, context.group, "sigma", ParameterDimension::kRate,
+                              Bound::kPositive, nullptr);
   params.tau_c = reader.axes("tau_c", Bound::kPositive, "s");
   params.n = read_natural(reader, context.group, "N", ParameterDimension::kAnglePerRootTime,
                           Bound::kNonNegative, &zero);

@@ -136,7 +136,8 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_white(
   WhiteParams params;
   for (std::size_t axis = 0; axis < 3; ++axis) {
     const auto& model = fits[axis].model;
-    if (const auto* arw = stochnav::plugin::find_term(model, stochnav::TermType::kAngleRandomWalk)) {
+    if (const auto* arw =
+            stochnav::plugin::find_term(model, stochnav::TermType::kAngleRandomWalk)) {
       params.n[axis] = std::get<stochnav::AngleRandomWalkTerm>(*arw).n;
     }
     if (const auto* rrw = stochnav::plugin::find_term(model, stochnav::TermType::kRateRandomWalk)) {
@@ -148,5 +149,6 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_white(
 
 }  // namespace
 
-STOCHNAV_NOISE_PLUGIN("white", "constant white sensor noise per axis (N), optional bias random walk (K)",
+STOCHNAV_NOISE_PLUGIN("white",
+                      "constant white sensor noise per axis (N), optional bias random walk (K)",
                       make_white, fit_white)

@@ -61,15 +61,15 @@ AidData read_aid_data(const std::filesystem::path& csv_path);
 
 /// What an aid factory gets besides its params.
 struct AidContext {
-  std::string params_pointer;  ///< JSON pointer of params, e.g. "/aids/0/params"
-  const AidData* data = nullptr;  ///< the run's aid data; never null (empty when there is none)
-  NavState initial_state;         ///< initial position, velocity and attitude of the run
+  std::string params_pointer;        ///< JSON pointer of params, e.g. "/aids/0/params"
+  const AidData* data = nullptr;     ///< the run's aid data; never null (empty when there is none)
+  NavState initial_state;            ///< initial position, velocity and attitude of the run
   std::filesystem::path config_dir;  ///< folder of the config file
 };
 
 /// The latest IMU sample at the time of a measurement.
 struct ImuSample {
-  double t_s = 0.0;                                    ///< time (s)
+  double t_s = 0.0;                                      ///< time (s)
   Eigen::Vector3d omega_ib_b = Eigen::Vector3d::Zero();  ///< angular rate, body (rad/s)
   Eigen::Vector3d f_ib_b = Eigen::Vector3d::Zero();      ///< specific force, body (m/s^2)
 };
@@ -134,8 +134,8 @@ using AidFactory = std::unique_ptr<AidPlugin>(const nlohmann::json& params,
 }  // namespace stochnav::plugin
 
 /// Registers an aiding plugin; use once, at global scope, in the plugin library.
-#define STOCHNAV_AID_PLUGIN(TYPE, DESCRIPTION, FACTORY)                                   \
-  static_assert(std::is_same_v<decltype(&FACTORY), ::stochnav::plugin::AidFactory*>,     \
-                "STOCHNAV_AID_PLUGIN: FACTORY must be an AidFactory");                   \
-  STOCHNAV_PLUGIN_INFO_(::stochnav::plugin::PluginKind::kAid, TYPE, DESCRIPTION)         \
+#define STOCHNAV_AID_PLUGIN(TYPE, DESCRIPTION, FACTORY)                              \
+  static_assert(std::is_same_v<decltype(&FACTORY), ::stochnav::plugin::AidFactory*>, \
+                "STOCHNAV_AID_PLUGIN: FACTORY must be an AidFactory");               \
+  STOCHNAV_PLUGIN_INFO_(::stochnav::plugin::PluginKind::kAid, TYPE, DESCRIPTION)     \
   BOOST_DLL_ALIAS(FACTORY, stochnav_aid_factory)

@@ -24,6 +24,9 @@
 //   Phi(t + dt1, dt2) Qd(t, dt1) Phi(t + dt1, dt2)^T + Qd(t + dt1, dt2) = Qd(t, dt1 + dt2),
 //   Qw(t, dt1) + Qw(t + dt1, dt2) = Qw(t, dt1 + dt2)   (same for Qb).
 //
+// Threads: an instance belongs to one filter and is called from one thread at a time; build one
+// instance per filter (compare builds one per variant and seed).
+//
 // Matrices cross the library boundary as dynamic-size Eigen types (Eigen::Ref<MatrixXd> binds
 // fixed-size caller matrices such as Matrix3d too, without copies).
 
@@ -88,11 +91,11 @@ struct StatePlacement {
 /// What the filter reports after each measurement update (for adaptive models, e.g. Sage-Husa).
 /// Views into filter storage, valid during the call only. n = StatePlacement::state_size.
 struct UpdateFeedback {
-  double t_s;                 ///< time of the update (s)
-  std::string_view aid_type;  ///< the aid plugin's type
-  bool accepted;              ///< passed the NIS gate and was applied
-  double nis;                 ///< normalised innovation squared z^T S^-1 z
-  Eigen::Ref<const Eigen::VectorXd> innovation;             ///< z, m (aid units)
+  double t_s;                                    ///< time of the update (s)
+  std::string_view aid_type;                     ///< the aid plugin's type
+  bool accepted;                                 ///< passed the NIS gate and was applied
+  double nis;                                    ///< normalised innovation squared z^T S^-1 z
+  Eigen::Ref<const Eigen::VectorXd> innovation;  ///< z, m (aid units)
   Eigen::Ref<const Eigen::MatrixXd> innovation_covariance;  ///< S = H P H^T + R, m x m
   Eigen::Ref<const Eigen::MatrixXd> gain;                   ///< K, n x m (zero if rejected)
   Eigen::Ref<const Eigen::MatrixXd> covariance_prior;       ///< P before the update, n x n
@@ -186,11 +189,11 @@ std::unique_ptr<NoiseModelPlugin> fit_not_supported(const CalibrationRecord& rec
 /// Registers a noise-model plugin; use once, at global scope, in the plugin library. TYPE and
 /// DESCRIPTION are string literals; FACTORY a NoiseModelFactory, FITTER a NoiseModelFitter or
 /// ::stochnav::plugin::fit_not_supported.
-#define STOCHNAV_NOISE_PLUGIN(TYPE, DESCRIPTION, FACTORY, FITTER)                                \
-  static_assert(std::is_same_v<decltype(&FACTORY), ::stochnav::plugin::NoiseModelFactory*>,      \
-                "STOCHNAV_NOISE_PLUGIN: FACTORY must be a NoiseModelFactory");                   \
-  static_assert(std::is_same_v<decltype(&FITTER), ::stochnav::plugin::NoiseModelFitter*>,        \
-                "STOCHNAV_NOISE_PLUGIN: FITTER must be a NoiseModelFitter");                     \
-  STOCHNAV_PLUGIN_INFO_(::stochnav::plugin::PluginKind::kNoiseModel, TYPE, DESCRIPTION)          \
-  BOOST_DLL_ALIAS(FACTORY, stochnav_noise_factory)                                               \
+#define STOCHNAV_NOISE_PLUGIN(TYPE, DESCRIPTION, FACTORY, FITTER)                           \
+  static_assert(std::is_same_v<decltype(&FACTORY), ::stochnav::plugin::NoiseModelFactory*>, \
+                "STOCHNAV_NOISE_PLUGIN: FACTORY must be a NoiseModelFactory");              \
+  static_assert(std::is_same_v<decltype(&FITTER), ::stochnav::plugin::NoiseModelFitter*>,   \
+                "STOCHNAV_NOISE_PLUGIN: FITTER must be a NoiseModelFitter");                \
+  STOCHNAV_PLUGIN_INFO_(::stochnav::plugin::PluginKind::kNoiseModel, TYPE, DESCRIPTION)     \
+  BOOST_DLL_ALIAS(FACTORY, stochnav_noise_factory)                                          \
   BOOST_DLL_ALIAS(FITTER, stochnav_noise_fitter)

@@ -1,7 +1,8 @@
 #pragma once
-// Strict reading of a JSON object: a plugin's `params`, or a section of a config: where JSON stops (STYLE.md). A factory reads
-// every key into a plain struct, then calls finish(), which rejects keys it never asked for.
-// Every error is a ConfigError "<pointer>/<key>: <problem>; expected <form>".
+// Strict reading of a JSON object: a plugin's `params`, or a section of a config: where JSON stops
+// (STYLE.md). A factory reads every key into a plain struct, then calls finish(), which rejects
+// keys it never asked for. Every error is a ConfigError "<pointer>/<key>: <problem>; expected
+// <form>".
 
 #include <array>
 #include <nlohmann/json.hpp>
@@ -35,8 +36,8 @@ class ParamReader {
 
   /// A number for all three axes or an array [x, y, z].
   std::array<double, 3> axes(std::string_view key, Bound bound, std::string_view unit);
-  std::array<double, 3> axes_or(std::string_view key, std::array<double, 3> fallback,
-                                Bound bound, std::string_view unit);
+  std::array<double, 3> axes_or(std::string_view key, std::array<double, 3> fallback, Bound bound,
+                                std::string_view unit);
 
   bool boolean_or(std::string_view key, bool fallback);
   /// A required non-empty string.

@@ -51,15 +51,15 @@ struct PluginInfo {
 
 // Common part of the registration macros: the info struct and its exported accessor. Use it at
 // global scope, once per library.
-#define STOCHNAV_PLUGIN_INFO_(KIND, TYPE, DESCRIPTION)                                       \
-  namespace {                                                                                \
-  const ::stochnav::plugin::PluginInfo stochnav_plugin_info_value{                          \
-      ::stochnav::plugin::kPluginApiVersion, static_cast<std::uint32_t>(KIND), TYPE,         \
-      DESCRIPTION, ::stochnav::kVersion.data()};                                             \
-  }                                                                                          \
-  static const ::stochnav::plugin::PluginInfo* stochnav_plugin_info_function() {             \
-    return &stochnav_plugin_info_value;                                                      \
-  }                                                                                          \
+#define STOCHNAV_PLUGIN_INFO_(KIND, TYPE, DESCRIPTION)                                            \
+  namespace {                                                                                     \
+  const ::stochnav::plugin::PluginInfo stochnav_plugin_info_value{                                \
+      ::stochnav::plugin::kPluginApiVersion, static_cast<std::uint32_t>(KIND), TYPE, DESCRIPTION, \
+      ::stochnav::kVersion.data()};                                                               \
+  }                                                                                               \
+  static const ::stochnav::plugin::PluginInfo* stochnav_plugin_info_function() {                  \
+    return &stochnav_plugin_info_value;                                                           \
+  }                                                                                               \
   BOOST_DLL_ALIAS(stochnav_plugin_info_function, stochnav_plugin_info)
 
 // The per-kind registration macros, STOCHNAV_NOISE_PLUGIN and STOCHNAV_AID_PLUGIN, live beside

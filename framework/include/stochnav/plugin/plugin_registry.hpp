@@ -34,7 +34,8 @@ inline constexpr std::string_view kPluginPathVariable = "STOCHNAV_PLUGIN_PATH";
 std::filesystem::path bundled_plugin_dir();
 
 /// [config_dir (if not empty), $STOCHNAV_PLUGIN_PATH folders..., bundled_plugin_dir()].
-std::vector<std::filesystem::path> default_search_path(const std::filesystem::path& config_dir = {});
+std::vector<std::filesystem::path> default_search_path(
+    const std::filesystem::path& config_dir = {});
 
 /// What a plugin library declares, as loaded.
 struct PluginDescriptor {

@@ -7,7 +7,8 @@
 //
 //   {
 //     "data": {"scenario": "runs/vib1"}                        // a `simulate scenario` folder
-//          |  {"imu": "imu.csv", "truth": "truth.csv", "aids": "aids.csv"},   // truth, aids optional
+//          |  {"imu": "imu.csv", "truth": "truth.csv", "aids": "aids.csv"},   // truth, aids
+//          optional
 //     "noise": {
 //       "gyro":  {"plugin": "gauss_markov", "params": {"sigma": 0.1, "tau_c": 100, "N": 0.05}},
 //       "accel": {"plugin": "white", "params": {"N": 0.02},
@@ -44,28 +45,27 @@ inline constexpr std::string_view kScenarioAidsFile = "aids.csv";
 
 /// IMU CSV columns (t in s; gyro rad/s, accel m/s^2, body axes): the defaults of FitConfig.
 inline constexpr std::array<std::string_view, 3> kGyroColumns = {"gyro_x", "gyro_y", "gyro_z"};
-inline constexpr std::array<std::string_view, 3> kAccelColumns = {"accel_x", "accel_y",
-                                                                  "accel_z"};
+inline constexpr std::array<std::string_view, 3> kAccelColumns = {"accel_x", "accel_y", "accel_z"};
 
 struct DataConfig {
-  std::filesystem::path scenario_dir;  ///< "scenario": folder; empty when files are given
-  std::filesystem::path imu;           ///< "imu", or <scenario>/imu.csv; must exist
+  std::filesystem::path scenario_dir;          ///< "scenario": folder; empty when files are given
+  std::filesystem::path imu;                   ///< "imu", or <scenario>/imu.csv; must exist
   std::optional<std::filesystem::path> truth;  ///< "truth", or <scenario>/truth.csv if present
   std::optional<std::filesystem::path> aids;   ///< "aids", or <scenario>/aids.csv if present
 };
 
 /// "fit": build the noise model from a calibration record.
 struct FitConfig {
-  std::filesystem::path record;  ///< "record" (default: data imu); must exist
-  double start_s = 0.0;          ///< "start_s": first record time used (s), >= 0
-  std::optional<double> end_s;   ///< "end_s": end of the window (s), > start_s; default: end
+  std::filesystem::path record;        ///< "record" (default: data imu); must exist
+  double start_s = 0.0;                ///< "start_s": first record time used (s), >= 0
+  std::optional<double> end_s;         ///< "end_s": end of the window (s), > start_s; default: end
   std::array<std::string, 3> columns;  ///< "columns": x, y, z; default kGyroColumns/kAccelColumns
 };
 
 /// One plugin entry: {"plugin": TYPE, "params": {...}}.
 struct PluginConfig {
-  std::string type;                                   ///< "plugin", required
-  nlohmann::json params = nlohmann::json::object();   ///< "params", default {} (plugin-checked)
+  std::string type;                                  ///< "plugin", required
+  nlohmann::json params = nlohmann::json::object();  ///< "params", default {} (plugin-checked)
   std::string pointer;  ///< JSON pointer of the entry, e.g. "/noise/gyro", "/aids/0"
   std::string type_pointer() const { return pointer + "/plugin"; }
   std::string params_pointer() const { return pointer + "/params"; }
@@ -98,7 +98,7 @@ struct InitialSigma {
 };
 
 struct FilterConfig {
-  InitialSigma initial_sigma;                       ///< "initial_sigma"
+  InitialSigma initial_sigma;                         ///< "initial_sigma"
   FeedbackMode feedback = FeedbackMode::kClosedLoop;  ///< "feedback"
 };
 
@@ -133,6 +133,7 @@ NoiseSection parse_noise_section(const nlohmann::json& json, const std::string& 
                                  const std::filesystem::path& default_record);
 
 /// The "aids" array at `pointer`.
-std::vector<PluginConfig> parse_aids_section(const nlohmann::json& json, const std::string& pointer);
+std::vector<PluginConfig> parse_aids_section(const nlohmann::json& json,
+                                             const std::string& pointer);
 
 }  // namespace stochnav::plugin

@@ -14,6 +14,8 @@
 // a (gyro x, y, z = 0..2, accel x, y, z = 3..5) from streams 100 + a (noise) and 200 + a
 // (scheduled); turn-on bias from 2000 + a; random vibration of phase p from 3000 + p; aid errors
 // from 4000. Memory is independent of the duration (blocks of 4096 samples per noise stream).
+// The noise streams of the six axes are generated in up to 4 threads (hardware concurrency);
+// the records do not depend on the number of threads.
 
 #include <array>
 #include <cstdint>
@@ -71,12 +73,8 @@ class ScenarioSimulator final {
   nlohmann::json noise_schedule_json() const;
 
  private:
-  struct NoiseStream {
-    std::unique_ptr<NoiseGenerator> generator;  // null: no terms
-    std::vector<double> block;
-    std::size_t used = 0;
-    double next();
-  };
+  // Refills the noise blocks of all axes (in parallel threads when there are several).
+  void refill_noise();
 
   ScenarioConfig config_;
   std::unique_ptr<TrueMotion> motion_;
@@ -85,8 +83,13 @@ class ScenarioSimulator final {
   std::uint64_t next_epoch_ = 1;
   bool sensor_errors_ = true;
   std::array<NoiseModel, 6> scheduled_;
-  std::array<NoiseStream, 6> noise_;
-  std::array<NoiseStream, 6> scheduled_noise_;
+  // Per axis: the noise and scheduled-noise generators (null without terms) and the block of
+  // summed samples in use; all axes are consumed in lockstep.
+  std::array<std::unique_ptr<NoiseGenerator>, 6> noise_;
+  std::array<std::unique_ptr<NoiseGenerator>, 6> scheduled_noise_;
+  std::array<std::vector<double>, 6> noise_block_;
+  std::size_t block_used_ = 0;
+  unsigned noise_threads_ = 1;
   std::array<std::array<double, 3>, 2> turn_on_bias_{};
   std::array<double, 6> bias_{};         // constant + turn-on, natural units
   std::array<double, 6> scale_factor_{};
