@@ -56,7 +56,7 @@ TEST(SimulateScenarioCli, WritesImuTruthAidsAndScenario) {
   EXPECT_TRUE(result.err.empty()) << "no progress bar when stderr is not a terminal";
   const auto out = dir.path() / "out";
   const std::string imu = read(out / "imu.csv");
-  EXPECT_EQ(imu.substr(0, imu.find('\n')), "t,gx,gy,gz,ax,ay,az");
+  EXPECT_EQ(imu.substr(0, imu.find('\n')), "t,dtheta_x,dtheta_y,dtheta_z,dv_x,dv_y,dv_z");
   EXPECT_EQ(lines(imu), 901u);  // 9 s at 100 Hz plus the header
   const std::string truth = read(out / "truth.csv");
   EXPECT_EQ(truth.substr(0, truth.find('\n')),

@@ -11,6 +11,7 @@ void add_davar_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_run_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
 void add_plugins_command(CLI::App& app);
 
 }  // namespace stochnav::cli

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   stochnav::cli::add_fit_command(app);
   stochnav::cli::add_simulate_command(app);
   stochnav::cli::add_run_command(app);
+  stochnav::cli::add_compare_command(app);
   stochnav::cli::add_plugins_command(app);
   try {
     app.parse(argc, argv);

@@ -7,6 +7,7 @@
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
+#include "stochnav/experiment/error_plot.hpp"
 #include "stochnav/report/gnuplot.hpp"
 
 namespace stochnav {
@@ -30,42 +31,6 @@ std::filesystem::path prepared(const std::filesystem::path& dir) {
                      "); choose another --out");
   }
   return dir;
-}
-
-// Three panels (position, velocity, attitude) of errors with their 3-sigma bounds.
-void plot_errors(const std::vector<ErrorSample>& series, const std::filesystem::path& path) {
-  std::string script = "$errors << EOD\n";
-  for (const ErrorSample& s : series) {
-    script += fmt::format("{:.3f}", s.t_s);
-    for (double e : s.errors) script += fmt::format(" {:.6g}", e);
-    for (double e : s.sigma) script += fmt::format(" {:.6g}", 3.0 * e);
-    script += '\n';
-  }
-  script += "EOD\n";
-  script +=
-      "set multiplot layout 3,1 title 'navigation errors and 3-sigma bounds' noenhanced\n"
-      "set key outside right noenhanced\nset grid\n";
-  const char* panels[3][2] = {{"position error (m)", ""},
-                              {"velocity error (m/s)", ""},
-                              {"attitude error (deg)", "time (s)"}};
-  const char* colours[3] = {"#1f77b4", "#d62728", "#2ca02c"};
-  for (int panel = 0; panel < 3; ++panel) {
-    script += fmt::format("set ylabel '{}'\nset xlabel '{}'\nplot ", panels[panel][0],
-                          panels[panel][1]);
-    const int metric0 = panel == 0 ? 0 : panel == 1 ? 6 : 3;
-    for (int k = 0; k < 3; ++k) {
-      const int column = 2 + metric0 + k;
-      const int sigma_column = column + static_cast<int>(kErrorMetricCount);
-      script += fmt::format(
-          "$errors using 1:{} with lines lc rgb '{}' title '{}', "
-          "'' using 1:{} with lines dt 2 lc rgb '{}' notitle, "
-          "'' using 1:(-${}) with lines dt 2 lc rgb '{}' notitle{}",
-          column, colours[k], kErrorMetricNames[static_cast<std::size_t>(metric0 + k)],
-          sigma_column, colours[k], sigma_column, colours[k], k < 2 ? ", " : "\n");
-    }
-  }
-  script += "unset multiplot\n";
-  render_gnuplot(script, path);
 }
 
 }  // namespace
@@ -183,7 +148,8 @@ void RunFiles::commit(const NavigationRunResult& result, bool plot) {
   if (plot && result.has_truth && result.error_series.size() > 1) {
     try {
       check_plot_request(plot_path);
-      plot_errors(result.error_series, plot_path);
+      plot_navigation_errors(result.error_series, "navigation errors and 3-sigma bounds",
+                             plot_path);
     } catch (const ConfigError&) {
       // gnuplot missing: the run's numbers are still complete; the plot is optional.
     }

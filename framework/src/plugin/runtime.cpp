@@ -1,11 +1,27 @@
 #include "stochnav/plugin/runtime.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/io/record.hpp"
 
 namespace stochnav::plugin {
+
+namespace {
+
+// "gyro_x" -> "dtheta_x", "accel_y" -> "dv_y"; "" for other names.
+std::string increment_column_for(const std::string& rate_column) {
+  for (const auto& [rate, increment] : {std::pair{"gyro_", "dtheta_"}, std::pair{"accel_", "dv_"}}) {
+    const std::string prefix(rate);
+    if (rate_column.size() == prefix.size() + 1 && rate_column.rfind(prefix, 0) == 0) {
+      return increment + rate_column.substr(prefix.size());
+    }
+  }
+  return {};
+}
+
+}  // namespace
 
 CalibrationRecord read_calibration_record(const FitConfig& fit, SensorGroup group,
                                           std::string_view pointer) {
@@ -15,12 +31,24 @@ CalibrationRecord read_calibration_record(const FitConfig& fit, SensorGroup grou
                        fit.columns[2] + ")";
   const Unit unit =
       group == SensorGroup::kGyro ? Unit::kRadPerSecond : Unit::kMeterPerSecondSquared;
+  const std::vector<std::string> header = list_columns(fit.record.string());
   for (std::size_t axis = 0; axis < 3; ++axis) {
     ReadOptions options;
     options.path = fit.record.string();
     options.column = fit.columns[axis];
     options.unit = unit;
+    // A scenario's imu.csv may hold increments (dtheta_x ..., dv_x ...) instead of the rate
+    // columns: then the rates are the increments times the sampling rate.
+    const std::string increment_column = increment_column_for(fit.columns[axis]);
+    const bool from_increments =
+        std::find(header.begin(), header.end(), fit.columns[axis]) == header.end() &&
+        !increment_column.empty() &&
+        std::find(header.begin(), header.end(), increment_column) != header.end();
+    if (from_increments) options.column = increment_column;
     Record record = read_record(options);
+    if (from_increments) {
+      for (double& value : record.values) value *= record.rate_hz;
+    }
     if (axis == 0) {
       calibration.rate_hz = record.rate_hz;
     } else if (std::abs(record.rate_hz - calibration.rate_hz) > 1e-9 * calibration.rate_hz) {

@@ -119,7 +119,11 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
   run_config.seed = options.seed;
   ScenarioSimulator simulator(run_config, options.seed);
 
-  CsvStream imu(options.out_dir / "imu.csv", "t,gx,gy,gz,ax,ay,az");
+  // Column names say what the numbers are (experiment/navigation_files.hpp reads both forms).
+  CsvStream imu(options.out_dir / "imu.csv",
+                config.imu.output == ImuOutput::kIncrements
+                    ? "t,dtheta_x,dtheta_y,dtheta_z,dv_x,dv_y,dv_z"
+                    : "t,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_z");
   CsvStream truth(options.out_dir / "truth.csv",
                   "t,lat,lon,h,ve,vn,vu,inclination,toolface,azimuth");
   CsvStream aids(options.out_dir / "aids.csv",
@@ -178,7 +182,10 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
   document["config"] = to_json(run_config);
   document["files"] = {
       {"imu.csv",
-       {{"columns", {"t", "gx", "gy", "gz", "ax", "ay", "az"}},
+       {{"columns", rates ? nlohmann::json({"t", "gyro_x", "gyro_y", "gyro_z", "accel_x",
+                                            "accel_y", "accel_z"})
+                          : nlohmann::json({"t", "dtheta_x", "dtheta_y", "dtheta_z", "dv_x",
+                                            "dv_y", "dv_z"})},
         {"units", rates ? nlohmann::json({"s", "rad/s", "rad/s", "rad/s", "m/s^2", "m/s^2",
                                           "m/s^2"})
                         : nlohmann::json({"s", "rad", "rad", "rad", "m/s", "m/s", "m/s"})},

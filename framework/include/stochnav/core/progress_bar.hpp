@@ -21,6 +21,10 @@ class ProgressBar final {
   void update(std::uint64_t done) {
     if (active_ && (++calls_ & 0x3FF) == 0) draw(done, false);
   }
+  /// Redraws now if the last draw is older than 0.1 s (for a thread that only draws).
+  void show(std::uint64_t done) {
+    if (active_) draw(done, false);
+  }
   /// Draws the final state and ends the line.
   void finish(std::uint64_t done);
 

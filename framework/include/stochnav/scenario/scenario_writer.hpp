@@ -3,7 +3,8 @@
 // the duration) and atomically: every file goes to a temporary beside its final name and all are
 // renamed into place only after the whole run succeeded.
 //
-//   imu.csv       t,gx,gy,gz,ax,ay,az at the IMU rate. t is the end of the epoch's interval (s).
+//   imu.csv       t,dtheta_x,dtheta_y,dtheta_z,dv_x,dv_y,dv_z (increments) or
+//                 t,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_z (rates) at the IMU rate. t is the end of the epoch's interval (s).
 //                 output "increments": delta-theta (rad) and delta-v (m/s) over the interval;
 //                 output "rates": their means, rad/s and m/s^2. Body frame of ins/nav_state.hpp.
 //   truth.csv     t,lat,lon,h,ve,vn,vu,inclination,toolface,azimuth at truth_rate_hz from t = 0:

@@ -1,0 +1,61 @@
+#pragma once
+// The experiment config of `stochnav compare`: one data source, filter variants that differ in
+// their noise model (and optionally aids and filter options), a baseline. Validated completely
+// before anything runs; unknown keys rejected; errors are ConfigError "<file>: <JSON pointer>:
+// <problem>; expected <form>". Relative paths are relative to the experiment file's folder.
+//
+//   {
+//     "description": "...",                                         // optional
+//     "data": {"scenario_config": "../scenarios/paper_random_vibration.json",
+//              "seeds": 5}              // or [11, 12, ...]: Monte-Carlo seeds of the scenario
+//           | {"scenario": "runs/vib1"}                             // one simulated folder
+//           | {"imu": "imu.csv", "truth": "truth.csv", "aids": "aids.csv"},   // recorded + truth
+//     "baseline": "classic",                                        // a variant name
+//     "aids": [{"plugin": "static_position", "params": {...}}],     // every variant's aids
+//     "filter": {...},                                              // every variant's filter
+//     "variants": [
+//       {"name": "classic", "noise": {"gyro": {...}, "accel": {...}}},
+//       {"name": "davar", "noise": {...}, "aids": [...], "filter": {...}},  // overrides
+//       ...
+//     ],
+//     "threads": 0                                  // worker threads; 0 (default): all cores
+//   }
+// "noise", "aids" and "filter" have exactly the form of a run config (plugin/run_config.hpp).
+
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace stochnav {
+
+struct ExperimentVariant {
+  std::string name;           ///< unique, [A-Za-z0-9_.-]+ (used in file names)
+  nlohmann::json run_config;  ///< a run config without "data": noise, aids, filter
+  std::string gyro_plugin;    ///< the gyro noise plugin's type (results.json "noise_model")
+};
+
+struct ExperimentConfig {
+  std::filesystem::path file;        ///< the experiment file (for messages)
+  std::filesystem::path config_dir;  ///< its folder
+  std::string description;
+  /// Simulated data: the scenario config file and the seeds; else a fixed data section.
+  std::optional<std::filesystem::path> scenario_config;
+  std::vector<std::uint64_t> seeds;
+  nlohmann::json fixed_data;  ///< "data" as a run config takes it (scenario folder or files)
+  std::string baseline;
+  std::vector<ExperimentVariant> variants;
+  unsigned threads = 0;
+};
+
+/// Reads and validates an experiment file. Each variant is also checked as the run config it
+/// becomes (a placeholder data section stands in for the seeds' folders), so a bad noise or aid
+/// section fails here, before any simulation, with the variant's JSON pointer.
+ExperimentConfig read_experiment_config(const std::filesystem::path& file);
+
+/// The run config document of one variant on one data section.
+nlohmann::json variant_run_document(const ExperimentVariant& variant, const nlohmann::json& data);
+
+}  // namespace stochnav

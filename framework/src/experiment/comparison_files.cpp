@@ -1,0 +1,78 @@
+// The files of `stochnav compare` (experiment/comparison.hpp): results.json, table.md, plots.
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/experiment/comparison.hpp"
+#include "stochnav/experiment/error_plot.hpp"
+#include "stochnav/io/atomic_file.hpp"
+#include "stochnav/report/gnuplot.hpp"
+
+namespace stochnav {
+namespace {
+
+// Nine panels, one per metric: each variant's mean with its std as an error bar.
+void plot_metrics(const ComparisonResult& result, const std::filesystem::path& path) {
+  std::string script = "$metrics << EOD\n";
+  for (std::size_t v = 0; v < result.variants.size(); ++v) {
+    script += fmt::format("{} \"{}\"", v, result.variants[v].name);
+    for (std::size_t m = 0; m < kErrorMetricCount; ++m) {
+      double sum = 0.0, squares = 0.0;
+      const auto& runs = result.variants[v].runs;
+      for (const auto& run : runs) sum += run.statistics.max_abs(m);
+      const double mean = sum / static_cast<double>(runs.size());
+      for (const auto& run : runs) {
+        squares += (run.statistics.max_abs(m) - mean) * (run.statistics.max_abs(m) - mean);
+      }
+      const double spread =
+          runs.size() > 1 ? std::sqrt(squares / static_cast<double>(runs.size() - 1)) : 0.0;
+      script += fmt::format(" {:.6g} {:.6g}", mean, spread);
+    }
+    script += '\n';
+  }
+  script += "EOD\n";
+  script +=
+      "set multiplot layout 3,3 title 'maximum absolute error per variant (mean and std over "
+      "seeds)' noenhanced\nset style fill solid 0.6\nset boxwidth 0.6\nset xtics rotate by -40 "
+      "noenhanced font ',8'\nset logscale y\nset grid y\nunset key\n";
+  for (std::size_t m = 0; m < kErrorMetricCount; ++m) {
+    script += fmt::format(
+        "set title '{}' noenhanced\nplot $metrics using 1:{}:xtic(2) with boxes lc rgb "
+        "'#4878a8', '' using 1:{}:{} with yerrorbars lc rgb 'black' pt 0\n",
+        kErrorMetricNames[m], 3 + 2 * m, 3 + 2 * m, 4 + 2 * m);
+  }
+  script += "unset multiplot\n";
+  render_gnuplot(script, path);
+}
+
+}  // namespace
+
+void write_comparison(const ComparisonResult& result, const ExperimentConfig& config,
+                      const std::filesystem::path& out_dir) {
+  std::error_code error;
+  std::filesystem::create_directories(out_dir, error);
+  if (error) {
+    throw InputError(out_dir.string() + ": cannot create the output folder (" + error.message() +
+                     "); choose another --out");
+  }
+  try {
+    check_plot_request(out_dir / "metrics.png");
+    plot_metrics(result, out_dir / "metrics.png");
+    for (const auto& variant : result.variants) {
+      if (variant.runs.empty() || variant.runs.front().error_series.size() < 2) continue;
+      plot_navigation_errors(
+          variant.runs.front().error_series,
+          fmt::format("{}: errors and 3-sigma bounds (seed {})", variant.name,
+                      result.seeds.front()),
+          out_dir / fmt::format("errors_{}.png", variant.name));
+    }
+  } catch (const ConfigError&) {
+    // gnuplot missing: the numbers below are complete without the plots.
+  }
+  write_file_atomically(out_dir / "table.md", comparison_table(result, config));
+  write_file_atomically(out_dir / "results.json", comparison_json(result).dump(2) + "\n");
+}
+
+}  // namespace stochnav

@@ -1,0 +1,201 @@
+#include "stochnav/experiment/experiment_config.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <set>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/plugin/run_config.hpp"
+
+namespace stochnav {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string type_name(const nlohmann::json& value) { return value.type_name(); }
+
+void reject_unknown_keys(const nlohmann::json& object, const std::string& pointer,
+                         std::initializer_list<std::string_view> known) {
+  for (const auto& [key, value] : object.items()) {
+    bool found = false;
+    for (auto name : known) found |= key == name;
+    if (!found) {
+      std::string list;
+      for (auto name : known) list += (list.empty() ? "" : ", ") + std::string(name);
+      throw ConfigError(fmt::format("{}/{}: unknown key; expected one of {}", pointer, key, list));
+    }
+  }
+}
+
+const nlohmann::json& member(const nlohmann::json& object, const std::string& pointer,
+                             std::string_view key, nlohmann::json::value_t type,
+                             std::string_view expected) {
+  const auto it = object.find(key);
+  if (it == object.end()) {
+    throw ConfigError(fmt::format("{}/{}: missing; expected {}", pointer, key, expected));
+  }
+  if (it->type() != type && !(type == nlohmann::json::value_t::number_unsigned &&
+                              it->is_number_integer() && it->get<std::int64_t>() >= 0)) {
+    throw ConfigError(fmt::format("{}/{}: found {}; expected {}", pointer, key, type_name(*it),
+                                  expected));
+  }
+  return *it;
+}
+
+std::vector<std::uint64_t> parse_seeds(const nlohmann::json& seeds) {
+  std::vector<std::uint64_t> out;
+  if (seeds.is_number_integer() && seeds.get<std::int64_t>() >= 1) {
+    for (std::uint64_t s = 1; s <= seeds.get<std::uint64_t>(); ++s) out.push_back(s);
+    return out;
+  }
+  if (seeds.is_array() && !seeds.empty()) {
+    std::set<std::uint64_t> unique;
+    for (const auto& seed : seeds) {
+      if (!seed.is_number_integer() || seed.get<std::int64_t>() < 0) break;
+      out.push_back(seed.get<std::uint64_t>());
+      unique.insert(out.back());
+    }
+    if (out.size() == seeds.size() && unique.size() == out.size()) return out;
+  }
+  throw ConfigError("/data/seeds: expected a count >= 1 or an array of distinct non-negative "
+                    "integers");
+}
+
+// Rewrites the leading JSON pointer of a run-config error to the variant's place in the
+// experiment: "/noise/gyro/params/N: ..." -> "/variants/2/noise/gyro/params/N: ...".
+std::string variant_pointer(const std::string& message, std::size_t index,
+                            const nlohmann::json& variant) {
+  for (std::string_view section : {"/noise", "/aids", "/filter"}) {
+    if (message.rfind(section, 0) == 0) {
+      const bool own = variant.contains(std::string(section.substr(1)));
+      return (own ? fmt::format("/variants/{}", index) : std::string()) + message;
+    }
+  }
+  return fmt::format("/variants/{}: ", index) + message;
+}
+
+void check_name(const std::string& name, std::size_t index) {
+  const bool ok = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
+  if (!ok) {
+    throw ConfigError(fmt::format("/variants/{}/name: '{}' is not a usable name; expected "
+                                  "letters, digits, '_', '-' or '.'",
+                                  index, name));
+  }
+}
+
+ExperimentConfig parse_experiment(const nlohmann::json& document, const fs::path& file) {
+  if (!document.is_object()) throw ConfigError("/: expected a JSON object (an experiment)");
+  reject_unknown_keys(document, "",
+                      {"description", "data", "baseline", "aids", "filter", "variants", "threads"});
+  ExperimentConfig config;
+  config.file = file;
+  config.config_dir = file.parent_path();
+  if (document.contains("description")) {
+    config.description = member(document, "", "description", nlohmann::json::value_t::string,
+                                "a string")
+                             .get<std::string>();
+  }
+  const auto& data = member(document, "", "data", nlohmann::json::value_t::object,
+                            "an object: {\"scenario_config\", \"seeds\"} or a run config's data");
+  if (data.contains("scenario_config")) {
+    reject_unknown_keys(data, "/data", {"scenario_config", "seeds"});
+    const fs::path path =
+        config.config_dir / member(data, "/data", "scenario_config",
+                                   nlohmann::json::value_t::string, "a scenario config file")
+                                .get<std::string>();
+    std::error_code error;
+    if (!fs::is_regular_file(path, error)) {
+      throw ConfigError("/data/scenario_config: " + path.string() +
+                        " does not exist; give a scenario config (configs/scenarios/)");
+    }
+    config.scenario_config = path;
+    if (!data.contains("seeds")) {
+      throw ConfigError("/data/seeds: missing; expected a count >= 1 or an array of seeds");
+    }
+    config.seeds = parse_seeds(data.at("seeds"));
+  } else {
+    config.fixed_data = data;
+    config.seeds = {0};
+  }
+  const auto& variants = member(document, "", "variants", nlohmann::json::value_t::array,
+                                "an array of {\"name\", \"noise\", ...}");
+  if (variants.empty()) throw ConfigError("/variants: empty; expected at least one variant");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < variants.size(); ++i) {
+    const std::string pointer = fmt::format("/variants/{}", i);
+    const auto& variant = variants[i];
+    if (!variant.is_object()) {
+      throw ConfigError(pointer + ": expected an object {\"name\", \"noise\", ...}");
+    }
+    reject_unknown_keys(variant, pointer, {"name", "noise", "aids", "filter"});
+    ExperimentVariant v;
+    v.name = member(variant, pointer, "name", nlohmann::json::value_t::string, "a string")
+                 .get<std::string>();
+    check_name(v.name, i);
+    if (!names.insert(v.name).second) {
+      throw ConfigError(pointer + "/name: '" + v.name + "' is used twice; give unique names");
+    }
+    v.run_config = nlohmann::json::object();
+    v.run_config["noise"] = member(variant, pointer, "noise", nlohmann::json::value_t::object,
+                                   "{\"gyro\": {...}, \"accel\": {...}}");
+    for (std::string_view section : {"aids", "filter"}) {
+      const std::string key(section);
+      if (variant.contains(key)) {
+        v.run_config[key] = variant[key];
+      } else if (document.contains(key)) {
+        v.run_config[key] = document[key];
+      }
+    }
+    // Validate as the run config it becomes; the experiment file stands in for the data.
+    try {
+      const auto run =
+          plugin::parse_run_config(variant_run_document(v, {{"imu", fs::absolute(file).string()}}),
+                                   config.config_dir);
+      v.gyro_plugin = run.noise.gyro.type;
+    } catch (const ConfigError& error) {
+      throw ConfigError(variant_pointer(error.what(), i, variant));
+    }
+    config.variants.push_back(std::move(v));
+  }
+  config.baseline = member(document, "", "baseline", nlohmann::json::value_t::string,
+                           "the name of a variant")
+                        .get<std::string>();
+  if (!names.contains(config.baseline)) {
+    throw ConfigError("/baseline: '" + config.baseline + "' is not a variant name");
+  }
+  if (document.contains("threads")) {
+    config.threads = member(document, "", "threads", nlohmann::json::value_t::number_unsigned,
+                            "a non-negative integer")
+                         .get<unsigned>();
+  }
+  return config;
+}
+
+}  // namespace
+
+nlohmann::json variant_run_document(const ExperimentVariant& variant, const nlohmann::json& data) {
+  nlohmann::json document = variant.run_config;
+  document["data"] = data;
+  return document;
+}
+
+ExperimentConfig read_experiment_config(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string() + ": cannot be read; check the experiment path");
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& error) {
+    throw InputError(file.string() + ": not valid JSON (" + error.what() + ")");
+  }
+  try {
+    return parse_experiment(document, file);
+  } catch (const ConfigError& error) {
+    throw ConfigError(file.string() + ": " + error.what());
+  }
+}
+
+}  // namespace stochnav
