@@ -36,6 +36,9 @@ EarthRadii earth_radii_derivative(double latitude_rad);
 ///   g(h) = g0 [1 - 2/a (1 + f + m - 2 f sin^2 lat) h + 3 h^2 / a^2],  m = w^2 a^2 b / GM.
 double normal_gravity(double latitude_rad, double height_m);
 
+/// d normal_gravity / d height_m (1/s^2, about -3.086e-6): the derivative of the formula above.
+double normal_gravity_height_gradient(double latitude_rad, double height_m);
+
 /// Normal gravity vector in n (ENU): (0, 0, -normal_gravity(latitude, height)) (m/s^2). The
 /// deflection of the vertical is neglected everywhere in stochnav.
 Eigen::Vector3d gravity_n(double latitude_rad, double height_m);
