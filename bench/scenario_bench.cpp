@@ -8,13 +8,12 @@
 
 #include <fmt/format.h>
 
-#include <nlohmann/json.hpp>
-
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -79,10 +78,11 @@ int main(int argc, char** argv) {
         {"drilling_build_hold", &drilling}}) {
     const Rate rate = generator_rate(*config, epochs, true);
     const Rate motion_only = generator_rate(*config, epochs, false);
-    fmt::print("  {:24s} {:6.3f} M epochs/s wall, {:6.3f} M per CPU-s (goal >= 1 M/s: {}); "
-               "true motion alone {:.3f} M/s wall\n",
-               name, rate.wall / 1e6, rate.cpu / 1e6, rate.wall >= 1e6 ? "met" : "not met",
-               motion_only.wall / 1e6);
+    fmt::print(
+        "  {:24s} {:6.3f} M epochs/s wall, {:6.3f} M per CPU-s (goal >= 1 M/s: {}); "
+        "true motion alone {:.3f} M/s wall\n",
+        name, rate.wall / 1e6, rate.cpu / 1e6, rate.wall >= 1e6 ? "met" : "not met",
+        motion_only.wall / 1e6);
   }
 
   // The same table with white noise only (no bias-instability flicker banks, which cost about
@@ -97,9 +97,10 @@ int main(int argc, char** argv) {
       }
     }
     const Rate rate = generator_rate(white_only, epochs, true);
-    fmt::print("  {:24s} {:6.3f} M epochs/s wall, {:6.3f} M per CPU-s (fixed frequency, white "
-               "noise terms only)\n",
-               "paper_fixed_white_only", rate.wall / 1e6, rate.cpu / 1e6);
+    fmt::print(
+        "  {:24s} {:6.3f} M epochs/s wall, {:6.3f} M per CPU-s (fixed frequency, white "
+        "noise terms only)\n",
+        "paper_fixed_white_only", rate.wall / 1e6, rate.cpu / 1e6);
   }
 
   // End to end with the four files, on the fixed-frequency table cut to `epochs` epochs.
@@ -115,10 +116,11 @@ int main(int argc, char** argv) {
     options.seed = 1;
     const auto summary = stochnav::write_scenario_outputs(config, options);
     const auto bytes = std::filesystem::file_size(out / "imu.csv");
-    fmt::print("simulate scenario end to end (imu.csv {:.0f} MB, truth at 10 Hz): {:.3f} M "
-               "epochs/s\n",
-               static_cast<double>(bytes) / 1e6,
-               static_cast<double>(summary.epochs) / summary.seconds / 1e6);
+    fmt::print(
+        "simulate scenario end to end (imu.csv {:.0f} MB, truth at 10 Hz): {:.3f} M "
+        "epochs/s\n",
+        static_cast<double>(bytes) / 1e6,
+        static_cast<double>(summary.epochs) / summary.seconds / 1e6);
     std::filesystem::remove_all(out);
   }
 

@@ -108,8 +108,8 @@ DrillingMotion::DrillingMotion(const ScenarioConfig& config)
   }
   for (const auto& episode : config_.vibration_episodes) {
     const double ramp = episode_ramp(episode, config_.ramp_s);
-    for (double b : {episode.start_s, episode.start_s + ramp, episode.end_s - ramp,
-                     episode.end_s}) {
+    for (double b :
+         {episode.start_s, episode.start_s + ramp, episode.end_s - ramp, episode.end_s}) {
       breakpoints_.push_back(b);
     }
   }
@@ -161,8 +161,7 @@ DrillingMotion::DrillingMotion(const ScenarioConfig& config)
 const DrillingMotion::Segment& DrillingMotion::segment_at(double t_s) const {
   std::size_t i = std::min(segment_cursor_, segments_.size() - 1);
   if (t_s >= segments_[i].start_s && t_s < segments_[i].end_s) return segments_[i];
-  if (i + 1 < segments_.size() && t_s >= segments_[i + 1].start_s &&
-      t_s < segments_[i + 1].end_s) {
+  if (i + 1 < segments_.size() && t_s >= segments_[i + 1].start_s && t_s < segments_[i + 1].end_s) {
     segment_cursor_ = i + 1;
     return segments_[i + 1];
   }
@@ -268,8 +267,8 @@ DrillingMotion::Kinematics DrillingMotion::kinematics(double t_s, const EarthFac
       curvature = well.build_rate_rad_per_m;
     } else {
       const double hold = md - build_end_md_m_;
-      p += hold * Eigen::Vector3d(std::sin(theta) * sin_a, std::sin(theta) * cos_a,
-                                  -std::cos(theta));
+      p += hold *
+           Eigen::Vector3d(std::sin(theta) * sin_a, std::sin(theta) * cos_a, -std::cos(theta));
     }
   }
   const double sin_i = std::sin(inclination);
@@ -277,15 +276,15 @@ DrillingMotion::Kinematics DrillingMotion::kinematics(double t_s, const EarthFac
   const Eigen::Vector3d tangent(sin_i * sin_a, sin_i * cos_a, -cos_i);
   const Eigen::Vector3d high_side(cos_i * sin_a, cos_i * cos_a, sin_i);
   const Eigen::Vector3d p_dot = tangent * md_rate;
-  const Eigen::Vector3d p_ddot = tangent * md_acceleration + high_side * (curvature * md_rate *
-                                                                          md_rate);
+  const Eigen::Vector3d p_ddot =
+      tangent * md_acceleration + high_side * (curvature * md_rate * md_rate);
 
   // Geodetic position and the exact derivatives of v_E, v_N, v_U.
   k.latitude_rad = site_.latitude_rad + p.y() / meridian0_plus_h_;
   k.longitude_rad = site_.longitude_rad + p.x() / transverse0_plus_h_cos_;
   k.height_m = site_.height_m + p.z();
-  const EarthFactors own = earth == nullptr ? earth_factors(k.latitude_rad, k.height_m)
-                                            : EarthFactors{};
+  const EarthFactors own =
+      earth == nullptr ? earth_factors(k.latitude_rad, k.height_m) : EarthFactors{};
   const EarthFactors& e = earth == nullptr ? own : *earth;
   if (computed != nullptr && earth == nullptr) *computed = own;
   const EarthRadii& radii = e.radii;
@@ -314,8 +313,8 @@ DrillingMotion::Kinematics DrillingMotion::kinematics(double t_s, const EarthFac
   k.C_nb.col(1) = cos_tf * right - sin_tf * high_side;
   k.C_nb.col(2) = tangent;
   const double inclination_rate = curvature * md_rate;
-  k.omega_nb_b = Eigen::Vector3d(inclination_rate * sin_tf, inclination_rate * cos_tf,
-                                 toolface_rate);
+  k.omega_nb_b =
+      Eigen::Vector3d(inclination_rate * sin_tf, inclination_rate * cos_tf, toolface_rate);
   return k;
 }
 
@@ -337,8 +336,8 @@ TruthSample DrillingMotion::truth(double t_s) {
 }
 
 double DrillingMotion::local_rate_bound(double t0_s, double t1_s) const {
-  double rate = std::abs(config_.rotation_radps) + (config_.ramp_s > 0.0 ? kPi / config_.ramp_s
-                                                                        : 0.0);
+  double rate =
+      std::abs(config_.rotation_radps) + (config_.ramp_s > 0.0 ? kPi / config_.ramp_s : 0.0);
   for (const auto& e : config_.vibration_episodes) {
     if (t1_s > e.start_s && t0_s < e.end_s) {
       rate += 2.0 * kPi * e.frequency_hz + kPi / episode_ramp(e, config_.ramp_s);
@@ -364,8 +363,8 @@ void DrillingMotion::integrate(double t0_s, double t1_s, Eigen::Vector3d& delta_
   double a = t0_s;
   std::size_t next = breakpoint_cursor_;
   while (a < t1_s) {
-    const double b = next < breakpoints_.size() && breakpoints_[next] < t1_s ? breakpoints_[next]
-                                                                             : t1_s;
+    const double b =
+        next < breakpoints_.size() && breakpoints_[next] < t1_s ? breakpoints_[next] : t1_s;
     ++next;
     if (b <= a) continue;
     const int pieces = std::max(
@@ -403,12 +402,12 @@ void DrillingMotion::integrate(double t0_s, double t1_s, Eigen::Vector3d& delta_
 nlohmann::json DrillingMotion::describe() const {
   nlohmann::json stands = nlohmann::json::array();
   for (const auto& s : segments_) {
-    stands.push_back({{"start_s", s.start_s},
-                      {"end_s", s.end_s},
-                      {"kind", s.drilling ? "drilling" : (s.start_s == 0.0 ? "static"
-                                                                           : "connection")},
-                      {"start_md_m", s.start_md_m},
-                      {"start_toolface_rad", s.start_toolface_rad}});
+    stands.push_back(
+        {{"start_s", s.start_s},
+         {"end_s", s.end_s},
+         {"kind", s.drilling ? "drilling" : (s.start_s == 0.0 ? "static" : "connection")},
+         {"start_md_m", s.start_md_m},
+         {"start_toolface_rad", s.start_toolface_rad}});
   }
   return {{"model",
            "drilling: well path vertical / circular build / hold in the plane of the well "

@@ -138,8 +138,8 @@ void ScenarioSimulator::next(ScenarioEpoch& epoch) {
   if (sensor_errors_) {
     if (block_used_ == kBlock) refill_noise();
     for (std::size_t axis = 0; axis < 6; ++axis) {
-      const double ideal = axis < 3 ? epoch.ideal.delta_theta_b[axis]
-                                    : epoch.ideal.delta_v_b[axis - 3];
+      const double ideal =
+          axis < 3 ? epoch.ideal.delta_theta_b[axis] : epoch.ideal.delta_v_b[axis - 3];
       const double noise = noise_block_[axis][block_used_];
       const double measured = (1.0 + scale_factor_[axis]) * ideal + (bias_[axis] + noise) * dt;
       if (axis < 3) {

@@ -127,10 +127,11 @@ SumOfSinusoids::Value SumOfSinusoids::evaluate_stepping(double tau_s, double ste
     last_tau_s_ = tau_s;
     ++steps_since_anchor_;
     Value value;
-    value.acceleration_mps2 = (acceleration[0] + acceleration[1]) + (acceleration[2] + acceleration[3]);
+    value.acceleration_mps2 =
+        (acceleration[0] + acceleration[1]) + (acceleration[2] + acceleration[3]);
     value.velocity_mps = -((velocity[0] + velocity[1]) + (velocity[2] + velocity[3]));
-    value.displacement_m =
-        displacement_offset_ - ((displacement[0] + displacement[1]) + (displacement[2] + displacement[3]));
+    value.displacement_m = displacement_offset_ - ((displacement[0] + displacement[1]) +
+                                                   (displacement[2] + displacement[3]));
     value.displacement_integral_ms = ((integral[0] + integral[1]) + (integral[2] + integral[3])) -
                                      integral_offset_ + displacement_offset_ * tau_s;
     return value;
@@ -147,8 +148,8 @@ double SumOfSinusoids::rms_mps2() const {
 
 SumOfSinusoids sine_vibration(double frequency_hz, double amplitude_mps2) {
   // A sin(w tau + pi/2) = A cos(w tau): velocity (A/w) sin(w tau) starts at 0.
-  return SumOfSinusoids({{amplitude_mps2, 2.0 * std::numbers::pi * frequency_hz,
-                          0.5 * std::numbers::pi}});
+  return SumOfSinusoids(
+      {{amplitude_mps2, 2.0 * std::numbers::pi * frequency_hz, 0.5 * std::numbers::pi}});
 }
 
 namespace {
@@ -180,8 +181,8 @@ SumOfSinusoids random_vibration(const std::vector<std::array<double, 2>>& psd, d
     const double hi = std::exp(log_first + (k + 1) * log_width);
     const double f = std::exp(log_first + (k + random.uniform()) * log_width);
     const double amplitude = std::sqrt(2.0 * psd_at(psd, f) * (hi - lo));
-    parts.push_back({amplitude, 2.0 * std::numbers::pi * f,
-                     2.0 * std::numbers::pi * random.uniform()});
+    parts.push_back(
+        {amplitude, 2.0 * std::numbers::pi * f, 2.0 * std::numbers::pi * random.uniform()});
     power += 0.5 * amplitude * amplitude;
   }
   const double scale = power > 0.0 ? rms_mps2 / std::sqrt(power) : 0.0;

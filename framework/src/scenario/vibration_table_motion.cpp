@@ -62,18 +62,18 @@ VibrationTableMotion::VibrationTableMotion(const ScenarioConfig& config, std::ui
     if (phase.motion == TableMotion::kSine) {
       motion.vibration = sine_vibration(phase.sine.frequency_hz, phase.sine.amplitude_mps2);
     } else if (phase.motion == TableMotion::kRandom) {
-      motion.vibration = random_vibration(phase.random.psd, phase.random.rms_mps2,
-                                          phase.random.components,
-                                          derive_stream_seed(seed, 3000 + p));
+      motion.vibration =
+          random_vibration(phase.random.psd, phase.random.rms_mps2, phase.random.components,
+                           derive_stream_seed(seed, 3000 + p));
     }
     if (phase.motion != TableMotion::kStatic) {
       displacement += motion.vibration.evaluate(phase.duration_s).displacement_m;
     }
     table_phases_.push_back(std::move(motion));
-    phases_.push_back({phase.name.empty() ? std::string(table_motion_name(phase.motion))
-                                          : phase.name,
-                       start, start + phase.duration_s, phase.motion == TableMotion::kStatic,
-                       phase.gyro_noise_scale, phase.accel_noise_scale});
+    phases_.push_back(
+        {phase.name.empty() ? std::string(table_motion_name(phase.motion)) : phase.name, start,
+         start + phase.duration_s, phase.motion == TableMotion::kStatic, phase.gyro_noise_scale,
+         phase.accel_noise_scale});
     start += phase.duration_s;
   }
   duration_s_ = start;
@@ -95,7 +95,7 @@ std::size_t VibrationTableMotion::phase_at(double t_s, bool at_end) const {
 }
 
 VibrationTableMotion::Displacement VibrationTableMotion::displacement_at(std::size_t p,
-                                                                        double t_s) {
+                                                                         double t_s) {
   if (cache_valid_ && cache_phase_ == p && cache_t_s_ == t_s) return cache_;
   TablePhase& phase = table_phases_[p];
   const double tau = t_s - phase.start_s;

@@ -9,12 +9,12 @@
 namespace stochnav {
 
 namespace wgs84 {
-inline constexpr double kSemiMajorAxis_m = 6378137.0;                    ///< a (m)
-inline constexpr double kFlattening = 1.0 / 298.257223563;              ///< f
-inline constexpr double kEccentricitySquared = kFlattening * (2.0 - kFlattening);  ///< e^2
+inline constexpr double kSemiMajorAxis_m = 6378137.0;                               ///< a (m)
+inline constexpr double kFlattening = 1.0 / 298.257223563;                          ///< f
+inline constexpr double kEccentricitySquared = kFlattening * (2.0 - kFlattening);   ///< e^2
 inline constexpr double kSemiMinorAxis_m = kSemiMajorAxis_m * (1.0 - kFlattening);  ///< b (m)
-inline constexpr double kEarthRate_radps = 7.292115e-5;  ///< omega_ie (rad/s)
-inline constexpr double kGm_m3ps2 = 3.986004418e14;       ///< GM (m^3/s^2)
+inline constexpr double kEarthRate_radps = 7.292115e-5;       ///< omega_ie (rad/s)
+inline constexpr double kGm_m3ps2 = 3.986004418e14;           ///< GM (m^3/s^2)
 inline constexpr double kGravityEquator_mps2 = 9.7803253359;  ///< normal gravity at the equator
 inline constexpr double kGravityPole_mps2 = 9.8321849378;     ///< normal gravity at the poles
 }  // namespace wgs84

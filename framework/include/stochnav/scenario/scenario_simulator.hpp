@@ -20,9 +20,8 @@
 #include <array>
 #include <cstdint>
 #include <memory>
-#include <vector>
-
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "stochnav/ins/strapdown.hpp"
 #include "stochnav/scenario/scenario_config.hpp"
@@ -91,7 +90,7 @@ class ScenarioSimulator final {
   std::size_t block_used_ = 0;
   unsigned noise_threads_ = 1;
   std::array<std::array<double, 3>, 2> turn_on_bias_{};
-  std::array<double, 6> bias_{};         // constant + turn-on, natural units
+  std::array<double, 6> bias_{};  // constant + turn-on, natural units
   std::array<double, 6> scale_factor_{};
 };
 
