@@ -46,7 +46,7 @@ class VibrationTableMotion final : public TrueMotion {
   Eigen::Vector3d omega_ie_n_;
   double gravity0_ = 0.0;
   double gravity_per_height_ = 0.0;
-  Eigen::Vector3d gyro_static_b_, gyro_per_displacement_b_;
+  Eigen::Vector3d gyro_static_b_, gyro_per_displacement_b_, gyro_per_displacement_integral_b_;
   Eigen::Vector3d accel_static_b_, accel_per_velocity_change_b_, accel_per_displacement_b_,
       accel_per_speed_squared_b_, accel_per_displacement_integral_b_;
   std::vector<TablePhase> table_phases_;
