@@ -125,7 +125,7 @@ void ScenarioSimulator::refill_noise() {
 
 TruthSample ScenarioSimulator::initial_truth() { return motion_->truth(0.0); }
 
-void ScenarioSimulator::next(ScenarioEpoch& epoch) {
+void ScenarioSimulator::next(ScenarioEpoch& epoch, bool with_truth) {
   const std::uint64_t k = next_epoch_++;
   const double t0 = static_cast<double>(k - 1) / rate_hz_;
   const double t1 = static_cast<double>(k) / rate_hz_;
@@ -153,7 +153,7 @@ void ScenarioSimulator::next(ScenarioEpoch& epoch) {
     epoch.measured.delta_theta_b = epoch.ideal.delta_theta_b;
     epoch.measured.delta_v_b = epoch.ideal.delta_v_b;
   }
-  epoch.truth = motion_->truth(t1);
+  if (with_truth) epoch.truth = motion_->truth(t1);
 }
 
 nlohmann::json ScenarioSimulator::noise_schedule_json() const {

@@ -153,7 +153,9 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
   ScenarioEpoch epoch;
   const std::uint64_t count = simulator.epoch_count();
   for (std::uint64_t k = 1; k <= count; ++k) {
-    simulator.next(epoch);
+    const bool truth_row = k % truth_every == 0;
+    const bool aid_row = k % aid_every == 0;
+    simulator.next(epoch, truth_row || aid_row);
     const ImuIncrement& m = epoch.measured;
     const double factor = rates ? 1.0 / m.dt_s : 1.0;
     fmt::format_to(std::back_inserter(imu.buffer()), "{},{},{},{},{},{},{}\n", m.t_s,
@@ -161,11 +163,11 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
                    m.delta_theta_b.z() * factor, m.delta_v_b.x() * factor, m.delta_v_b.y() * factor,
                    m.delta_v_b.z() * factor);
     imu.maybe_flush();
-    if (k % truth_every == 0) {
+    if (truth_row) {
       append_truth(truth.buffer(), epoch.truth);
       truth.maybe_flush();
     }
-    if (k % aid_every == 0) {
+    if (aid_row) {
       append_aid(epoch.truth);
       aids.maybe_flush();
     }

@@ -50,8 +50,9 @@ class ScenarioSimulator final {
   std::uint64_t epochs_done() const { return next_epoch_ - 1; }
   double rate_hz() const { return rate_hz_; }
 
-  /// Produces the next epoch. Precondition: epochs_done() < epoch_count().
-  void next(ScenarioEpoch& epoch);
+  /// Produces the next epoch. Precondition: epochs_done() < epoch_count(). With `with_truth`
+  /// false, epoch.truth is left untouched (saves a motion evaluation per epoch).
+  void next(ScenarioEpoch& epoch, bool with_truth = true);
 
   /// The true state at t = 0 (the initial condition of a strapdown run).
   TruthSample initial_truth();
