@@ -114,15 +114,15 @@ void append_truth(fmt::memory_buffer& out, const TruthSample& truth) {
 ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
                                           const ScenarioOutputOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  ScenarioConfig run_config = config;
+  run_config.seed = options.seed;
+  ScenarioSimulator simulator(run_config, options.seed);  // configuration errors first
   std::error_code error;
   std::filesystem::create_directories(options.out_dir, error);
   if (error || !std::filesystem::is_directory(options.out_dir)) {
     throw InputError(options.out_dir.string() + ": cannot create the output folder (" +
                      error.message() + "); give a writable --out folder");
   }
-  ScenarioConfig run_config = config;
-  run_config.seed = options.seed;
-  ScenarioSimulator simulator(run_config, options.seed);
 
   CsvStream imu(options.out_dir / "imu.csv", "t,gx,gy,gz,ax,ay,az");
   CsvStream truth(options.out_dir / "truth.csv",
