@@ -15,8 +15,13 @@ TEST(Earth, NormalGravityMatchesSomiglianaAtEquatorAndPoles) {
   EXPECT_NEAR(normal_gravity(90.0 * kDeg, 0.0), 9.8321849378, 1e-9);
   EXPECT_NEAR(normal_gravity(-90.0 * kDeg, 0.0), 9.8321849378, 1e-9);
   // Free-air gradient about -3.086e-6 /s^2 per metre at mid latitudes.
-  const double gradient = (normal_gravity(45.0 * kDeg, 100.0) - normal_gravity(45.0 * kDeg, 0.0)) / 100.0;
+  const double gradient =
+      (normal_gravity(45.0 * kDeg, 100.0) - normal_gravity(45.0 * kDeg, 0.0)) / 100.0;
   EXPECT_NEAR(gradient, -3.086e-6, 0.01e-6);
+  for (double h : {-3000.0, 0.0, 5000.0}) {
+    const double numeric = (normal_gravity(0.7, h + 1.0) - normal_gravity(0.7, h - 1.0)) / 2.0;
+    EXPECT_NEAR(normal_gravity_height_gradient(0.7, h), numeric, 1e-12);
+  }
   const Eigen::Vector3d g = gravity_n(30.0 * kDeg, 10.0);
   EXPECT_EQ(g.x(), 0.0);
   EXPECT_EQ(g.y(), 0.0);

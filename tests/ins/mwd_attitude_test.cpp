@@ -89,8 +89,8 @@ TEST(MwdAttitude, AngularVelocityMatchesTheDerivativeOfTheRotation) {
   const double daz = 0.7;
   const double h = 1e-6;
   const auto at = [&](double t) {
-    return dcm_from_mwd({a.inclination_rad + di * t, a.toolface_rad + dtf * t,
-                         a.azimuth_rad + daz * t});
+    return dcm_from_mwd(
+        {a.inclination_rad + di * t, a.toolface_rad + dtf * t, a.azimuth_rad + daz * t});
   };
   const Eigen::Matrix3d derivative = (at(h) - at(-h)) / (2 * h);
   const Eigen::Matrix3d skew = at(0).transpose() * derivative;

@@ -57,7 +57,8 @@ Errors follow(const ScenarioConfig& config) {
     worst.horizontal_m = std::max(worst.horizontal_m, std::hypot(north, east));
     worst.vertical_m = std::max(worst.vertical_m, std::abs(s.height_m - t.height_m));
   }
-  EXPECT_NEAR(ins.state().t_s, static_cast<double>(simulator.epoch_count()) / config.imu.rate_hz, 1e-9);
+  EXPECT_NEAR(ins.state().t_s, static_cast<double>(simulator.epoch_count()) / config.imu.rate_hz,
+              1e-9);
   return worst;
 }
 

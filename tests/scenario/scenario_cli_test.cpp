@@ -5,10 +5,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "run_cli.hpp"
 #include "temp_dir.hpp"
@@ -59,8 +58,7 @@ TEST(SimulateScenarioCli, WritesImuTruthAidsAndScenario) {
   EXPECT_EQ(imu.substr(0, imu.find('\n')), "t,dtheta_x,dtheta_y,dtheta_z,dv_x,dv_y,dv_z");
   EXPECT_EQ(lines(imu), 901u);  // 9 s at 100 Hz plus the header
   const std::string truth = read(out / "truth.csv");
-  EXPECT_EQ(truth.substr(0, truth.find('\n')),
-            "t,lat,lon,h,ve,vn,vu,inclination,toolface,azimuth");
+  EXPECT_EQ(truth.substr(0, truth.find('\n')), "t,lat,lon,h,ve,vn,vu,inclination,toolface,azimuth");
   EXPECT_EQ(lines(truth), 92u);  // 10 Hz from t = 0
   const std::string aids = read(out / "aids.csv");
   EXPECT_EQ(aids.substr(0, aids.find('\n')),
@@ -83,9 +81,8 @@ TEST(SimulateScenarioCli, SameSeedSameFilesOtherSeedOtherNoise) {
   TempDir dir;
   const std::string config = dir.write("table.json", short_table().dump());
   const auto run = [&](const std::string& out, const std::string& seed) {
-    const auto result = run_cli("simulate scenario '" + config + "' --out '" + dir.file(out) +
-                                    "'" + seed,
-                                dir.path());
+    const auto result = run_cli(
+        "simulate scenario '" + config + "' --out '" + dir.file(out) + "'" + seed, dir.path());
     EXPECT_EQ(result.exit_code, 0) << result.err;
     return read(dir.path() / out / "imu.csv");
   };
@@ -148,24 +145,24 @@ TEST_P(BadScenarioCli, ExitCodeTwoOneLineWithPointerNoOutput) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, BadScenarioCli,
-    ::testing::Values(
-        BadConfigCase{"unknown_key", "/imu/rate", 100, "/imu/rate: is an unknown key"},
-        BadConfigCase{"negative_duration", "/vibration_table/phases/0/duration_s", -300,
-                      "/vibration_table/phases/0/duration_s"},
-        BadConfigCase{"unknown_term_type", "/sensors/accel/noise/terms/0/type", "flicker",
-                      "/sensors/accel/noise/terms/0/type"}),
+    ::testing::Values(BadConfigCase{"unknown_key", "/imu/rate", 100,
+                                    "/imu/rate: is an unknown key"},
+                      BadConfigCase{"negative_duration", "/vibration_table/phases/0/duration_s",
+                                    -300, "/vibration_table/phases/0/duration_s"},
+                      BadConfigCase{"unknown_term_type", "/sensors/accel/noise/terms/0/type",
+                                    "flicker", "/sensors/accel/noise/terms/0/type"}),
     [](const ::testing::TestParamInfo<BadConfigCase>& case_info) { return case_info.param.name; });
 
 TEST(SimulateScenarioCli, MissingAndMalformedFiles) {
   TempDir dir;
-  auto result = run_cli("simulate scenario '" + dir.file("absent.json") + "' --out '" +
-                            dir.file("out") + "'",
-                        dir.path());
+  auto result =
+      run_cli("simulate scenario '" + dir.file("absent.json") + "' --out '" + dir.file("out") + "'",
+              dir.path());
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.err.find("absent.json: cannot open"), std::string::npos) << result.err;
   const std::string broken = dir.write("broken.json", "{\"kind\": ");
-  result = run_cli("simulate scenario '" + broken + "' --out '" + dir.file("out") + "'",
-                   dir.path());
+  result =
+      run_cli("simulate scenario '" + broken + "' --out '" + dir.file("out") + "'", dir.path());
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.err.find("not valid JSON"), std::string::npos) << result.err;
 }

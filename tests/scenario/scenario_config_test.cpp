@@ -1,11 +1,10 @@
-#include "stochnav/scenario/scenario_config_json.hpp"
-
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <string>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/scenario/scenario_config_json.hpp"
 
 namespace stochnav {
 namespace {
@@ -67,28 +66,27 @@ TEST_P(BadScenario, ThrowsConfigErrorNamingSourceAndPointer) {
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, BadScenario,
-    ::testing::Values(
-        BadCase{"unknown_top_key", "/colour", "red", "/colour: is an unknown key"},
-        BadCase{"unknown_phase_key", "/vibration_table/phases/1/amplitude", 3,
-                "/vibration_table/phases/1/amplitude: is an unknown key"},
-        BadCase{"negative_duration", "/vibration_table/phases/2/duration_s", -5,
-                "/vibration_table/phases/2/duration_s: is -5, not > 0"},
-        BadCase{"unknown_term", "/sensors/gyro/noise/terms/0/type", "pink_noise",
-                "/sensors/gyro/noise/terms/0/type: unknown term type \"pink_noise\""},
-        BadCase{"missing_rate", "/imu/rate_hz", nullptr, "/imu/rate_hz: is missing"},
-        BadCase{"rate_too_low", "/imu/rate_hz", 50, "/imu/rate_hz: is 50"},
-        BadCase{"aid_rate_not_divisor", "/imu/aid_rate_hz", 3, "/imu/aid_rate_hz"},
-        BadCase{"unknown_kind", "/kind", "centrifuge", "/kind: is \"centrifuge\""},
-        BadCase{"unknown_motion", "/vibration_table/phases/0/motion", "shake",
-                "/vibration_table/phases/0/motion"},
-        BadCase{"accel_units_for_gyro", "/sensors/gyro/noise/units", "m/s^2",
-                "/sensors/gyro/noise/units"},
-        BadCase{"nonstationary_in_schedule", "/sensors/gyro/scheduled_noise/terms/0",
-                nlohmann::json::parse(R"({"type": "nonstationary",
+    ::testing::Values(BadCase{"unknown_top_key", "/colour", "red", "/colour: is an unknown key"},
+                      BadCase{"unknown_phase_key", "/vibration_table/phases/1/amplitude", 3,
+                              "/vibration_table/phases/1/amplitude: is an unknown key"},
+                      BadCase{"negative_duration", "/vibration_table/phases/2/duration_s", -5,
+                              "/vibration_table/phases/2/duration_s: is -5, not > 0"},
+                      BadCase{"unknown_term", "/sensors/gyro/noise/terms/0/type", "pink_noise",
+                              "/sensors/gyro/noise/terms/0/type: unknown term type \"pink_noise\""},
+                      BadCase{"missing_rate", "/imu/rate_hz", nullptr, "/imu/rate_hz: is missing"},
+                      BadCase{"rate_too_low", "/imu/rate_hz", 50, "/imu/rate_hz: is 50"},
+                      BadCase{"aid_rate_not_divisor", "/imu/aid_rate_hz", 3, "/imu/aid_rate_hz"},
+                      BadCase{"unknown_kind", "/kind", "centrifuge", "/kind: is \"centrifuge\""},
+                      BadCase{"unknown_motion", "/vibration_table/phases/0/motion", "shake",
+                              "/vibration_table/phases/0/motion"},
+                      BadCase{"accel_units_for_gyro", "/sensors/gyro/noise/units", "m/s^2",
+                              "/sensors/gyro/noise/units"},
+                      BadCase{"nonstationary_in_schedule", "/sensors/gyro/scheduled_noise/terms/0",
+                              nlohmann::json::parse(R"({"type": "nonstationary",
                                           "segments": [{"start": 0, "end": 1, "scale": 2}]})"),
-                "/sensors/gyro/scheduled_noise/terms/0"},
-        BadCase{"string_for_number", "/site/latitude_deg", "north",
-                "/site/latitude_deg: is a string, not a number"}),
+                              "/sensors/gyro/scheduled_noise/terms/0"},
+                      BadCase{"string_for_number", "/site/latitude_deg", "north",
+                              "/site/latitude_deg: is a string, not a number"}),
     [](const ::testing::TestParamInfo<BadCase>& case_info) { return case_info.param.name; });
 
 TEST(ScenarioConfig, DrillingRangesAreChecked) {

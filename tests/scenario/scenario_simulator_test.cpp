@@ -38,7 +38,8 @@ TEST(ScenarioSimulator, StationaryMeansAreEarthRateAndGravityInTheToolFrame) {
   ScenarioEpoch epoch;
   for (int k = 0; k < 1000; ++k) {
     ideal.next(epoch);
-    EXPECT_LT((epoch.ideal.delta_theta_b / 0.01 - omega_expected).norm(), 1e-12 * omega_expected.norm());
+    EXPECT_LT((epoch.ideal.delta_theta_b / 0.01 - omega_expected).norm(),
+              1e-12 * omega_expected.norm());
     EXPECT_LT((epoch.ideal.delta_v_b / 0.01 - f_expected).norm(), 1e-12 * f_expected.norm());
   }
 
@@ -53,8 +54,8 @@ TEST(ScenarioSimulator, StationaryMeansAreEarthRateAndGravityInTheToolFrame) {
   }
   const double duration = 600.0;
   // ARW 0.01 deg/sqrt(h): mean-rate error N / sqrt(T); bias instability adds ~B.
-  const double omega_tolerance = 5.0 * (0.01 * kDeg / 60.0) / std::sqrt(duration) +
-                                 3.0 * 0.05 * kDegPerHour;
+  const double omega_tolerance =
+      5.0 * (0.01 * kDeg / 60.0) / std::sqrt(duration) + 3.0 * 0.05 * kDegPerHour;
   const double f_tolerance = 5.0 * 1e-4 / std::sqrt(duration);
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(omega_sum[i] / duration, omega_expected[i], omega_tolerance) << "gyro " << i;
@@ -63,8 +64,8 @@ TEST(ScenarioSimulator, StationaryMeansAreEarthRateAndGravityInTheToolFrame) {
 }
 
 TEST(ScenarioSimulator, BiasesAndScaleFactorsEnterAsModelled) {
-  ScenarioConfig config = testing::table_config({30.0 * kDeg, 10.0 * kDeg, 40.0 * kDeg},
-                                                {testing::static_phase(10.0)});
+  ScenarioConfig config =
+      testing::table_config({30.0 * kDeg, 10.0 * kDeg, 40.0 * kDeg}, {testing::static_phase(10.0)});
   config.gyro.constant_bias = {1e-5, -2e-5, 3e-5};
   config.gyro.scale_factor = {1e-3, 2e-3, -1e-3};
   config.accel.constant_bias = {1e-3, 0.0, -1e-3};
@@ -136,11 +137,12 @@ TEST(ScenarioSimulator, DrillingIncrementsAreExactToQuadratureAccuracy) {
 
 TEST(ScenarioSimulator, TableVibrationIntegratesToZeroVelocityChangeOverPeriods) {
   // 25 Hz at 100 Hz: four intervals per period; the sine phase starts from rest.
-  const auto config = testing::table_config({90.0 * kDeg, 0.0, 0.0},
-                                            {testing::sine_phase(1.0, 25.0, 5.0)});
+  const auto config =
+      testing::table_config({90.0 * kDeg, 0.0, 0.0}, {testing::sine_phase(1.0, 25.0, 5.0)});
   ScenarioSimulator simulator(config, 1, false);
   const Eigen::Matrix3d C_bn = dcm_from_mwd(config.vibration_table->attitude).transpose();
-  const Eigen::Vector3d f_static = -(C_bn * gravity_n(config.site.latitude_rad, config.site.height_m));
+  const Eigen::Vector3d f_static =
+      -(C_bn * gravity_n(config.site.latitude_rad, config.site.height_m));
   ScenarioEpoch epoch;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   double peak = 0.0;
@@ -151,6 +153,44 @@ TEST(ScenarioSimulator, TableVibrationIntegratesToZeroVelocityChangeOverPeriods)
   }
   EXPECT_LT((sum - f_static * 0.04).norm(), 1e-9);
   EXPECT_NEAR(peak, 5.0 * testing::kG / (2.0 * std::numbers::pi * 25.0), 1e-9);
+}
+
+TEST(ScenarioSimulator, TableIncrementsMatchTheKinematicsIntegratedByBruteForce) {
+  // One sine phase from t = 0: a(t) = A cos(w t) along u = C_nb e_x.
+  const double amplitude = 5.0 * testing::kG;
+  const double w = 2.0 * std::numbers::pi * 25.0;
+  const auto config = testing::table_config({70.0 * kDeg, 40.0 * kDeg, 130.0 * kDeg},
+                                            {testing::sine_phase(1.0, 25.0, 5.0)});
+  auto motion = make_true_motion(config, 1);
+  auto probe = make_true_motion(config, 1);
+  const Eigen::Matrix3d C_nb = dcm_from_mwd(config.vibration_table->attitude);
+  const Eigen::Vector3d u = C_nb.col(0);
+  for (double t0 : {0.0, 0.37, 0.8123}) {
+    const double dt = 0.01;
+    Eigen::Vector3d theta, v;
+    motion->integrate(t0, t0 + dt, theta, v);
+    // Midpoint rule with 20000 steps on the definitions of true_motion.hpp.
+    Eigen::Vector3d theta_ref = Eigen::Vector3d::Zero();
+    Eigen::Vector3d v_ref = Eigen::Vector3d::Zero();
+    const int steps = 20000;
+    for (int j = 0; j < steps; ++j) {
+      const double t = t0 + (j + 0.5) * dt / steps;
+      const TruthSample truth = probe->truth(t);
+      const Eigen::Vector3d omega_ie = earth_rate_n(truth.latitude_rad);
+      const Eigen::Vector3d omega_en =
+          transport_rate_n(truth.latitude_rad, truth.height_m, truth.v_n);
+      const Eigen::Vector3d a_n = u * amplitude * std::cos(w * t);
+      theta_ref += C_nb.transpose() * (omega_ie + omega_en) * (dt / steps);
+      v_ref += C_nb.transpose() *
+               (a_n + (2.0 * omega_ie + omega_en).cross(truth.v_n) -
+                gravity_n(truth.latitude_rad, truth.height_m)) *
+               (dt / steps);
+    }
+    // Angle increments to 1e-11 relative; velocity increments to 3e-9 relative, the stated
+    // bound of the trapezoid used for the second-order transport term (v x omega_en).
+    EXPECT_LT((theta - theta_ref).norm(), 1e-11 * theta.norm()) << t0;
+    EXPECT_LT((v - v_ref).norm(), 3e-9 * v.norm()) << t0;
+  }
 }
 
 TEST(ScenarioSimulator, ScheduledNoiseVarianceFollowsThePhaseScale) {
@@ -181,8 +221,8 @@ TEST(ScenarioSimulator, ScheduledNoiseVarianceFollowsThePhaseScale) {
 
 TEST(Vibration, RandomVibrationMeetsItsRmsAndSteppingMatchesDirectEvaluation) {
   const double g = testing::kG;
-  auto vibration = random_vibration({{20.0, 0.087 * g * g}, {2000.0, 0.087 * g * g}},
-                                    13.12 * g, 256, 42);
+  auto vibration =
+      random_vibration({{20.0, 0.087 * g * g}, {2000.0, 0.087 * g * g}}, 13.12 * g, 256, 42);
   EXPECT_NEAR(vibration.rms_mps2(), 13.12 * g, 1e-9);
   for (const auto& c : vibration.components()) {
     EXPECT_GE(c.omega_radps, 2.0 * std::numbers::pi * 20.0 * (1.0 - 1e-12));

@@ -26,15 +26,29 @@ EarthRadii earth_radii_derivative(double latitude_rad) {
 double normal_gravity(double latitude_rad, double height_m) {
   using namespace wgs84;
   const double s2 = std::sin(latitude_rad) * std::sin(latitude_rad);
-  const double k = (kSemiMinorAxis_m * kGravityPole_mps2) /
-                       (kSemiMajorAxis_m * kGravityEquator_mps2) -
-                   1.0;
-  const double g0 = kGravityEquator_mps2 * (1.0 + k * s2) / std::sqrt(1.0 - kEccentricitySquared * s2);
+  const double k =
+      (kSemiMinorAxis_m * kGravityPole_mps2) / (kSemiMajorAxis_m * kGravityEquator_mps2) - 1.0;
+  const double g0 =
+      kGravityEquator_mps2 * (1.0 + k * s2) / std::sqrt(1.0 - kEccentricitySquared * s2);
   const double m = kEarthRate_radps * kEarthRate_radps * kSemiMajorAxis_m * kSemiMajorAxis_m *
                    kSemiMinorAxis_m / kGm_m3ps2;
   const double a = kSemiMajorAxis_m;
   return g0 * (1.0 - 2.0 / a * (1.0 + kFlattening + m - 2.0 * kFlattening * s2) * height_m +
                3.0 * height_m * height_m / (a * a));
+}
+
+double normal_gravity_height_gradient(double latitude_rad, double height_m) {
+  using namespace wgs84;
+  const double s2 = std::sin(latitude_rad) * std::sin(latitude_rad);
+  const double k =
+      (kSemiMinorAxis_m * kGravityPole_mps2) / (kSemiMajorAxis_m * kGravityEquator_mps2) - 1.0;
+  const double g0 =
+      kGravityEquator_mps2 * (1.0 + k * s2) / std::sqrt(1.0 - kEccentricitySquared * s2);
+  const double m = kEarthRate_radps * kEarthRate_radps * kSemiMajorAxis_m * kSemiMajorAxis_m *
+                   kSemiMinorAxis_m / kGm_m3ps2;
+  const double a = kSemiMajorAxis_m;
+  return g0 *
+         (-2.0 / a * (1.0 + kFlattening + m - 2.0 * kFlattening * s2) + 6.0 * height_m / (a * a));
 }
 
 Eigen::Vector3d gravity_n(double latitude_rad, double height_m) {

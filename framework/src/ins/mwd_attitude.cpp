@@ -36,7 +36,7 @@ double wrap_two_pi(double angle_rad) {
   double wrapped = std::fmod(angle_rad, kTwoPi);
   if (wrapped < 0.0) wrapped += kTwoPi;
   if (wrapped >= kTwoPi) wrapped = 0.0;  // fmod of a tiny negative rounds up to 2 pi
-  return wrapped + 0.0;                   // -0 becomes +0
+  return wrapped + 0.0;                  // -0 becomes +0
 }
 
 Eigen::Matrix3d dcm_from_mwd(const MwdAttitude& attitude) {
@@ -78,8 +78,9 @@ Eigen::Vector3d mwd_angular_velocity_b(const MwdAttitude& attitude, double incli
   const Eigen::Matrix3d r_tf_t = rotation_z(attitude.toolface_rad).transpose();
   const Eigen::Matrix3d c0_t = vertical_reference().transpose();
   const Eigen::Matrix3d r_i_t = rotation_x(attitude.inclination_rad).transpose();
-  return r_tf_t * c0_t * (r_i_t * Eigen::Vector3d::UnitZ() * (-azimuth_rate_radps) +
-                          Eigen::Vector3d::UnitX() * inclination_rate_radps) +
+  return r_tf_t * c0_t *
+             (r_i_t * Eigen::Vector3d::UnitZ() * (-azimuth_rate_radps) +
+              Eigen::Vector3d::UnitX() * inclination_rate_radps) +
          Eigen::Vector3d::UnitZ() * toolface_rate_radps;
 }
 

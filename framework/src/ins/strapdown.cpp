@@ -81,15 +81,13 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
   state_.height_m = old.height_m + v_average.z() * dt;
   const double h_average = 0.5 * (old.height_m + state_.height_m);
   const EarthRadii radii_old = earth_radii(old.latitude_rad);
-  state_.latitude_rad =
-      old.latitude_rad + v_average.y() / (radii_old.meridian_m + h_average) * dt;
+  state_.latitude_rad = old.latitude_rad + v_average.y() / (radii_old.meridian_m + h_average) * dt;
   const double lat_average = 0.5 * (old.latitude_rad + state_.latitude_rad);
   const EarthRadii radii = earth_radii(lat_average);
   state_.latitude_rad = old.latitude_rad + v_average.y() / (radii.meridian_m + h_average) * dt;
-  state_.longitude_rad = old.longitude_rad + v_average.x() /
-                                                 ((radii.transverse_m + h_average) *
-                                                  std::cos(lat_average)) *
-                                                 dt;
+  state_.longitude_rad =
+      old.longitude_rad +
+      v_average.x() / ((radii.transverse_m + h_average) * std::cos(lat_average)) * dt;
 
   // Attitude with the Earth and transport rates at the (now known) mid-interval state.
   Eigen::Vector3d phi;
@@ -104,11 +102,10 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
     phi = dtheta + dtheta_prev.cross(dtheta) / 12.0;  // two-sample form
   }
   const double lat_new_mid = 0.5 * (old.latitude_rad + state_.latitude_rad);
-  const Eigen::Vector3d zeta = (earth_rate_n(lat_new_mid) +
-                                transport_rate_n(lat_new_mid, h_average, v_average)) *
-                               dt;
-  state_.q_nb = quaternion_from_rotation_vector(-zeta) * old.q_nb *
-                quaternion_from_rotation_vector(phi);
+  const Eigen::Vector3d zeta =
+      (earth_rate_n(lat_new_mid) + transport_rate_n(lat_new_mid, h_average, v_average)) * dt;
+  state_.q_nb =
+      quaternion_from_rotation_vector(-zeta) * old.q_nb * quaternion_from_rotation_vector(phi);
   state_.q_nb.normalize();
   state_.t_s = increment.t_s;
 

@@ -11,7 +11,10 @@
 //
 // Increments: Gauss-Legendre quadrature (3 nodes) on sub-intervals split at every ramp, segment
 // and episode boundary and short enough that the fastest local rate (rotation, vibration,
-// ramps) turns by at most 0.15 rad, which bounds the relative error by ~1e-11. Not split: the
+// ramps) turns by at most 0.15 rad, which bounds the relative error by ~1e-11. Earth rate, radii
+// and transport-rate factors are taken once per sub-interval at its midpoint (they change by
+// < 1e-9 relative across it and their linear change integrates exactly); gravity follows each
+// node's height through its gradient. Not split: the
 // two curvature steps of the path (kickoff and end of build); the single interval that crosses
 // one carries an error of about |kappa| ROP dt in its angle increment (~1e-9 rad).
 
@@ -73,6 +76,8 @@ DrillingMotion::DrillingMotion(const ScenarioConfig& config)
     : config_(*config.drilling), site_(config.site) {
   const WellPathConfig& well = config_.well;
   build_end_md_m_ = well.kickoff_md_m + well.target_inclination_rad / well.build_rate_rad_per_m;
+  sin_azimuth_ = std::sin(well.azimuth_rad);
+  cos_azimuth_ = std::cos(well.azimuth_rad);
   const EarthRadii radii = earth_radii(site_.latitude_rad);
   meridian0_plus_h_ = radii.meridian_m + site_.height_m;
   transverse0_plus_h_cos_ = (radii.transverse_m + site_.height_m) * std::cos(site_.latitude_rad);
@@ -103,8 +108,8 @@ DrillingMotion::DrillingMotion(const ScenarioConfig& config)
   }
   for (const auto& episode : config_.vibration_episodes) {
     const double ramp = episode_ramp(episode, config_.ramp_s);
-    for (double b : {episode.start_s, episode.start_s + ramp, episode.end_s - ramp,
-                     episode.end_s}) {
+    for (double b :
+         {episode.start_s, episode.start_s + ramp, episode.end_s - ramp, episode.end_s}) {
       breakpoints_.push_back(b);
     }
   }
@@ -156,8 +161,7 @@ DrillingMotion::DrillingMotion(const ScenarioConfig& config)
 const DrillingMotion::Segment& DrillingMotion::segment_at(double t_s) const {
   std::size_t i = std::min(segment_cursor_, segments_.size() - 1);
   if (t_s >= segments_[i].start_s && t_s < segments_[i].end_s) return segments_[i];
-  if (i + 1 < segments_.size() && t_s >= segments_[i + 1].start_s &&
-      t_s < segments_[i + 1].end_s) {
+  if (i + 1 < segments_.size() && t_s >= segments_[i + 1].start_s && t_s < segments_[i + 1].end_s) {
     segment_cursor_ = i + 1;
     return segments_[i + 1];
   }
@@ -196,7 +200,25 @@ void DrillingMotion::profile(double tau, double duration, double& position, doub
   }
 }
 
+DrillingMotion::EarthFactors DrillingMotion::earth_factors(double latitude_rad, double height_m) {
+  EarthFactors f;
+  f.sin_lat = std::sin(latitude_rad);
+  f.cos_lat = std::cos(latitude_rad);
+  f.height_m = height_m;
+  f.radii = earth_radii(latitude_rad);
+  f.radii_rate = earth_radii_derivative(latitude_rad);
+  f.omega_ie_n = earth_rate_n(latitude_rad);
+  f.gravity_mps2 = normal_gravity(latitude_rad, height_m);
+  f.gravity_per_height = normal_gravity_height_gradient(latitude_rad, height_m);
+  return f;
+}
+
 DrillingMotion::Kinematics DrillingMotion::kinematics(double t_s) const {
+  return kinematics(t_s, nullptr);
+}
+
+DrillingMotion::Kinematics DrillingMotion::kinematics(double t_s, const EarthFactors* earth,
+                                                      EarthFactors* computed) const {
   const Segment& segment = segment_at(t_s);
   double md = segment.start_md_m;
   double md_rate = 0.0;
@@ -226,8 +248,8 @@ DrillingMotion::Kinematics DrillingMotion::kinematics(double t_s) const {
 
   // Path point at md: local offsets p, tangent, high side, inclination, curvature.
   const WellPathConfig& well = config_.well;
-  const double sin_a = std::sin(well.azimuth_rad);
-  const double cos_a = std::cos(well.azimuth_rad);
+  const double sin_a = sin_azimuth_;
+  const double cos_a = cos_azimuth_;
   double inclination = 0.0;
   double curvature = 0.0;
   Eigen::Vector3d p;
@@ -245,8 +267,8 @@ DrillingMotion::Kinematics DrillingMotion::kinematics(double t_s) const {
       curvature = well.build_rate_rad_per_m;
     } else {
       const double hold = md - build_end_md_m_;
-      p += hold * Eigen::Vector3d(std::sin(theta) * sin_a, std::sin(theta) * cos_a,
-                                  -std::cos(theta));
+      p += hold *
+           Eigen::Vector3d(std::sin(theta) * sin_a, std::sin(theta) * cos_a, -std::cos(theta));
     }
   }
   const double sin_i = std::sin(inclination);
@@ -254,19 +276,23 @@ DrillingMotion::Kinematics DrillingMotion::kinematics(double t_s) const {
   const Eigen::Vector3d tangent(sin_i * sin_a, sin_i * cos_a, -cos_i);
   const Eigen::Vector3d high_side(cos_i * sin_a, cos_i * cos_a, sin_i);
   const Eigen::Vector3d p_dot = tangent * md_rate;
-  const Eigen::Vector3d p_ddot = tangent * md_acceleration + high_side * (curvature * md_rate *
-                                                                          md_rate);
+  const Eigen::Vector3d p_ddot =
+      tangent * md_acceleration + high_side * (curvature * md_rate * md_rate);
 
   // Geodetic position and the exact derivatives of v_E, v_N, v_U.
   k.latitude_rad = site_.latitude_rad + p.y() / meridian0_plus_h_;
   k.longitude_rad = site_.longitude_rad + p.x() / transverse0_plus_h_cos_;
   k.height_m = site_.height_m + p.z();
-  const EarthRadii radii = earth_radii(k.latitude_rad);
-  const EarthRadii radii_rate = earth_radii_derivative(k.latitude_rad);
+  const EarthFactors own =
+      earth == nullptr ? earth_factors(k.latitude_rad, k.height_m) : EarthFactors{};
+  const EarthFactors& e = earth == nullptr ? own : *earth;
+  if (computed != nullptr && earth == nullptr) *computed = own;
+  const EarthRadii& radii = e.radii;
+  const EarthRadii& radii_rate = e.radii_rate;
   const double lat_rate = p_dot.y() / meridian0_plus_h_;
   const double h_rate = p_dot.z();
-  const double sin_lat = std::sin(k.latitude_rad);
-  const double cos_lat = std::cos(k.latitude_rad);
+  const double sin_lat = e.sin_lat;
+  const double cos_lat = e.cos_lat;
   const double d_east = (radii.transverse_m + k.height_m) * cos_lat / transverse0_plus_h_cos_;
   const double d_north = (radii.meridian_m + k.height_m) / meridian0_plus_h_;
   const double d_east_rate = ((radii_rate.transverse_m * lat_rate + h_rate) * cos_lat -
@@ -277,11 +303,18 @@ DrillingMotion::Kinematics DrillingMotion::kinematics(double t_s) const {
   k.a_n = Eigen::Vector3d(d_east_rate * p_dot.x() + d_east * p_ddot.x(),
                           d_north_rate * p_dot.y() + d_north * p_ddot.y(), p_ddot.z());
 
-  // Attitude: C_nb = R_z(-A) R_x(I) C_0 R_z(TF); omega_nb_b = (dI sin TF, dI cos TF, dTF).
-  k.C_nb = dcm_from_mwd({inclination, toolface, well.azimuth_rad});
+  // Attitude: C_nb = R_z(-A) R_x(I) C_0 R_z(TF) (ins/mwd_attitude.hpp), written with the
+  // tangent z_b, the high side h and r = z_b x h = (cos A, -sin A, 0):
+  // x_b = cos TF h + sin TF r, y_b = cos TF r - sin TF h; omega_nb_b = (dI sin TF, dI cos TF, dTF).
+  const double sin_tf = std::sin(toolface);
+  const double cos_tf = std::cos(toolface);
+  const Eigen::Vector3d right(cos_a, -sin_a, 0.0);
+  k.C_nb.col(0) = cos_tf * high_side + sin_tf * right;
+  k.C_nb.col(1) = cos_tf * right - sin_tf * high_side;
+  k.C_nb.col(2) = tangent;
   const double inclination_rate = curvature * md_rate;
-  k.omega_nb_b = Eigen::Vector3d(inclination_rate * std::sin(toolface),
-                                 inclination_rate * std::cos(toolface), toolface_rate);
+  k.omega_nb_b =
+      Eigen::Vector3d(inclination_rate * sin_tf, inclination_rate * cos_tf, toolface_rate);
   return k;
 }
 
@@ -303,8 +336,8 @@ TruthSample DrillingMotion::truth(double t_s) {
 }
 
 double DrillingMotion::local_rate_bound(double t0_s, double t1_s) const {
-  double rate = std::abs(config_.rotation_radps) + (config_.ramp_s > 0.0 ? kPi / config_.ramp_s
-                                                                        : 0.0);
+  double rate =
+      std::abs(config_.rotation_radps) + (config_.ramp_s > 0.0 ? kPi / config_.ramp_s : 0.0);
   for (const auto& e : config_.vibration_episodes) {
     if (t1_s > e.start_s && t0_s < e.end_s) {
       rate += 2.0 * kPi * e.frequency_hz + kPi / episode_ramp(e, config_.ramp_s);
@@ -330,8 +363,8 @@ void DrillingMotion::integrate(double t0_s, double t1_s, Eigen::Vector3d& delta_
   double a = t0_s;
   std::size_t next = breakpoint_cursor_;
   while (a < t1_s) {
-    const double b = next < breakpoints_.size() && breakpoints_[next] < t1_s ? breakpoints_[next]
-                                                                             : t1_s;
+    const double b =
+        next < breakpoints_.size() && breakpoints_[next] < t1_s ? breakpoints_[next] : t1_s;
     ++next;
     if (b <= a) continue;
     const int pieces = std::max(
@@ -339,15 +372,24 @@ void DrillingMotion::integrate(double t0_s, double t1_s, Eigen::Vector3d& delta_
     const double h = (b - a) / pieces;
     for (int piece = 0; piece < pieces; ++piece) {
       const double mid = a + (piece + 0.5) * h;
+      EarthFactors earth;
+      const Kinematics center = kinematics(mid, nullptr, &earth);
+      const double inverse_meridian = 1.0 / (earth.radii.meridian_m + earth.height_m);
+      const double inverse_transverse = 1.0 / (earth.radii.transverse_m + earth.height_m);
+      const double tan_lat = earth.sin_lat / earth.cos_lat;
       for (int node = 0; node < 3; ++node) {
-        const Kinematics k = kinematics(mid + 0.5 * h * kNodes[node]);
-        const Eigen::Vector3d omega_ie_n = earth_rate_n(k.latitude_rad);
-        const Eigen::Vector3d omega_en_n = transport_rate_n(k.latitude_rad, k.height_m, k.v_n);
+        const Kinematics k = node == 1 ? center : kinematics(mid + 0.5 * h * kNodes[node], &earth);
+        const Eigen::Vector3d omega_en_n(-k.v_n.y() * inverse_meridian,
+                                         k.v_n.x() * inverse_transverse,
+                                         k.v_n.x() * tan_lat * inverse_transverse);
+        // Gravity follows the node's height (vibration moves it by millimetres).
+        const Eigen::Vector3d g_n(
+            0.0, 0.0,
+            -(earth.gravity_mps2 + earth.gravity_per_height * (k.height_m - earth.height_m)));
         const Eigen::Matrix3d C_bn = k.C_nb.transpose();
-        const Eigen::Vector3d omega_ib_b = k.omega_nb_b + C_bn * (omega_ie_n + omega_en_n);
+        const Eigen::Vector3d omega_ib_b = k.omega_nb_b + C_bn * (earth.omega_ie_n + omega_en_n);
         const Eigen::Vector3d f_b =
-            C_bn * (k.a_n + (2.0 * omega_ie_n + omega_en_n).cross(k.v_n) -
-                    gravity_n(k.latitude_rad, k.height_m));
+            C_bn * (k.a_n + (2.0 * earth.omega_ie_n + omega_en_n).cross(k.v_n) - g_n);
         const double w = 0.5 * h * kWeights[node];
         delta_theta_b += w * omega_ib_b;
         delta_v_b += w * f_b;
@@ -360,12 +402,12 @@ void DrillingMotion::integrate(double t0_s, double t1_s, Eigen::Vector3d& delta_
 nlohmann::json DrillingMotion::describe() const {
   nlohmann::json stands = nlohmann::json::array();
   for (const auto& s : segments_) {
-    stands.push_back({{"start_s", s.start_s},
-                      {"end_s", s.end_s},
-                      {"kind", s.drilling ? "drilling" : (s.start_s == 0.0 ? "static"
-                                                                           : "connection")},
-                      {"start_md_m", s.start_md_m},
-                      {"start_toolface_rad", s.start_toolface_rad}});
+    stands.push_back(
+        {{"start_s", s.start_s},
+         {"end_s", s.end_s},
+         {"kind", s.drilling ? "drilling" : (s.start_s == 0.0 ? "static" : "connection")},
+         {"start_md_m", s.start_md_m},
+         {"start_toolface_rad", s.start_toolface_rad}});
   }
   return {{"model",
            "drilling: well path vertical / circular build / hold in the plane of the well "

@@ -4,6 +4,7 @@
 #include <string_view>
 #include <vector>
 
+#include "stochnav/ins/earth.hpp"
 #include "stochnav/scenario/true_motion.hpp"
 #include "stochnav/scenario/vibration.hpp"
 
@@ -45,7 +46,7 @@ class VibrationTableMotion final : public TrueMotion {
   Eigen::Vector3d omega_ie_n_;
   double gravity0_ = 0.0;
   double gravity_per_height_ = 0.0;
-  Eigen::Vector3d gyro_static_b_, gyro_per_displacement_b_;
+  Eigen::Vector3d gyro_static_b_, gyro_per_displacement_b_, gyro_per_displacement_integral_b_;
   Eigen::Vector3d accel_static_b_, accel_per_velocity_change_b_, accel_per_displacement_b_,
       accel_per_speed_squared_b_, accel_per_displacement_integral_b_;
   std::vector<TablePhase> table_phases_;
@@ -83,6 +84,24 @@ class DrillingMotion final : public TrueMotion {
   };
   Kinematics kinematics(double t_s) const;
 
+  /// Earth-model values at one position, shared by the nodes of a quadrature sub-interval:
+  /// over 10 ms they change by < 1e-10 relative, and their linear change integrates exactly.
+  struct EarthFactors {
+    double sin_lat = 0.0;
+    double cos_lat = 0.0;
+    double height_m = 0.0;
+    EarthRadii radii{};
+    EarthRadii radii_rate{};
+    Eigen::Vector3d omega_ie_n = Eigen::Vector3d::Zero();
+    double gravity_mps2 = 0.0;
+    double gravity_per_height = 0.0;  ///< d normal_gravity / dh (1/s^2)
+  };
+  static EarthFactors earth_factors(double latitude_rad, double height_m);
+  /// With `earth` the Earth factors are taken from it; without, they are computed at the point
+  /// (and copied to `computed` when given).
+  Kinematics kinematics(double t_s, const EarthFactors* earth,
+                        EarthFactors* computed = nullptr) const;
+
  private:
   struct Segment {
     double start_s = 0.0;
@@ -100,6 +119,8 @@ class DrillingMotion final : public TrueMotion {
   DrillingConfig config_;
   SiteConfig site_;
   double build_end_md_m_ = 0.0;
+  double sin_azimuth_ = 0.0;
+  double cos_azimuth_ = 0.0;
   double meridian0_plus_h_ = 0.0;
   double transverse0_plus_h_cos_ = 0.0;
   double drill_segment_s_ = 0.0;

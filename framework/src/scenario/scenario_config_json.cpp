@@ -16,15 +16,15 @@ namespace {
 using nlohmann::json;
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kStandardGravity = 9.80665;     // m/s^2 per g
-constexpr double kDegPerHour = kDeg / 3600.0;    // rad/s per deg/h
+constexpr double kStandardGravity = 9.80665;   // m/s^2 per g
+constexpr double kDegPerHour = kDeg / 3600.0;  // rad/s per deg/h
 constexpr double kMilliG = 1e-3 * kStandardGravity;
-constexpr double kMetrePerHour = 1.0 / 3600.0;   // m/s per m/h
+constexpr double kMetrePerHour = 1.0 / 3600.0;  // m/s per m/h
 
 [[noreturn]] void fail(const std::string& pointer, const std::string& problem,
                        std::string_view expected) {
-  throw ConfigError(fmt::format("{}: {}; expected {}", pointer.empty() ? "(root)" : pointer,
-                                problem, expected));
+  throw ConfigError(
+      fmt::format("{}: {}; expected {}", pointer.empty() ? "(root)" : pointer, problem, expected));
 }
 
 std::string describe_type(const json& value) {
@@ -173,9 +173,10 @@ SensorErrorConfig parse_sensor(const json& value, const std::string& pointer, bo
   } else {
     for (auto& m : sensor.scheduled_noise) m = NoiseModel{sensor.noise[0].unit, 100.0, {}};
   }
-  const std::string triple = gyro ? "a bias in deg/h: a number or [x, y, z]"
-                                  : "a bias in mg: a number or [x, y, z]";
-  if (r.has(bias_key)) sensor.constant_bias = axis_triple(r.get(bias_key), r.at(bias_key), triple, factor);
+  const std::string triple =
+      gyro ? "a bias in deg/h: a number or [x, y, z]" : "a bias in mg: a number or [x, y, z]";
+  if (r.has(bias_key))
+    sensor.constant_bias = axis_triple(r.get(bias_key), r.at(bias_key), triple, factor);
   sensor.turn_on_bias_sigma =
       r.number(sigma_key, gyro ? "a 1-sigma in deg/h >= 0" : "a 1-sigma in mg >= 0",
                Range::kNonNegative, 0.0) *
@@ -224,8 +225,8 @@ RandomVibrationConfig parse_random(const json& value, const std::string& pointer
     }
     random.psd.push_back({f, s * kStandardGravity * kStandardGravity});
   }
-  random.rms_mps2 = r.number("rms_g", "an RMS acceleration in g > 0", Range::kPositive) *
-                    kStandardGravity;
+  random.rms_mps2 =
+      r.number("rms_g", "an RMS acceleration in g > 0", Range::kPositive) * kStandardGravity;
   const double components =
       r.number("components", "an integer number of sinusoids, 1..4096", Range::kPositive, 128.0);
   if (components != std::floor(components) || components > 4096) {
@@ -272,9 +273,8 @@ VibrationTableConfig parse_table(const json& value, const std::string& pointer) 
     } else {
       fail(p.at("motion"), fmt::format("is \"{}\"", motion), "\"static\", \"sine\" or \"random\"");
     }
-    phase.gyro_noise_scale =
-        p.number("gyro_noise_scale", "a factor >= 0 on the scheduled gyro noise",
-                 Range::kNonNegative, 1.0);
+    phase.gyro_noise_scale = p.number(
+        "gyro_noise_scale", "a factor >= 0 on the scheduled gyro noise", Range::kNonNegative, 1.0);
     phase.accel_noise_scale =
         p.number("accel_noise_scale", "a factor >= 0 on the scheduled accelerometer noise",
                  Range::kNonNegative, 1.0);
@@ -305,12 +305,13 @@ DrillingConfig parse_drilling(const json& value, const std::string& pointer) {
     ObjectReader w(r.get("well"), r.at("well"),
                    "{\"kickoff_md_m\": m, \"build_rate_deg_per_30m\": x > 0, "
                    "\"target_inclination_deg\": 0 < x <= 90, \"azimuth_deg\": x}");
-    d.well.kickoff_md_m = w.number("kickoff_md_m", "a measured depth in m >= 0", Range::kNonNegative);
+    d.well.kickoff_md_m =
+        w.number("kickoff_md_m", "a measured depth in m >= 0", Range::kNonNegative);
     d.well.build_rate_rad_per_m =
         w.number("build_rate_deg_per_30m", "a build rate in deg/30 m > 0", Range::kPositive) *
         kDeg / 30.0;
-    const double target = w.number("target_inclination_deg", "an inclination in deg, 0 < x <= 90",
-                                   Range::kPositive);
+    const double target =
+        w.number("target_inclination_deg", "an inclination in deg, 0 < x <= 90", Range::kPositive);
     if (target > 90.0) {
       fail(w.at("target_inclination_deg"), fmt::format("is {}", target),
            "an inclination in deg, 0 < x <= 90");
@@ -323,11 +324,11 @@ DrillingConfig parse_drilling(const json& value, const std::string& pointer) {
   d.duration_s = r.number("duration_s", "a duration in s > 0", Range::kPositive);
   d.initial_static_s =
       r.number("initial_static_s", "a duration in s >= 0", Range::kNonNegative, 0.0);
-  d.rop_mps = r.number("rop_mph", "a rate of penetration in m/h > 0", Range::kPositive) *
-              kMetrePerHour;
-  d.rotation_radps = r.number("rotation_rpm", "a rotation rate in rpm (0 = sliding)", Range::kAny,
-                              0.0) *
-                     2.0 * std::numbers::pi / 60.0;
+  d.rop_mps =
+      r.number("rop_mph", "a rate of penetration in m/h > 0", Range::kPositive) * kMetrePerHour;
+  d.rotation_radps =
+      r.number("rotation_rpm", "a rotation rate in rpm (0 = sliding)", Range::kAny, 0.0) * 2.0 *
+      std::numbers::pi / 60.0;
   d.initial_toolface_rad =
       r.number("initial_toolface_deg", "a toolface in deg", Range::kAny, 0.0) * kDeg;
   d.stand_length_m = r.number("stand_length_m", "a stand length in m > 0", Range::kPositive);
@@ -426,9 +427,8 @@ ScenarioConfig parse(const json& value) {
     } else {
       fail(imu.at("output"), fmt::format("is \"{}\"", output), "\"increments\" or \"rates\"");
     }
-    config.imu.truth_rate_hz =
-        imu.number("truth_rate_hz", "a rate in Hz > 0 dividing rate_hz", Range::kPositive,
-                   config.imu.rate_hz);
+    config.imu.truth_rate_hz = imu.number("truth_rate_hz", "a rate in Hz > 0 dividing rate_hz",
+                                          Range::kPositive, config.imu.rate_hz);
     check_rate_divides(imu, "truth_rate_hz", config.imu.truth_rate_hz, config.imu.rate_hz);
     config.imu.aid_rate_hz =
         imu.number("aid_rate_hz", "a rate in Hz > 0 dividing rate_hz", Range::kPositive, 1.0);
@@ -475,8 +475,9 @@ ScenarioConfig parse(const json& value) {
   r.finish();
   const double epochs = scenario_duration_s(config) * config.imu.rate_hz;
   if (epochs < 2.0 || epochs > 1e12) {
-    fail(config.kind == ScenarioKind::kDrilling ? "/drilling/duration_s" : "/vibration_table/phases",
-         fmt::format("gives {} IMU epochs", epochs), "a duration of at least 2 epochs");
+    fail(
+        config.kind == ScenarioKind::kDrilling ? "/drilling/duration_s" : "/vibration_table/phases",
+        fmt::format("gives {} IMU epochs", epochs), "a duration of at least 2 epochs");
   }
   return config;
 }
@@ -520,7 +521,8 @@ std::string_view motion_name(TableMotion motion) {
 }  // namespace
 
 double scenario_duration_s(const ScenarioConfig& config) {
-  if (config.kind == ScenarioKind::kDrilling) return config.drilling ? config.drilling->duration_s : 0.0;
+  if (config.kind == ScenarioKind::kDrilling)
+    return config.drilling ? config.drilling->duration_s : 0.0;
   double total = 0.0;
   if (config.vibration_table) {
     for (const auto& phase : config.vibration_table->phases) total += phase.duration_s;
@@ -594,26 +596,25 @@ json to_json(const ScenarioConfig& config) {
     const auto scales = [](const NoiseScales& s) {
       return json{{"gyro", s.gyro}, {"accel", s.accel}};
     };
-    out["drilling"] = {
-        {"well",
-         {{"kickoff_md_m", d.well.kickoff_md_m},
-          {"build_rate_deg_per_30m", d.well.build_rate_rad_per_m * 30.0 / kDeg},
-          {"target_inclination_deg", d.well.target_inclination_rad / kDeg},
-          {"azimuth_deg", d.well.azimuth_rad / kDeg}}},
-        {"start_md_m", d.start_md_m},
-        {"duration_s", d.duration_s},
-        {"initial_static_s", d.initial_static_s},
-        {"rop_mph", d.rop_mps / kMetrePerHour},
-        {"rotation_rpm", d.rotation_radps * 60.0 / (2.0 * std::numbers::pi)},
-        {"initial_toolface_deg", d.initial_toolface_rad / kDeg},
-        {"stand_length_m", d.stand_length_m},
-        {"connection_s", d.connection_s},
-        {"ramp_s", d.ramp_s},
-        {"vibration_episodes", episodes},
-        {"noise_scales",
-         {{"static", scales(d.static_noise)},
-          {"drilling", scales(d.drilling_noise)},
-          {"vibration", scales(d.vibration_noise)}}}};
+    out["drilling"] = {{"well",
+                        {{"kickoff_md_m", d.well.kickoff_md_m},
+                         {"build_rate_deg_per_30m", d.well.build_rate_rad_per_m * 30.0 / kDeg},
+                         {"target_inclination_deg", d.well.target_inclination_rad / kDeg},
+                         {"azimuth_deg", d.well.azimuth_rad / kDeg}}},
+                       {"start_md_m", d.start_md_m},
+                       {"duration_s", d.duration_s},
+                       {"initial_static_s", d.initial_static_s},
+                       {"rop_mph", d.rop_mps / kMetrePerHour},
+                       {"rotation_rpm", d.rotation_radps * 60.0 / (2.0 * std::numbers::pi)},
+                       {"initial_toolface_deg", d.initial_toolface_rad / kDeg},
+                       {"stand_length_m", d.stand_length_m},
+                       {"connection_s", d.connection_s},
+                       {"ramp_s", d.ramp_s},
+                       {"vibration_episodes", episodes},
+                       {"noise_scales",
+                        {{"static", scales(d.static_noise)},
+                         {"drilling", scales(d.drilling_noise)},
+                         {"vibration", scales(d.vibration_noise)}}}};
   }
   return out;
 }

@@ -125,7 +125,7 @@ void ScenarioSimulator::refill_noise() {
 
 TruthSample ScenarioSimulator::initial_truth() { return motion_->truth(0.0); }
 
-void ScenarioSimulator::next(ScenarioEpoch& epoch) {
+void ScenarioSimulator::next(ScenarioEpoch& epoch, bool with_truth) {
   const std::uint64_t k = next_epoch_++;
   const double t0 = static_cast<double>(k - 1) / rate_hz_;
   const double t1 = static_cast<double>(k) / rate_hz_;
@@ -138,8 +138,8 @@ void ScenarioSimulator::next(ScenarioEpoch& epoch) {
   if (sensor_errors_) {
     if (block_used_ == kBlock) refill_noise();
     for (std::size_t axis = 0; axis < 6; ++axis) {
-      const double ideal = axis < 3 ? epoch.ideal.delta_theta_b[axis]
-                                    : epoch.ideal.delta_v_b[axis - 3];
+      const double ideal =
+          axis < 3 ? epoch.ideal.delta_theta_b[axis] : epoch.ideal.delta_v_b[axis - 3];
       const double noise = noise_block_[axis][block_used_];
       const double measured = (1.0 + scale_factor_[axis]) * ideal + (bias_[axis] + noise) * dt;
       if (axis < 3) {
@@ -153,7 +153,7 @@ void ScenarioSimulator::next(ScenarioEpoch& epoch) {
     epoch.measured.delta_theta_b = epoch.ideal.delta_theta_b;
     epoch.measured.delta_v_b = epoch.ideal.delta_v_b;
   }
-  epoch.truth = motion_->truth(t1);
+  if (with_truth) epoch.truth = motion_->truth(t1);
 }
 
 nlohmann::json ScenarioSimulator::noise_schedule_json() const {

@@ -32,8 +32,9 @@ class CsvStream {
       : pending_(path), display_(path.string()) {
     file_ = std::fopen(pending_.temporary_path().c_str(), "wb");
     if (file_ == nullptr) {
-      throw InputError(display_ + ": cannot create the file; check that the output folder is "
-                                  "writable");
+      throw InputError(display_ +
+                       ": cannot create the file; check that the output folder is "
+                       "writable");
     }
     buffer_.append(header);
     buffer_.push_back('\n');
@@ -49,9 +50,11 @@ class CsvStream {
     if (buffer_.size() > (1u << 20)) flush();
   }
   void flush() {
-    if (buffer_.size() > 0 && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
-      throw InputError(display_ + ": write failed (disk full?); free space or choose another "
-                                  "--out folder");
+    if (buffer_.size() > 0 &&
+        std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
+      throw InputError(display_ +
+                       ": write failed (disk full?); free space or choose another "
+                       "--out folder");
     }
     buffer_.clear();
   }
@@ -79,7 +82,8 @@ class ProgressBar {
     const auto now = std::chrono::steady_clock::now();
     if (done < total && now - last_ < std::chrono::milliseconds(200)) return;
     last_ = now;
-    const double fraction = total == 0 ? 1.0 : static_cast<double>(done) / static_cast<double>(total);
+    const double fraction =
+        total == 0 ? 1.0 : static_cast<double>(done) / static_cast<double>(total);
     constexpr int kWidth = 40;
     const int filled = static_cast<int>(fraction * kWidth);
     std::fprintf(stderr, "\rsimulate scenario [%s%s] %5.1f%%", std::string(filled, '#').c_str(),
@@ -97,9 +101,10 @@ class ProgressBar {
 
 void append_truth(fmt::memory_buffer& out, const TruthSample& truth) {
   const MwdAttitude attitude = mwd_from_dcm(truth.C_nb);
+  // "+ 0.0" turns -0 into 0.
   fmt::format_to(std::back_inserter(out), "{},{},{},{},{},{},{},{},{},{}\n", truth.t_s,
                  truth.latitude_rad * kRadToDeg, truth.longitude_rad * kRadToDeg, truth.height_m,
-                 truth.v_n.x(), truth.v_n.y(), truth.v_n.z(),
+                 truth.v_n.x() + 0.0, truth.v_n.y() + 0.0, truth.v_n.z() + 0.0,
                  attitude.inclination_rad * kRadToDeg, attitude.toolface_rad * kRadToDeg,
                  attitude.azimuth_rad * kRadToDeg);
 }
@@ -109,15 +114,15 @@ void append_truth(fmt::memory_buffer& out, const TruthSample& truth) {
 ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
                                           const ScenarioOutputOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  ScenarioConfig run_config = config;
+  run_config.seed = options.seed;
+  ScenarioSimulator simulator(run_config, options.seed);  // configuration errors first
   std::error_code error;
   std::filesystem::create_directories(options.out_dir, error);
   if (error || !std::filesystem::is_directory(options.out_dir)) {
     throw InputError(options.out_dir.string() + ": cannot create the output folder (" +
                      error.message() + "); give a writable --out folder");
   }
-  ScenarioConfig run_config = config;
-  run_config.seed = options.seed;
-  ScenarioSimulator simulator(run_config, options.seed);
 
   // Column names say what the numbers are (experiment/navigation_files.hpp reads both forms).
   CsvStream imu(options.out_dir / "imu.csv",
@@ -152,19 +157,21 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
   ScenarioEpoch epoch;
   const std::uint64_t count = simulator.epoch_count();
   for (std::uint64_t k = 1; k <= count; ++k) {
-    simulator.next(epoch);
+    const bool truth_row = k % truth_every == 0;
+    const bool aid_row = k % aid_every == 0;
+    simulator.next(epoch, truth_row || aid_row);
     const ImuIncrement& m = epoch.measured;
     const double factor = rates ? 1.0 / m.dt_s : 1.0;
     fmt::format_to(std::back_inserter(imu.buffer()), "{},{},{},{},{},{},{}\n", m.t_s,
                    m.delta_theta_b.x() * factor, m.delta_theta_b.y() * factor,
-                   m.delta_theta_b.z() * factor, m.delta_v_b.x() * factor,
-                   m.delta_v_b.y() * factor, m.delta_v_b.z() * factor);
+                   m.delta_theta_b.z() * factor, m.delta_v_b.x() * factor, m.delta_v_b.y() * factor,
+                   m.delta_v_b.z() * factor);
     imu.maybe_flush();
-    if (k % truth_every == 0) {
+    if (truth_row) {
       append_truth(truth.buffer(), epoch.truth);
       truth.maybe_flush();
     }
-    if (k % aid_every == 0) {
+    if (aid_row) {
       append_aid(epoch.truth);
       aids.maybe_flush();
     }
@@ -200,8 +207,8 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
          "true state at t: WGS-84 geodetic position, ellipsoidal height, ENU velocity, MWD "
          "attitude (near vertical: azimuth 0 and the gyro toolface)"}}},
       {"aids.csv",
-       {{"columns", {"t", "measured_depth_m", "rop_mph", "zupt", "measured_depth_true_m",
-                     "rop_true_mph"}},
+       {{"columns",
+         {"t", "measured_depth_m", "rop_mph", "zupt", "measured_depth_true_m", "rop_true_mph"}},
         {"units", {"s", "m", "m/h", "flag", "m", "m/h"}},
         {"meaning",
          "measured depth = true (1 + depth_scale_error) + N(0, depth_noise_m^2); ROP with "
@@ -255,8 +262,7 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
   scenario_json.commit();
   ScenarioRunSummary summary;
   summary.epochs = count;
-  summary.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
 

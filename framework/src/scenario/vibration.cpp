@@ -16,6 +16,7 @@ SumOfSinusoids::SumOfSinusoids(std::vector<SinusoidComponent> components)
   step_sin_.assign(n, 0.0);
   for (const auto& c : components_) {
     const double w = c.omega_radps;
+    amplitude_.push_back(c.amplitude_mps2);
     velocity_coef_.push_back(c.amplitude_mps2 / w);
     displacement_coef_.push_back(c.amplitude_mps2 / (w * w));
     integral_coef_.push_back(c.amplitude_mps2 / (w * w * w));
@@ -25,20 +26,24 @@ SumOfSinusoids::SumOfSinusoids(std::vector<SinusoidComponent> components)
 }
 
 SumOfSinusoids::Value SumOfSinusoids::evaluate(double tau_s) const {
-  Value value;
-  for (const auto& c : components_) {
-    const double angle = c.omega_radps * tau_s + c.phase_rad;
-    const double w = c.omega_radps;
+  double acceleration = 0.0;
+  double velocity = 0.0;
+  double displacement = 0.0;
+  double integral = 0.0;
+  for (std::size_t k = 0; k < components_.size(); ++k) {
+    const double angle = components_[k].omega_radps * tau_s + components_[k].phase_rad;
     const double cos_angle = std::cos(angle);
     const double sin_angle = std::sin(angle);
-    const double sin_phase = std::sin(c.phase_rad);
-    value.acceleration_mps2 += c.amplitude_mps2 * sin_angle;
-    value.velocity_mps -= c.amplitude_mps2 / w * cos_angle;
-    value.displacement_m -= c.amplitude_mps2 / (w * w) * (sin_angle - sin_phase);
-    value.displacement_integral_ms += c.amplitude_mps2 / (w * w * w) *
-                                          (cos_angle - std::cos(c.phase_rad)) +
-                                      c.amplitude_mps2 / (w * w) * sin_phase * tau_s;
+    acceleration += amplitude_[k] * sin_angle;
+    velocity += velocity_coef_[k] * cos_angle;
+    displacement += displacement_coef_[k] * sin_angle;
+    integral += integral_coef_[k] * cos_angle;
   }
+  Value value;
+  value.acceleration_mps2 = acceleration;
+  value.velocity_mps = -velocity;
+  value.displacement_m = displacement_offset_ - displacement;
+  value.displacement_integral_ms = integral - integral_offset_ + displacement_offset_ * tau_s;
   return value;
 }
 
@@ -59,7 +64,7 @@ SumOfSinusoids::Value SumOfSinusoids::from_phasors(double tau_s) const {
   double integral = 0.0;
   const std::size_t n = components_.size();
   for (std::size_t k = 0; k < n; ++k) {
-    acceleration += components_[k].amplitude_mps2 * sin_[k];
+    acceleration += amplitude_[k] * sin_[k];
     velocity += velocity_coef_[k] * cos_[k];
     displacement += displacement_coef_[k] * sin_[k];
     integral += integral_coef_[k] * cos_[k];
@@ -85,18 +90,53 @@ SumOfSinusoids::Value SumOfSinusoids::evaluate_stepping(double tau_s, double ste
   const bool next_grid_point =
       last_tau_s_ >= 0.0 && std::abs(tau_s - (last_tau_s_ + step_s_)) <= 1e-9 * step_s_;
   if (next_grid_point && steps_since_anchor_ < 4096) {
-    for (std::size_t k = 0; k < components_.size(); ++k) {
-      const double c = cos_[k] * step_cos_[k] - sin_[k] * step_sin_[k];
-      const double s = sin_[k] * step_cos_[k] + cos_[k] * step_sin_[k];
-      cos_[k] = c;
-      sin_[k] = s;
+    // One pass: rotate each phasor by w_k step and accumulate the four sums (four partial sums
+    // each, so the loop vectorises without reassociating a single accumulator).
+    const std::size_t n = components_.size();
+    double* c = cos_.data();
+    double* s = sin_.data();
+    const double* sc = step_cos_.data();
+    const double* ss = step_sin_.data();
+    double acceleration[4] = {0, 0, 0, 0};
+    double velocity[4] = {0, 0, 0, 0};
+    double displacement[4] = {0, 0, 0, 0};
+    double integral[4] = {0, 0, 0, 0};
+    std::size_t k = 0;
+    for (; k + 4 <= n; k += 4) {
+      for (std::size_t j = 0; j < 4; ++j) {
+        const double cn = c[k + j] * sc[k + j] - s[k + j] * ss[k + j];
+        const double sn = s[k + j] * sc[k + j] + c[k + j] * ss[k + j];
+        c[k + j] = cn;
+        s[k + j] = sn;
+        acceleration[j] += amplitude_[k + j] * sn;
+        velocity[j] += velocity_coef_[k + j] * cn;
+        displacement[j] += displacement_coef_[k + j] * sn;
+        integral[j] += integral_coef_[k + j] * cn;
+      }
     }
-    // The grid point tau0 + j step, not the caller's rounded tau, keeps phasor and time aligned.
+    for (; k < n; ++k) {
+      const double cn = c[k] * sc[k] - s[k] * ss[k];
+      const double sn = s[k] * sc[k] + c[k] * ss[k];
+      c[k] = cn;
+      s[k] = sn;
+      acceleration[0] += amplitude_[k] * sn;
+      velocity[0] += velocity_coef_[k] * cn;
+      displacement[0] += displacement_coef_[k] * sn;
+      integral[0] += integral_coef_[k] * cn;
+    }
     last_tau_s_ = tau_s;
     ++steps_since_anchor_;
-  } else {
-    anchor(tau_s);
+    Value value;
+    value.acceleration_mps2 =
+        (acceleration[0] + acceleration[1]) + (acceleration[2] + acceleration[3]);
+    value.velocity_mps = -((velocity[0] + velocity[1]) + (velocity[2] + velocity[3]));
+    value.displacement_m = displacement_offset_ - ((displacement[0] + displacement[1]) +
+                                                   (displacement[2] + displacement[3]));
+    value.displacement_integral_ms = ((integral[0] + integral[1]) + (integral[2] + integral[3])) -
+                                     integral_offset_ + displacement_offset_ * tau_s;
+    return value;
   }
+  anchor(tau_s);
   return from_phasors(tau_s);
 }
 
@@ -108,8 +148,8 @@ double SumOfSinusoids::rms_mps2() const {
 
 SumOfSinusoids sine_vibration(double frequency_hz, double amplitude_mps2) {
   // A sin(w tau + pi/2) = A cos(w tau): velocity (A/w) sin(w tau) starts at 0.
-  return SumOfSinusoids({{amplitude_mps2, 2.0 * std::numbers::pi * frequency_hz,
-                          0.5 * std::numbers::pi}});
+  return SumOfSinusoids(
+      {{amplitude_mps2, 2.0 * std::numbers::pi * frequency_hz, 0.5 * std::numbers::pi}});
 }
 
 namespace {
@@ -141,8 +181,8 @@ SumOfSinusoids random_vibration(const std::vector<std::array<double, 2>>& psd, d
     const double hi = std::exp(log_first + (k + 1) * log_width);
     const double f = std::exp(log_first + (k + random.uniform()) * log_width);
     const double amplitude = std::sqrt(2.0 * psd_at(psd, f) * (hi - lo));
-    parts.push_back({amplitude, 2.0 * std::numbers::pi * f,
-                     2.0 * std::numbers::pi * random.uniform()});
+    parts.push_back(
+        {amplitude, 2.0 * std::numbers::pi * f, 2.0 * std::numbers::pi * random.uniform()});
     power += 0.5 * amplitude * amplitude;
   }
   const double scale = power > 0.0 ? rms_mps2 / std::sqrt(power) : 0.0;

@@ -4,15 +4,15 @@
 // Truth: with u = C_nb e_x (the X axis in ENU) and s(t) the table displacement along X (s = 0 at
 // t = 0), the position is the site plus s u mapped with the radii at the site, v_n = u ds/dt,
 // and C_nb constant (the tool keeps its MWD angles relative to the local level). Increments:
-//   dtheta = C_bn [omega_ie_n dt + W u ds]
+//   dtheta = C_bn [omega_ie_n dt + (d omega_ie_n / ds) int s dt + W u ds]
 //   dv     = C_bn [u d(ds/dt) + 2 omega_ie_n x u ds + (W u x u) int (ds/dt)^2 dt
-//                  + (0, 0, g0 dt + dg/dh u_U int s dt)]
-// with W the linear map v_n -> omega_en_n at the site. All integrals of s and its derivatives are
-// closed forms; velocity steps where a vibration starts or stops land in the interval that holds
-// them, so truth and increments stay consistent. Neglected or approximated, each far below
-// 1e-9 of g and 1e-12 rad/s: int (ds/dt)^2 dt by the trapezoid rule (the term is < 2e-8 m/s^2),
-// the change of Earth rate and gravity with the millimetre displacement in latitude, and the
-// quadratic height term of gravity.
+//                  + (0, 0, g0 dt + (dg/ds) int s dt)]
+// with W the linear map v_n -> omega_en_n at the site and d/ds the first-order change with the
+// displacement's latitude and height. The integrals of s and its derivatives are closed forms;
+// velocity steps where a vibration starts or stops land in the interval that holds them, so truth
+// and increments stay consistent. Approximated: int (ds/dt)^2 dt by the trapezoid rule (the term
+// is below 2e-8 m/s^2, so dv is exact to ~3e-9 relative; dtheta to ~1e-12), and terms of second
+// order in the millimetre displacement.
 
 #include <cmath>
 
@@ -36,10 +36,7 @@ VibrationTableMotion::VibrationTableMotion(const ScenarioConfig& config, std::ui
   const Eigen::Vector3d transport_per_axis_speed =
       transport_rate_n(site_.latitude_rad, site_.height_m, axis_n_);
   gravity0_ = normal_gravity(site_.latitude_rad, site_.height_m);
-  constexpr double kDh = 1.0;  // the height term is linear to < 1e-12 over +-1 m
-  gravity_per_height_ = (normal_gravity(site_.latitude_rad, site_.height_m + kDh) -
-                         normal_gravity(site_.latitude_rad, site_.height_m - kDh)) /
-                        (2.0 * kDh);
+  gravity_per_height_ = normal_gravity_height_gradient(site_.latitude_rad, site_.height_m);
   const Eigen::Matrix3d C_bn = C_nb_.transpose();
   gyro_static_b_ = C_bn * omega_ie_n_;
   gyro_per_displacement_b_ = C_bn * transport_per_axis_speed;
@@ -47,8 +44,21 @@ VibrationTableMotion::VibrationTableMotion(const ScenarioConfig& config, std::ui
   accel_per_velocity_change_b_ = C_bn * axis_n_;
   accel_per_displacement_b_ = C_bn * (2.0 * omega_ie_n_.cross(axis_n_));
   accel_per_speed_squared_b_ = C_bn * transport_per_axis_speed.cross(axis_n_);
+  // Earth rate and gravity follow the displacement's latitude and height to first order:
+  // d/ds = d/dlat u_N / (R_M + h) + d/dh u_U.
+  const double latitude_per_displacement = axis_n_.y() / meridian_plus_h_;
+  const double lat = site_.latitude_rad;
+  const Eigen::Vector3d earth_rate_per_latitude(0.0, -wgs84::kEarthRate_radps * std::sin(lat),
+                                                wgs84::kEarthRate_radps * std::cos(lat));
+  constexpr double kDlat = 1e-6;
+  const double gravity_per_latitude =
+      (normal_gravity(lat + kDlat, site_.height_m) - normal_gravity(lat - kDlat, site_.height_m)) /
+      (2.0 * kDlat);
+  gyro_per_displacement_integral_b_ = C_bn * (earth_rate_per_latitude * latitude_per_displacement);
   accel_per_displacement_integral_b_ =
-      C_bn * Eigen::Vector3d(0.0, 0.0, gravity_per_height_ * axis_n_.z());
+      C_bn * Eigen::Vector3d(0.0, 0.0,
+                             gravity_per_height_ * axis_n_.z() +
+                                 gravity_per_latitude * latitude_per_displacement);
 
   double start = 0.0;
   double displacement = 0.0;
@@ -62,18 +72,18 @@ VibrationTableMotion::VibrationTableMotion(const ScenarioConfig& config, std::ui
     if (phase.motion == TableMotion::kSine) {
       motion.vibration = sine_vibration(phase.sine.frequency_hz, phase.sine.amplitude_mps2);
     } else if (phase.motion == TableMotion::kRandom) {
-      motion.vibration = random_vibration(phase.random.psd, phase.random.rms_mps2,
-                                          phase.random.components,
-                                          derive_stream_seed(seed, 3000 + p));
+      motion.vibration =
+          random_vibration(phase.random.psd, phase.random.rms_mps2, phase.random.components,
+                           derive_stream_seed(seed, 3000 + p));
     }
     if (phase.motion != TableMotion::kStatic) {
       displacement += motion.vibration.evaluate(phase.duration_s).displacement_m;
     }
     table_phases_.push_back(std::move(motion));
-    phases_.push_back({phase.name.empty() ? std::string(table_motion_name(phase.motion))
-                                          : phase.name,
-                       start, start + phase.duration_s, phase.motion == TableMotion::kStatic,
-                       phase.gyro_noise_scale, phase.accel_noise_scale});
+    phases_.push_back(
+        {phase.name.empty() ? std::string(table_motion_name(phase.motion)) : phase.name, start,
+         start + phase.duration_s, phase.motion == TableMotion::kStatic, phase.gyro_noise_scale,
+         phase.accel_noise_scale});
     start += phase.duration_s;
   }
   duration_s_ = start;
@@ -95,7 +105,7 @@ std::size_t VibrationTableMotion::phase_at(double t_s, bool at_end) const {
 }
 
 VibrationTableMotion::Displacement VibrationTableMotion::displacement_at(std::size_t p,
-                                                                        double t_s) {
+                                                                         double t_s) {
   if (cache_valid_ && cache_phase_ == p && cache_t_s_ == t_s) return cache_;
   TablePhase& phase = table_phases_[p];
   const double tau = t_s - phase.start_s;
@@ -157,7 +167,8 @@ void VibrationTableMotion::integrate(double t0_s, double t1_s, Eigen::Vector3d& 
   const double delta_velocity = end.velocity_mps - start.velocity_mps;
   const double speed_squared_integral =
       0.5 * (start.velocity_mps * start.velocity_mps + end.velocity_mps * end.velocity_mps) * dt;
-  delta_theta_b = gyro_static_b_ * dt + gyro_per_displacement_b_ * delta_displacement;
+  delta_theta_b = gyro_static_b_ * dt + gyro_per_displacement_b_ * delta_displacement +
+                  gyro_per_displacement_integral_b_ * integral;
   delta_v_b = accel_static_b_ * dt + accel_per_velocity_change_b_ * delta_velocity +
               accel_per_displacement_b_ * delta_displacement +
               accel_per_speed_squared_b_ * speed_squared_integral +

@@ -9,12 +9,12 @@
 namespace stochnav {
 
 namespace wgs84 {
-inline constexpr double kSemiMajorAxis_m = 6378137.0;                    ///< a (m)
-inline constexpr double kFlattening = 1.0 / 298.257223563;              ///< f
-inline constexpr double kEccentricitySquared = kFlattening * (2.0 - kFlattening);  ///< e^2
+inline constexpr double kSemiMajorAxis_m = 6378137.0;                               ///< a (m)
+inline constexpr double kFlattening = 1.0 / 298.257223563;                          ///< f
+inline constexpr double kEccentricitySquared = kFlattening * (2.0 - kFlattening);   ///< e^2
 inline constexpr double kSemiMinorAxis_m = kSemiMajorAxis_m * (1.0 - kFlattening);  ///< b (m)
-inline constexpr double kEarthRate_radps = 7.292115e-5;  ///< omega_ie (rad/s)
-inline constexpr double kGm_m3ps2 = 3.986004418e14;       ///< GM (m^3/s^2)
+inline constexpr double kEarthRate_radps = 7.292115e-5;       ///< omega_ie (rad/s)
+inline constexpr double kGm_m3ps2 = 3.986004418e14;           ///< GM (m^3/s^2)
 inline constexpr double kGravityEquator_mps2 = 9.7803253359;  ///< normal gravity at the equator
 inline constexpr double kGravityPole_mps2 = 9.8321849378;     ///< normal gravity at the poles
 }  // namespace wgs84
@@ -35,6 +35,9 @@ EarthRadii earth_radii_derivative(double latitude_rad);
 /// second-order height correction of NIMA TR8350.2 (eq. 4-3):
 ///   g(h) = g0 [1 - 2/a (1 + f + m - 2 f sin^2 lat) h + 3 h^2 / a^2],  m = w^2 a^2 b / GM.
 double normal_gravity(double latitude_rad, double height_m);
+
+/// d normal_gravity / d height_m (1/s^2, about -3.086e-6): the derivative of the formula above.
+double normal_gravity_height_gradient(double latitude_rad, double height_m);
 
 /// Normal gravity vector in n (ENU): (0, 0, -normal_gravity(latitude, height)) (m/s^2). The
 /// deflection of the vertical is neglected everywhere in stochnav.

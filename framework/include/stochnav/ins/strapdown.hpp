@@ -3,8 +3,9 @@
 //
 // One update(k) advances the state from t_k - dt to t_k with the increments of that interval and
 // those of earlier intervals, in the order velocity, position, attitude:
-//   velocity   dv_sf = (I - [zeta x] / 2) C_nb(k-1) (dv + a1 dtheta x dv + a2 dtheta x (dtheta x dv)
-//                      + (dtheta_prev x dv + dv_prev x dtheta) / 12)   (rotation, 2-sample sculling)
+//   velocity   dv_sf = (I - [zeta x] / 2) C_nb(k-1) (dv + a1 dtheta x dv
+//                      + a2 dtheta x (dtheta x dv)                          (rotation)
+//                      + (dtheta_prev x dv + dv_prev x dtheta) / 12)        (two-sample sculling)
 //              with a1 = (1 - cos a)/a^2 ~ 1/2 - a^2/24, a2 = (1 - sin a / a)/a^2 ~ 1/6 - a^2/120,
 //              v_k = v_k-1 + dv_sf + (g_n - (2 omega_ie_n + omega_en_n) x v_mid) dt, with latitude
 //              and height at mid-interval extrapolated from k-1 and k-2 and v_mid the trapezoid
@@ -45,8 +46,8 @@ namespace stochnav {
 
 /// IMU increments over [t_s - dt_s, t_s], in the body frame.
 struct ImuIncrement {
-  double t_s = 0.0;   ///< end of the interval (s)
-  double dt_s = 0.0;  ///< interval length (s), >= 0
+  double t_s = 0.0;                                         ///< end of the interval (s)
+  double dt_s = 0.0;                                        ///< interval length (s), >= 0
   Eigen::Vector3d delta_theta_b = Eigen::Vector3d::Zero();  ///< integral of omega_ib_b (rad)
   Eigen::Vector3d delta_v_b = Eigen::Vector3d::Zero();      ///< integral of f_b (m/s)
 };

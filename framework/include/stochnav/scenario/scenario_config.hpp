@@ -18,10 +18,10 @@ enum class ScenarioKind { kVibrationTable, kDrilling };
 enum class ImuOutput { kIncrements, kRates };
 
 struct ImuOutputConfig {
-  double rate_hz = 100.0;                   ///< IMU epoch rate (Hz), in [100, 1000]
+  double rate_hz = 100.0;                     ///< IMU epoch rate (Hz), in [100, 1000]
   ImuOutput output = ImuOutput::kIncrements;  ///< imu.csv: increments (rad, m/s) or rates
-  double truth_rate_hz = 0.0;               ///< truth.csv rate (Hz); 0: the IMU rate
-  double aid_rate_hz = 1.0;                 ///< aids.csv rate (Hz)
+  double truth_rate_hz = 0.0;                 ///< truth.csv rate (Hz); 0: the IMU rate
+  double aid_rate_hz = 1.0;                   ///< aids.csv rate (Hz)
 };
 
 struct SiteConfig {
@@ -38,9 +38,9 @@ struct SensorErrorConfig {
   /// Noise scaled per phase by the phase's noise scale (the vibration-sensitive part); terms may
   /// be empty. Its coefficients multiply by the scale, so a scale s multiplies its variance by s^2.
   std::array<NoiseModel, 3> scheduled_noise;
-  std::array<double, 3> constant_bias{};       ///< rad/s or m/s^2
-  double turn_on_bias_sigma = 0.0;             ///< per run, per axis, 1-sigma; rad/s or m/s^2
-  std::array<double, 3> scale_factor{};        ///< dimensionless (1e-6 = 1 ppm)
+  std::array<double, 3> constant_bias{};  ///< rad/s or m/s^2
+  double turn_on_bias_sigma = 0.0;        ///< per run, per axis, 1-sigma; rad/s or m/s^2
+  std::array<double, 3> scale_factor{};   ///< dimensionless (1e-6 = 1 ppm)
 };
 
 /// Random vibration from a PSD table: a sum of sinusoids (see scenario/vibration.hpp).
@@ -51,7 +51,7 @@ struct RandomVibrationConfig {
 };
 
 struct SineVibrationConfig {
-  double frequency_hz = 0.0;   ///< Hz
+  double frequency_hz = 0.0;    ///< Hz
   double amplitude_mps2 = 0.0;  ///< peak acceleration along X (m/s^2)
 };
 
@@ -68,22 +68,22 @@ struct TablePhaseConfig {
 };
 
 struct VibrationTableConfig {
-  MwdAttitude attitude;                 ///< fixed tool attitude
+  MwdAttitude attitude;                  ///< fixed tool attitude
   std::vector<TablePhaseConfig> phases;  ///< in time order
 };
 
 struct WellPathConfig {
-  double kickoff_md_m = 0.0;             ///< measured depth where the build starts (m)
-  double build_rate_rad_per_m = 0.0;     ///< inclination gain per metre in the build (rad/m), > 0
-  double target_inclination_rad = 0.0;   ///< hold inclination (rad), (0, pi/2]
-  double azimuth_rad = 0.0;              ///< azimuth of the well plane (rad)
+  double kickoff_md_m = 0.0;            ///< measured depth where the build starts (m)
+  double build_rate_rad_per_m = 0.0;    ///< inclination gain per metre in the build (rad/m), > 0
+  double target_inclination_rad = 0.0;  ///< hold inclination (rad), (0, pi/2]
+  double azimuth_rad = 0.0;             ///< azimuth of the well plane (rad)
 };
 
 struct VibrationEpisodeConfig {
-  double start_s = 0.0;         ///< s
-  double end_s = 0.0;           ///< s, > start_s
+  double start_s = 0.0;               ///< s
+  double end_s = 0.0;                 ///< s, > start_s
   double axial_amplitude_mps2 = 0.0;  ///< peak axial acceleration (m/s^2)
-  double frequency_hz = 0.0;    ///< axial vibration frequency (Hz)
+  double frequency_hz = 0.0;          ///< axial vibration frequency (Hz)
 };
 
 struct NoiseScales {
@@ -93,15 +93,15 @@ struct NoiseScales {
 
 struct DrillingConfig {
   WellPathConfig well;
-  double start_md_m = 0.0;          ///< measured depth of the tool at t = 0 (m)
-  double duration_s = 0.0;          ///< scenario length (s)
-  double initial_static_s = 0.0;    ///< stationary alignment period at the start (s)
-  double rop_mps = 0.0;             ///< rate of penetration while drilling (m/s)
-  double rotation_radps = 0.0;      ///< toolface rotation rate while drilling (rad/s), 0 = slide
+  double start_md_m = 0.0;        ///< measured depth of the tool at t = 0 (m)
+  double duration_s = 0.0;        ///< scenario length (s)
+  double initial_static_s = 0.0;  ///< stationary alignment period at the start (s)
+  double rop_mps = 0.0;           ///< rate of penetration while drilling (m/s)
+  double rotation_radps = 0.0;    ///< toolface rotation rate while drilling (rad/s), 0 = slide
   double initial_toolface_rad = 0.0;
-  double stand_length_m = 0.0;      ///< MD drilled between connections (m)
-  double connection_s = 0.0;        ///< stationary time of a pipe connection (s)
-  double ramp_s = 0.0;              ///< raised-cosine ramp of ROP and rotation (s)
+  double stand_length_m = 0.0;  ///< MD drilled between connections (m)
+  double connection_s = 0.0;    ///< stationary time of a pipe connection (s)
+  double ramp_s = 0.0;          ///< raised-cosine ramp of ROP and rotation (s)
   std::vector<VibrationEpisodeConfig> vibration_episodes;  ///< ascending, non-overlapping
   NoiseScales static_noise;     ///< scheduled-noise scales when stationary
   NoiseScales drilling_noise;   ///< when drilling without a vibration episode

@@ -20,9 +20,8 @@
 #include <array>
 #include <cstdint>
 #include <memory>
-#include <vector>
-
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "stochnav/ins/strapdown.hpp"
 #include "stochnav/scenario/scenario_config.hpp"
@@ -51,8 +50,9 @@ class ScenarioSimulator final {
   std::uint64_t epochs_done() const { return next_epoch_ - 1; }
   double rate_hz() const { return rate_hz_; }
 
-  /// Produces the next epoch. Precondition: epochs_done() < epoch_count().
-  void next(ScenarioEpoch& epoch);
+  /// Produces the next epoch. Precondition: epochs_done() < epoch_count(). With `with_truth`
+  /// false, epoch.truth is left untouched (saves a motion evaluation per epoch).
+  void next(ScenarioEpoch& epoch, bool with_truth = true);
 
   /// The true state at t = 0 (the initial condition of a strapdown run).
   TruthSample initial_truth();
@@ -91,7 +91,7 @@ class ScenarioSimulator final {
   std::size_t block_used_ = 0;
   unsigned noise_threads_ = 1;
   std::array<std::array<double, 3>, 2> turn_on_bias_{};
-  std::array<double, 6> bias_{};         // constant + turn-on, natural units
+  std::array<double, 6> bias_{};  // constant + turn-on, natural units
   std::array<double, 6> scale_factor_{};
 };
 

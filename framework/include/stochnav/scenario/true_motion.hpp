@@ -13,10 +13,9 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "stochnav/scenario/scenario_config.hpp"
 
@@ -24,9 +23,9 @@ namespace stochnav {
 
 /// A time span of a scenario with one motion kind and one noise scale.
 struct ScenarioPhase {
-  std::string name;        ///< "static", "sine", "random", "drilling", "connection", "vibration"
-  double start_s = 0.0;    ///< s
-  double end_s = 0.0;      ///< s
+  std::string name;         ///< "static", "sine", "random", "drilling", "connection", "vibration"
+  double start_s = 0.0;     ///< s
+  double end_s = 0.0;       ///< s
   bool stationary = false;  ///< the tool does not move relative to Earth (ZUPT valid)
   double gyro_noise_scale = 1.0;   ///< factor on the scheduled gyro noise
   double accel_noise_scale = 1.0;  ///< factor on the scheduled accelerometer noise
@@ -37,11 +36,11 @@ struct TruthSample {
   double latitude_rad = 0.0;
   double longitude_rad = 0.0;
   double height_m = 0.0;
-  Eigen::Vector3d v_n = Eigen::Vector3d::Zero();     ///< m/s, ENU
+  Eigen::Vector3d v_n = Eigen::Vector3d::Zero();       ///< m/s, ENU
   Eigen::Matrix3d C_nb = Eigen::Matrix3d::Identity();  ///< body to ENU
-  double measured_depth_m = 0.0;   ///< true measured depth of the tool along the well (m)
-  double rop_mps = 0.0;            ///< true rate of penetration (m/s), vibration excluded
-  bool stationary = false;         ///< as the phase at t_s
+  double measured_depth_m = 0.0;  ///< true measured depth of the tool along the well (m)
+  double rop_mps = 0.0;           ///< true rate of penetration (m/s), vibration excluded
+  bool stationary = false;        ///< as the phase at t_s
 };
 
 class TrueMotion {

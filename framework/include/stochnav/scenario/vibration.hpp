@@ -12,9 +12,8 @@
 
 #include <array>
 #include <cstdint>
-#include <vector>
-
 #include <nlohmann/json.hpp>
+#include <vector>
 
 namespace stochnav {
 
@@ -58,7 +57,7 @@ class SumOfSinusoids final {
   // Stepping state: cos/sin of (w_k tau + phi_k) at the last tau, and of w_k step.
   std::vector<double> cos_, sin_, step_cos_, step_sin_;
   // Per component A/w, A/w^2, A/w^3; constants sum (A/w^2) sin phi and sum (A/w^3) cos phi.
-  std::vector<double> velocity_coef_, displacement_coef_, integral_coef_;
+  std::vector<double> amplitude_, velocity_coef_, displacement_coef_, integral_coef_;
   double displacement_offset_ = 0.0;
   double integral_offset_ = 0.0;
   double last_tau_s_ = -1.0;
