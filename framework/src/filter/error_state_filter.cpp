@@ -11,8 +11,18 @@ ErrorStateFilter::ErrorStateFilter(Eigen::MatrixXd initial_covariance)
     : covariance_(std::move(initial_covariance)), initial_covariance_(covariance_) {}
 
 void ErrorStateFilter::propagate(const Eigen::MatrixXd& phi, const Eigen::MatrixXd& q_d) {
-  scratch_.noalias() = phi * covariance_;
-  covariance_.noalias() = scratch_ * phi.transpose();
+  if (size() == kCoreSize) {
+    // The common case (no augmented states): fixed-size products, unrolled and vectorised.
+    using Fixed = Eigen::Matrix<double, kCoreSize, kCoreSize>;
+    const Eigen::Map<const Fixed> phi_fixed(phi.data());
+    Eigen::Map<Fixed> p(covariance_.data());
+    const Fixed phi_p = phi_fixed * p;
+    p.noalias() = phi_p * phi_fixed.transpose();
+  } else {
+    // Small matrices: coefficient-wise products beat the blocked GEMM path and its packing.
+    scratch_.noalias() = phi.lazyProduct(covariance_);
+    covariance_.noalias() = scratch_.lazyProduct(phi.transpose());
+  }
   covariance_ += q_d;
   keep_healthy();
 }
@@ -52,8 +62,12 @@ UpdateOutcome ErrorStateFilter::update(const Eigen::Ref<const Eigen::VectorXd>& 
 }
 
 void ErrorStateFilter::keep_healthy() {
-  scratch_ = covariance_.transpose();
-  covariance_ = 0.5 * (covariance_ + scratch_);
+  for (Eigen::Index j = 0; j < covariance_.cols(); ++j) {
+    for (Eigen::Index i = j + 1; i < covariance_.rows(); ++i) {
+      const double mean = 0.5 * (covariance_(i, j) + covariance_(j, i));
+      covariance_(i, j) = covariance_(j, i) = mean;
+    }
+  }
   if (!covariance_.allFinite()) {
     ++health_.non_finite;
     covariance_ = initial_covariance_;

@@ -72,7 +72,14 @@ void MwdNavigator::accumulate_noise(plugin::NoiseModelPlugin& model, double t_s,
     model.white_noise_covariance(t_s, dt_s, cache);
     if (!model.time_varying()) cached_dt = dt_s;
   }
-  sum.noalias() += c_nb * cache * c_nb.transpose();
+  // Equal noise on every axis is invariant under rotation (C q I C^T = q I): skip the products.
+  const double q = cache(0, 0);
+  if (cache(1, 1) == q && cache(2, 2) == q && cache(0, 1) == 0.0 && cache(0, 2) == 0.0 &&
+      cache(1, 2) == 0.0) {
+    sum.diagonal().array() += q;
+  } else {
+    sum.noalias() += c_nb * cache * c_nb.transpose();
+  }
 }
 
 void MwdNavigator::step(const ImuIncrement& raw) {

@@ -56,6 +56,7 @@ class ErrorStateFilter final {
 
  private:
   void keep_healthy();
+  static constexpr int kCoreSize = 15;
 
   Eigen::MatrixXd covariance_;
   Eigen::MatrixXd initial_covariance_;
