@@ -29,6 +29,21 @@ std::string DiagnoseOptions::validate() const {
   return {};
 }
 
+namespace {
+
+// The dense and the octave averaging factors together: the band is drawn over the dense curve
+// and tabulated at the octave points.
+std::vector<std::size_t> band_factors(const MeasuredStatistics& measured) {
+  std::vector<std::size_t> m;
+  for (const auto& point : measured.dense) m.push_back(point.m);
+  for (const auto& point : measured.octave) m.push_back(point.m);
+  std::sort(m.begin(), m.end());
+  m.erase(std::unique(m.begin(), m.end()), m.end());
+  return m;
+}
+
+}  // namespace
+
 ModelAssessment assess_model(const NoiseModel& model, const MeasuredStatistics& measured,
                              const DiagnoseOptions& options) {
   ModelAssessment assessment;
@@ -36,10 +51,8 @@ ModelAssessment assess_model(const NoiseModel& model, const MeasuredStatistics& 
   assessment.gap = combine_gap(avar_gap(model, measured.octave_avar),
                                stationarity_test(measured.windows, model), options.alpha);
   if (options.seeds > 0) {
-    std::vector<std::size_t> m;
-    for (const auto& point : measured.dense) m.push_back(point.m);
-    assessment.band =
-        simulate_band(model, measured.samples, measured.rate_hz, m, options.seeds, options.seed);
+    assessment.band = simulate_band(model, measured.samples, measured.rate_hz, band_factors(measured),
+                                    options.seeds, options.seed);
   }
   return assessment;
 }
@@ -176,6 +189,7 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
   result.initial = assess_model(model, measured, options);
   const std::vector<double> dense_tau = measured.dense_fit.tau_s;
   const std::vector<double> dense_avar = measured.dense_fit.avar;
+  const std::vector<double> dense_edf = measured.dense_fit.edf;
 
   const ModelAssessment* current = &result.initial;
   if (current->gap.consistent) {
@@ -187,7 +201,7 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
   for (int iteration = 0; !result.consistent && iteration < options.max_iterations; ++iteration) {
     const Gap& before = current->gap;
     const NoiseModel& base = current->model;
-    const Signature signature = read_signature(before.avar, dense_tau, dense_avar, base);
+    const Signature signature = read_signature(before.avar, dense_tau, dense_avar, dense_edf, base);
 
     std::vector<Trial> trials;
     // Screening: every candidate's gap with the current model's estimator scatter.
@@ -314,10 +328,8 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     step.after.model = best->model;
     step.after.gap = best->gap;
     if (options.seeds > 0) {
-      std::vector<std::size_t> m;
-      for (const auto& point : measured.dense) m.push_back(point.m);
-      step.after.band = simulate_band(best->model, measured.samples, measured.rate_hz, m,
-                                      options.seeds, options.seed);
+      step.after.band = simulate_band(best->model, measured.samples, measured.rate_hz,
+                                      band_factors(measured), options.seeds, options.seed);
     }
     result.iterations.push_back(std::move(step));
     current = &result.iterations.back().after;
@@ -337,7 +349,7 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     result.conclusion = "The model is inconsistent with the record; no steps were allowed.";
   }
   const ModelAssessment& last = result.final_assessment();
-  result.final_signature = read_signature(last.gap.avar, dense_tau, dense_avar, last.model);
+  result.final_signature = read_signature(last.gap.avar, dense_tau, dense_avar, dense_edf, last.model);
   return result;
 }
 

@@ -115,14 +115,17 @@ std::string diagnose_report_markdown(const DiagnoseResult& result, const std::st
                       trimmed(describe(step.added_term, quantity_of(step.after.model.unit))),
                       step.refitted ? " (the other terms refitted with it)" : "");
     md += fmt::format("- gap: {:.3g} -> {:.3g}\n\n", step.gap_before, step.gap_after);
-    md += "| candidate | other terms | gap |\n|---|---|---|\n";
+    md += "Candidates (gap by screening with the current model's estimator scatter; the best "
+          "three assessed exactly):\n\n| candidate | other terms | gap | assessed |\n"
+          "|---|---|---|---|\n";
     for (const auto& candidate : step.candidates) {
-      md += fmt::format("| {} | {} | {} |\n", term_type_name(candidate.type),
+      md += fmt::format("| {} | {} | {} | {} |\n", term_type_name(candidate.type),
                         candidate.type == TermType::kNonstationary
                             ? "-"
                             : (candidate.refitted ? "refitted" : "held"),
                         candidate.usable ? fmt::format("{:.4g}", candidate.gap)
-                                         : std::string("fit failed"));
+                                         : std::string("fit failed"),
+                        candidate.exact ? "exactly" : "screening");
     }
     md += "\nModel after the step:\n\n" + model_lines(step.after.model) + "\n";
     md += gap_summary(step.after.gap) + ".\n\n";

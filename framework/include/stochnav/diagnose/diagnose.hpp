@@ -63,7 +63,7 @@ struct DiagnoseOptions {
 struct ModelAssessment {
   NoiseModel model;
   Gap gap;
-  SimulatedBand band;  ///< at the dense taus (empty when DiagnoseOptions::seeds == 0)
+  SimulatedBand band;  ///< at the dense and octave taus (empty when DiagnoseOptions::seeds == 0)
 };
 
 /// One candidate tried in an iteration.

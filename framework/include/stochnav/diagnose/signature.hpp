@@ -4,12 +4,12 @@
 // vocabulary.
 //
 // Range: the contiguous run of octave points around the largest |z| (diagnose/gap.hpp) with
-// |z| > 2. Excess: e(tau) = A(tau) - mu(tau) at the dense taus inside the range widened by an
-// octave each side. Shape, in this order:
+// |z| > 2. Excess: e(tau) = A(tau) - mu(tau) at the dense taus inside the range widened by two
+// octaves each side (one octave for the slope). Shape, in this order:
 //   sinusoid          e has a null (a local minimum below 1/4 of the maxima on both sides)
 //                     with a rising excess before it: the sin^4(pi f tau) pattern, nulls at k/f;
-//   gauss_markov      a single bump: e rises then falls by more than a factor 2 inside the range
-//                     (and the range does not touch the ends of the tau axis);
+//   gauss_markov      a single bump: e rises then falls by more than a factor 2 inside the
+//                     widened range;
 //   otherwise by the log-log slope s of e over the range:
 //     s < -1.5 quantization, < -0.5 angle_random_walk, < 0.5 bias_instability (flat floor),
 //     < 1.5 rate_random_walk, else rate_ramp.
@@ -38,8 +38,11 @@ struct Signature {
 };
 
 /// Reads the signature of `gap` (octave points) with the dense measured curve (tau_s, avar in
-/// natural units) and the model (its stationary equivalent).
+/// natural units, edf of each point) and the model (its stationary equivalent). Only dense
+/// points whose excess is significant (above 3 sqrt(2 / edf) times the model's AVAR) shape the
+/// slope and the null test.
 Signature read_signature(const AvarGap& gap, std::span<const double> dense_tau_s,
-                         std::span<const double> dense_avar, const NoiseModel& model);
+                         std::span<const double> dense_avar, std::span<const double> dense_edf,
+                         const NoiseModel& model);
 
 }  // namespace stochnav
