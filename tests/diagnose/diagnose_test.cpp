@@ -54,7 +54,9 @@ TEST(DiagnoseGap, IsAboutOneForRecordsOfTheModel) {
   // Means over 16 records: each part is chi2(nu)/nu, nu >= 5, so the mean's sd is < 0.16.
   EXPECT_NEAR(sum_avar / seeds, 1.0, 0.35);
   EXPECT_NEAR(sum_stat / seeds, 1.0, 0.25);
-  EXPECT_NEAR(sum_gap / seeds, 1.0, 0.25);
+  // The gap is the larger of two such parts: a little above 1 on average.
+  EXPECT_GT(sum_gap / seeds, 0.9);
+  EXPECT_LT(sum_gap / seeds, 1.5);
 }
 
 TEST(DiagnoseGap, IsScaleFree) {

@@ -195,8 +195,8 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
   if (current->gap.consistent) {
     result.consistent = true;
     result.conclusion = fmt::format(
-        "The model is consistent with the record (gap {:.3g} <= {:.3g}): nothing to add.",
-        current->gap.value, current->gap.threshold);
+        "The model is consistent with the record (gap {:.3g}): nothing to add.",
+        current->gap.value);
   }
   for (int iteration = 0; !result.consistent && iteration < options.max_iterations; ++iteration) {
     const Gap& before = current->gap;
@@ -265,15 +265,23 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
         Trial* refitted = trial.outcome.refitted ? &trial : other;
         const boost::math::chi_squared_distribution<double> distribution(
             static_cast<double>(std::max<std::size_t>(old_parameters, 1)));
-        const bool refit_wins = held->gap.dof * held->gap.value -
-                                    refitted->gap.dof * refitted->gap.value >
+        const bool refit_wins = held->gap.chi_square - refitted->gap.chi_square >
                                 boost::math::quantile(distribution, 1.0 - options.alpha);
         if ((refit_wins ? refitted : held) != &trial) continue;
       }
       contenders.push_back(&trial);
     }
+    // Ranked by the pooled chi-square plus a price per parameter: a richer candidate must
+    // explain more than a simpler one by chi2 quantile (1 - alpha, 1) per extra parameter.
+    const double price = [&] {
+      const boost::math::chi_squared_distribution<double> one(1.0);
+      return boost::math::quantile(one, 1.0 - options.alpha);
+    }();
+    const auto score = [&](const Trial* trial) {
+      return trial->gap.chi_square + price * static_cast<double>(added_parameters(trial->term));
+    };
     std::sort(contenders.begin(), contenders.end(),
-              [](const Trial* a, const Trial* b) { return a->gap.value < b->gap.value; });
+              [&](const Trial* a, const Trial* b) { return score(a) < score(b); });
     // The best few by screening get the exact gap (their own estimator covariance).
     constexpr std::size_t kExactlyAssessed = 3;
     if (contenders.size() > kExactlyAssessed) contenders.resize(kExactlyAssessed);
@@ -287,27 +295,30 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
       }
       trial->outcome.gap = trial->gap.value;
       trial->outcome.exact = true;
-      if (best == nullptr || trial->gap.value < best->gap.value) best = trial;
+      if (best == nullptr || score(trial) < score(best)) best = trial;
     }
     std::vector<CandidateOutcome> outcomes;
     for (const Trial& trial : trials) outcomes.push_back(trial.outcome);
     bool accepted = false;
     if (best != nullptr) {
-      const double drop = before.dof * before.value - best->gap.dof * best->gap.value;
+      const double drop = before.chi_square - best->gap.chi_square;
       const double parameters = static_cast<double>(added_parameters(best->term));
       const boost::math::chi_squared_distribution<double> distribution(parameters);
       const double needed = boost::math::quantile(distribution, 1.0 - options.alpha);
-      accepted = best->gap.value <= (1.0 - options.min_relative_shrink) * before.value &&
-                 drop > needed;
+      // The part of the chi-square beyond its expectation must shrink by min_relative_shrink.
+      const double excess_before = before.chi_square - before.dof;
+      const double excess_after = best->gap.chi_square - best->gap.dof;
+      accepted = drop > needed && best->gap.value < before.value &&
+                 excess_after <= (1.0 - options.min_relative_shrink) * excess_before;
     }
     if (!accepted) {
       result.conclusion = fmt::format(
           "No candidate shrinks the gap significantly (best: {}), so none was added; the model "
-          "stays inconsistent (gap {:.3g} > {:.3g}).",
+          "stays inconsistent (gap {:.3g}).",
           best != nullptr ? fmt::format("{} at {:.3g}", term_type_name(best->outcome.type),
                                         best->gap.value)
                           : std::string("none usable"),
-          before.value, before.threshold);
+          before.value);
       break;
     }
     DiagnoseIteration step;
@@ -336,13 +347,12 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     if (current->gap.consistent) {
       result.consistent = true;
       result.conclusion = fmt::format(
-          "After {} step(s) the model is consistent with the record (gap {:.3g} <= {:.3g}).",
-          result.iterations.size(), current->gap.value, current->gap.threshold);
+          "After {} step(s) the model is consistent with the record (gap {:.3g}).",
+          result.iterations.size(), current->gap.value);
     } else if (iteration + 1 == options.max_iterations) {
       result.conclusion = fmt::format(
-          "Stopped after the maximum of {} steps; the model is still inconsistent (gap {:.3g} > "
-          "{:.3g}).",
-          options.max_iterations, current->gap.value, current->gap.threshold);
+          "Stopped after the maximum of {} steps; the model is still inconsistent (gap {:.3g}).",
+          options.max_iterations, current->gap.value);
     }
   }
   if (!result.consistent && options.max_iterations == 0) {

@@ -95,19 +95,29 @@ AvarGap screening_avar_gap(const NoiseModel& model, const AvarMeasurement& measu
   return gap;
 }
 
+namespace {
+
+double reduced_quantile(double dof, double probability) {
+  if (!(dof > 0.0)) return 1.0;
+  const boost::math::chi_squared_distribution<double> distribution(dof);
+  return boost::math::quantile(distribution, probability) / dof;
+}
+
+}  // namespace
+
 Gap combine_gap(AvarGap avar, StationarityTest stationarity, double alpha) {
   Gap gap;
   gap.dof = avar.effective_dof + stationarity.dof;
-  const double chi_square =
-      avar.effective_dof * avar.reduced_chi_square + stationarity.dof * stationarity.reduced_chi_square;
-  gap.value = gap.dof > 0.0 ? chi_square / gap.dof : 0.0;
-  if (gap.dof > 0.0) {
-    const boost::math::chi_squared_distribution<double> distribution(gap.dof);
-    gap.threshold = boost::math::quantile(distribution, 1.0 - alpha) / gap.dof;
-  } else {
-    gap.threshold = 1.0;
-  }
-  gap.consistent = gap.value <= gap.threshold;
+  gap.chi_square = avar.effective_dof * avar.reduced_chi_square +
+                   stationarity.dof * stationarity.reduced_chi_square;
+  gap.value = stationarity.dof > 0.0
+                  ? std::max(avar.reduced_chi_square, stationarity.reduced_chi_square)
+                  : avar.reduced_chi_square;
+  gap.avar_threshold = reduced_quantile(avar.effective_dof, 1.0 - 0.5 * alpha);
+  gap.stationarity_threshold = reduced_quantile(stationarity.dof, 1.0 - 0.5 * alpha);
+  gap.consistent = avar.reduced_chi_square <= gap.avar_threshold &&
+                   (stationarity.dof <= 0.0 ||
+                    stationarity.reduced_chi_square <= gap.stationarity_threshold);
   gap.avar = std::move(avar);
   gap.stationarity = std::move(stationarity);
   return gap;

@@ -21,10 +21,12 @@ constexpr const char* kGapDefinition =
     "Satterthwaite effective dof nu_avar = M^2 / tr(R^2). The stationarity test cuts the record "
     "into windows and compares their Allan variances at tau0 (the DAVAR at the shortest tau), "
     "each with its variance estimated from the window's own data, after dividing out the model's "
-    "nonstationary scaling: G_stat = chi-square / (windows - 1). The gap is the pooled reduced "
-    "chi-square (nu_avar G_avar + nu_stat G_stat) / (nu_avar + nu_stat): about 1 for a "
-    "consistent model; the model is consistent when the gap is below the (1 - alpha) quantile of "
-    "chi2(nu)/nu. Simulated records of the model (several seeds, same length and rate) give the "
+    "nonstationary scaling: G_stat = chi-square / (windows - 1). The gap is max(G_avar, G_stat): "
+    "about 1 for a consistent model. The model is consistent when each part is below the "
+    "(1 - alpha/2) quantile of its chi2(nu)/nu (false-alarm probability at most alpha). A "
+    "candidate term is kept only if it lowers the pooled chi-square nu_avar G_avar + nu_stat "
+    "G_stat by more than the (1 - alpha) quantile of chi2(p), p its parameter count, and shrinks "
+    "the gap. Simulated records of the model (several seeds, same length and rate) give the "
     "band drawn in the plots; they are a check, the gap uses the closed forms.\n";
 
 std::string trimmed(std::string text) {
@@ -34,10 +36,11 @@ std::string trimmed(std::string text) {
 
 std::string gap_summary(const Gap& gap) {
   return fmt::format(
-      "gap **{:.3g}** (consistent below {:.3g}; {:.1f} dof) = AVAR part G_avar {:.3g} on {:.1f} "
-      "effective dof, stationarity part G_stat {:.3g} on {:.0f} dof (p = {:.2g})",
-      gap.value, gap.threshold, gap.dof, gap.avar.reduced_chi_square, gap.avar.effective_dof,
-      gap.stationarity.reduced_chi_square, gap.stationarity.dof, gap.stationarity.p_value);
+      "gap **{:.3g}** ({}): AVAR part G_avar {:.3g} on {:.1f} effective dof (consistent "
+      "below {:.3g}), stationarity part G_stat {:.3g} on {:.0f} dof (below {:.3g}; p = {:.2g})",
+      gap.value, gap.consistent ? "consistent" : "not consistent", gap.avar.reduced_chi_square,
+      gap.avar.effective_dof, gap.avar_threshold, gap.stationarity.reduced_chi_square,
+      gap.stationarity.dof, gap.stationarity_threshold, gap.stationarity.p_value);
 }
 
 std::string model_lines(const NoiseModel& model) {

@@ -14,10 +14,13 @@
 //      estimator scatter (screening_avar_gap); per type the held variant is kept unless
 //      refitting the old terms lowers the chi-square by more than the (1 - alpha) quantile of
 //      chi2(old parameters); the three best by screening are assessed exactly;
-//   5. keep the candidate with the smallest exact gap if it shrinks the gap significantly: by at least
-//      `min_relative_shrink` and by a chi-square drop (nu_before gap_before - nu_after gap_after)
-//      beyond the (1 - alpha) quantile of chi2(p), p the new term's parameter count; otherwise
-//      stop (nothing helps, and no term is added that does not shrink the gap);
+//   5. rank the candidates by pooled chi-square (diagnose/gap.hpp) plus the (1 - alpha)
+//      quantile of chi2(1) per parameter of the new term (a richer term must earn its
+//      parameters); keep the best if it shrinks the gap significantly: the pooled chi-square
+//      drops by more than the (1 - alpha) quantile of chi2(p), p the new term's parameter
+//      count, the gap itself shrinks, and the chi-square beyond its dof shrinks by at least
+//      `min_relative_shrink`; otherwise stop (nothing helps, and no term is added that does
+//      not shrink the gap);
 //   6. repeat from 2 until consistent or max_iterations.
 // The effect's name is the type of the kept candidate; the signature is reported beside it as
 // evidence (they usually agree; the report says when they do not).
@@ -47,7 +50,8 @@ struct DiagnoseOptions {
   int max_iterations = 4;        ///< >= 0
   double alpha = 1e-3;           ///< false-alarm probability of the consistency test, (0, 0.5)
   std::size_t windows = 32;      ///< stationarity windows, >= 4
-  double min_relative_shrink = 0.2;  ///< a kept term lowers the gap by at least this fraction
+  /// A kept term removes at least this fraction of the chi-square beyond its dof.
+  double min_relative_shrink = 0.2;
   /// Stationary term types tried as the missing effect.
   std::vector<TermType> candidates = {TermType::kQuantization,    TermType::kAngleRandomWalk,
                                       TermType::kBiasInstability, TermType::kRateRandomWalk,

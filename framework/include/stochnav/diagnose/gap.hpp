@@ -19,11 +19,15 @@
 // effective degrees of freedom nu_avar = M^2 / tr(R^2) (< M).
 //
 // The stationarity part (diagnose/stationarity.hpp) gives G_stat ~ chi2(nu_stat) / nu_stat,
-// nu_stat = windows - 1. The gap is their pooled reduced chi-square
-//   gap = (nu_avar G_avar + nu_stat G_stat) / (nu_avar + nu_stat),
-// about 1 (within sqrt(2 / nu)) for a consistent model, and the model is consistent when gap
-// is below the (1 - alpha) quantile of chi2(nu) / nu, nu = nu_avar + nu_stat (alpha = 1e-3 by
-// default). Scale-free: the gap does not change when the record and the model are rescaled.
+// nu_stat = windows - 1. The gap is the larger of the two reduced chi-squares,
+//   gap = max(G_avar, G_stat),
+// about 1 for a consistent model (each part has mean 1 and spread sqrt(2 / nu)), large when
+// either the Allan variance or the windows disagree. Testing the parts separately keeps a
+// strong discrepancy in one from being diluted by the other's degrees of freedom. The model is
+// consistent when each part is below the (1 - alpha/2) quantile of its chi2(nu)/nu (Bonferroni:
+// false-alarm probability <= alpha, 1e-3 by default). Their pooled chi-square
+// nu_avar G_avar + nu_stat G_stat (on nu_avar + nu_stat dof) measures how much a candidate term
+// explains. Scale-free: nothing changes when the record and the model are rescaled together.
 //
 // Deterministic sinusoids add to mu_i but not to V (their AVAR estimate hardly scatters), and
 // nu_i is capped at 2 n_i (n_i terms of the estimator) so a model that is all sinusoid still has
@@ -75,13 +79,15 @@ AvarGap screening_avar_gap(const NoiseModel& model, const AvarMeasurement& measu
 struct Gap {
   AvarGap avar;
   StationarityTest stationarity;
-  double value = 0.0;      ///< pooled reduced chi-square (the gap)
-  double dof = 0.0;        ///< nu_avar + nu_stat
-  double threshold = 0.0;  ///< chi2 quantile (1 - alpha, dof) / dof
-  bool consistent = false; ///< value <= threshold
+  double value = 0.0;       ///< the gap: max(G_avar, G_stat)
+  double chi_square = 0.0;  ///< pooled: nu_avar G_avar + nu_stat G_stat
+  double dof = 0.0;         ///< nu_avar + nu_stat
+  double avar_threshold = 0.0;          ///< chi2 quantile (1 - alpha/2, nu_avar) / nu_avar
+  double stationarity_threshold = 0.0;  ///< the same for nu_stat (1 without windows)
+  bool consistent = false;  ///< both parts below their thresholds
 };
 
-/// Pools the two parts. alpha in (0, 1): the false-alarm probability of `consistent`.
+/// Combines the two parts. alpha in (0, 1): the false-alarm probability of `consistent`.
 Gap combine_gap(AvarGap avar, StationarityTest stationarity, double alpha);
 
 }  // namespace stochnav
