@@ -18,6 +18,9 @@ std::string DiagnoseOptions::validate() const {
   if (max_iterations < 0) return fmt::format("max_iterations: {}; expected >= 0", max_iterations);
   if (!(alpha > 0.0 && alpha < 0.5)) return fmt::format("alpha: {}; expected in (0, 0.5)", alpha);
   if (windows < 4) return fmt::format("windows: {}; expected >= 4", windows);
+  if (!(parameter_price >= 0.0) || !std::isfinite(parameter_price)) {
+    return fmt::format("parameter_price: {}; expected a number >= 0", parameter_price);
+  }
   if (!(min_relative_shrink >= 0.0 && min_relative_shrink < 1.0)) {
     return fmt::format("min_relative_shrink: {}; expected in [0, 1)", min_relative_shrink);
   }
@@ -228,15 +231,11 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
         evaluate(std::move(candidate), *term, TermType::kNonstationary, false);
       }
     }
-    const std::size_t old_parameters = [&] {
-      std::size_t count = 0;
-      for (const NoiseTerm& term : stationary_part(base).terms) count += added_parameters(term);
-      return count;
-    }();
+    const bool has_old_terms = !stationary_part(base).terms.empty();
     for (TermType type : options.candidates) {
       const bool present = has_type(base, type);
       for (bool refit : {false, true}) {
-        if (refit && old_parameters == 0) continue;
+        if (refit && !has_old_terms) continue;
         if (!refit && present && !repeatable(type)) continue;
         auto fitted = fit_candidate(base, measured.dense_fit, type, refit, measured.duration_s);
         if (!fitted) {
@@ -248,69 +247,66 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
         evaluate(std::move(fitted->model), std::move(fitted->term), type, refit);
       }
     }
-    // Per type, the held variant unless refitting the old terms earns its parameters.
-    std::vector<Trial*> contenders;
-    for (Trial& trial : trials) {
-      if (!trial.outcome.usable) continue;
-      Trial* other = nullptr;
-      for (Trial& candidate : trials) {
-        if (&candidate != &trial && candidate.outcome.usable &&
-            candidate.outcome.type == trial.outcome.type &&
-            candidate.outcome.refitted != trial.outcome.refitted) {
-          other = &candidate;
-        }
-      }
-      if (other != nullptr) {
-        Trial* held = trial.outcome.refitted ? other : &trial;
-        Trial* refitted = trial.outcome.refitted ? &trial : other;
-        const boost::math::chi_squared_distribution<double> distribution(
-            static_cast<double>(std::max<std::size_t>(old_parameters, 1)));
-        const bool refit_wins = held->gap.chi_square - refitted->gap.chi_square >
-                                boost::math::quantile(distribution, 1.0 - options.alpha);
-        if ((refit_wins ? refitted : held) != &trial) continue;
-      }
-      contenders.push_back(&trial);
-    }
-    // Ranked by the pooled chi-square plus a price per parameter: a richer candidate must
-    // explain more than a simpler one by chi2 quantile (1 - alpha, 1) per extra parameter.
-    const double price = [&] {
-      const boost::math::chi_squared_distribution<double> one(1.0);
-      return boost::math::quantile(one, 1.0 - options.alpha);
-    }();
+    // Two tiers: first the candidates that keep the model as it is (held terms, a
+    // nonstationary term); only when none of them is accepted, also those that refit the old
+    // terms. A refit can soak up a second effect into the old terms' coefficients, so it is the
+    // fallback for a model whose own coefficients are off.
+    const double price = options.parameter_price;
     const auto score = [&](const Trial* trial) {
       return trial->gap.chi_square + price * static_cast<double>(added_parameters(trial->term));
     };
-    std::sort(contenders.begin(), contenders.end(),
-              [&](const Trial* a, const Trial* b) { return score(a) < score(b); });
-    // The best few by screening get the exact gap (their own estimator covariance).
-    constexpr std::size_t kExactlyAssessed = 3;
-    if (contenders.size() > kExactlyAssessed) contenders.resize(kExactlyAssessed);
-    const Trial* best = nullptr;
-    for (Trial* trial : contenders) {
-      try {
-        trial->gap = combine_gap(avar_gap(trial->model, measured.octave_avar),
-                                 stationarity_test(measured.windows, trial->model), options.alpha);
-      } catch (const ConfigError&) {
-        continue;
-      }
-      trial->outcome.gap = trial->gap.value;
-      trial->outcome.exact = true;
-      if (best == nullptr || score(trial) < score(best)) best = trial;
-    }
-    std::vector<CandidateOutcome> outcomes;
-    for (const Trial& trial : trials) outcomes.push_back(trial.outcome);
-    bool accepted = false;
-    if (best != nullptr) {
-      const double drop = before.chi_square - best->gap.chi_square;
-      const double parameters = static_cast<double>(added_parameters(best->term));
+    const auto accepts = [&](const Trial* trial) {
+      const double drop = before.chi_square - trial->gap.chi_square;
+      const double parameters = static_cast<double>(added_parameters(trial->term));
       const boost::math::chi_squared_distribution<double> distribution(parameters);
       const double needed = boost::math::quantile(distribution, 1.0 - options.alpha);
       // The part of the chi-square beyond its expectation must shrink by min_relative_shrink.
       const double excess_before = before.chi_square - before.dof;
-      const double excess_after = best->gap.chi_square - best->gap.dof;
-      accepted = drop > needed && best->gap.value < before.value &&
-                 excess_after <= (1.0 - options.min_relative_shrink) * excess_before;
+      const double excess_after = trial->gap.chi_square - trial->gap.dof;
+      return drop > needed && trial->gap.value < before.value &&
+             excess_after <= (1.0 - options.min_relative_shrink) * excess_before;
+    };
+    const Trial* best = nullptr;
+    bool accepted = false;
+    for (bool with_refits : {false, true}) {
+      std::vector<Trial*> contenders;
+      for (Trial& trial : trials) {
+        if (trial.outcome.usable && (with_refits || !trial.outcome.refitted)) {
+          contenders.push_back(&trial);
+        }
+      }
+      // Ranked by the pooled chi-square plus a price per parameter of the new term.
+      std::sort(contenders.begin(), contenders.end(),
+                [&](const Trial* a, const Trial* b) { return score(a) < score(b); });
+      // The best few by screening get the exact gap (their own estimator covariance).
+      constexpr std::size_t kExactlyAssessed = 3;
+      if (contenders.size() > kExactlyAssessed) contenders.resize(kExactlyAssessed);
+      const Trial* tier_best = nullptr;
+      for (Trial* trial : contenders) {
+        if (!trial->outcome.exact) {
+          try {
+            trial->gap = combine_gap(avar_gap(trial->model, measured.octave_avar),
+                                     stationarity_test(measured.windows, trial->model),
+                                     options.alpha);
+          } catch (const ConfigError&) {
+            continue;
+          }
+          trial->outcome.gap = trial->gap.value;
+          trial->outcome.exact = true;
+        }
+        if (tier_best == nullptr || score(trial) < score(tier_best)) tier_best = trial;
+      }
+      if (tier_best != nullptr && (best == nullptr || score(tier_best) < score(best))) {
+        best = tier_best;
+      }
+      if (tier_best != nullptr && accepts(tier_best)) {
+        best = tier_best;
+        accepted = true;
+        break;
+      }
     }
+    std::vector<CandidateOutcome> outcomes;
+    for (const Trial& trial : trials) outcomes.push_back(trial.outcome);
     if (!accepted) {
       result.conclusion = fmt::format(
           "No candidate shrinks the gap significantly (best: {}), so none was added; the model "

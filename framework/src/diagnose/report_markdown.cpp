@@ -119,7 +119,7 @@ std::string diagnose_report_markdown(const DiagnoseResult& result, const std::st
                       step.refitted ? " (the other terms refitted with it)" : "");
     md += fmt::format("- gap: {:.3g} -> {:.3g}\n\n", step.gap_before, step.gap_after);
     md += "Candidates (gap by screening with the current model's estimator scatter; the best "
-          "three assessed exactly):\n\n| candidate | other terms | gap | assessed |\n"
+          "three of each tier (held terms first, then refits) assessed exactly):\n\n| candidate | other terms | gap | assessed |\n"
           "|---|---|---|---|\n";
     for (const auto& candidate : step.candidates) {
       md += fmt::format("| {} | {} | {} | {} |\n", term_type_name(candidate.type),

@@ -11,16 +11,16 @@
 //      candidate: each stationary vocabulary type, held and refitted (diagnose/candidate_fit.hpp),
 //      and, when the windows disagree, a nonstationary term built from them
 //      (diagnose/stationarity.hpp). Each candidate model is screened with the current model's
-//      estimator scatter (screening_avar_gap); per type the held variant is kept unless
-//      refitting the old terms lowers the chi-square by more than the (1 - alpha) quantile of
-//      chi2(old parameters); the three best by screening are assessed exactly;
-//   5. rank the candidates by pooled chi-square (diagnose/gap.hpp) plus the (1 - alpha)
-//      quantile of chi2(1) per parameter of the new term (a richer term must earn its
-//      parameters); keep the best if it shrinks the gap significantly: the pooled chi-square
-//      drops by more than the (1 - alpha) quantile of chi2(p), p the new term's parameter
-//      count, the gap itself shrinks, and the chi-square beyond its dof shrinks by at least
-//      `min_relative_shrink`; otherwise stop (nothing helps, and no term is added that does
-//      not shrink the gap);
+//      estimator scatter (screening_avar_gap);
+//   5. in two tiers, first the candidates that keep the model's terms as they are (held, or a
+//      nonstationary term), then, only if none of those is accepted, all of them (refits too: a
+//      refit can soak a second effect into the old coefficients, so it is the fallback for a
+//      model whose own coefficients are off): rank by pooled chi-square (diagnose/gap.hpp) plus
+//      `parameter_price` per parameter of the new term, assess the best three exactly, and keep
+//      the best if it shrinks the gap significantly: the pooled chi-square drops by more than
+//      the (1 - alpha) quantile of chi2(p), p the new term's parameter count, the gap itself
+//      shrinks, and the chi-square beyond its dof shrinks by at least `min_relative_shrink`;
+//      otherwise stop (nothing helps, and no term is added that does not shrink the gap);
 //   6. repeat from 2 until consistent or max_iterations.
 // The effect's name is the type of the kept candidate; the signature is reported beside it as
 // evidence (they usually agree; the report says when they do not).
@@ -52,6 +52,9 @@ struct DiagnoseOptions {
   std::size_t windows = 32;      ///< stationarity windows, >= 4
   /// A kept term removes at least this fraction of the chi-square beyond its dof.
   double min_relative_shrink = 0.2;
+  /// Chi-square a candidate pays per parameter of its new term when candidates are ranked
+  /// (2: Akaike's price; a two-parameter term must explain 2 more than a one-parameter one).
+  double parameter_price = 2.0;
   /// Stationary term types tried as the missing effect.
   std::vector<TermType> candidates = {TermType::kQuantization,    TermType::kAngleRandomWalk,
                                       TermType::kBiasInstability, TermType::kRateRandomWalk,
