@@ -7,8 +7,9 @@
 // "strong" 4): 0.01 s for quantization, 1 s for white noise, 50 s for the flicker floor, the
 // rate random walk and the ramp (a twentieth of the record, where the estimate still has about
 // 12 degrees of freedom), the AVAR peak for Gauss-Markov (tau_c = 3 s) and sinusoid (2 Hz); for
-// the nonstationary effect it is the scale of one stretch of 15 % of the record (1.3 and 3). A run detects the effect when an iteration names its type; it names it right when
-// the first iteration does. A control raises a false alarm when it gets any iteration.
+// the nonstationary effect it is the scale of one stretch of 15 % of the record (1.3 and 3). A run
+// detects the effect when an iteration names its type; it names it right when the first iteration
+// does. A control raises a false alarm when it gets any iteration.
 
 #include <gtest/gtest.h>
 
@@ -38,7 +39,9 @@ double natural(ParameterDimension dimension, double reported) {
 // Base terms (deg/h gyro): white noise N = 0.5 deg/sqrt(h), a flicker floor B = 3 deg/h,
 // quantization Q = 2 arcsec.
 NoiseTerm base_quantization() { return QuantizationTerm{natural(ParameterDimension::kAngle, 2.0)}; }
-NoiseTerm base_white() { return AngleRandomWalkTerm{natural(ParameterDimension::kAnglePerRootTime, 0.5)}; }
+NoiseTerm base_white() {
+  return AngleRandomWalkTerm{natural(ParameterDimension::kAnglePerRootTime, 0.5)};
+}
 NoiseTerm base_flicker() { return BiasInstabilityTerm{natural(ParameterDimension::kRate, 3.0)}; }
 
 NoiseModel model_of(std::vector<NoiseTerm> terms) {
@@ -131,10 +134,10 @@ Scenario pair(TermType a, TermType b) {
 
 struct Tally {
   int runs = 0;
-  int detected = 0;        // every hidden type named by some iteration
-  int named_first = 0;     // the first iteration names a hidden type
-  int consistent = 0;      // the final model is consistent
-  int any_iteration = 0;   // for controls: false alarms
+  int detected = 0;       // every hidden type named by some iteration
+  int named_first = 0;    // the first iteration names a hidden type
+  int consistent = 0;     // the final model is consistent
+  int any_iteration = 0;  // for controls: false alarms
 };
 
 Tally run(const Scenario& scenario, int seeds, std::uint64_t first_seed) {
@@ -142,8 +145,8 @@ Tally run(const Scenario& scenario, int seeds, std::uint64_t first_seed) {
   DiagnoseOptions options;
   options.seeds = 0;  // the band is for plots; the study needs the gap only
   for (int k = 0; k < seeds; ++k) {
-    const Record record =
-        simulated_record(scenario.truth, kSamples, kRate, first_seed + static_cast<std::uint64_t>(k));
+    const Record record = simulated_record(scenario.truth, kSamples, kRate,
+                                           first_seed + static_cast<std::uint64_t>(k));
     const DiagnoseResult result = diagnose(record, scenario.base, options);
     ++tally.runs;
     std::vector<TermType> found;
@@ -172,10 +175,10 @@ Tally run(const Scenario& scenario, int seeds, std::uint64_t first_seed) {
 }
 
 TEST(DiagnoseDetectionStudy, RatesOverHiddenEffectsPairsAndControls) {
-  const std::vector<TermType> types = {
-      TermType::kQuantization, TermType::kAngleRandomWalk, TermType::kBiasInstability,
-      TermType::kRateRandomWalk, TermType::kRateRamp,     TermType::kGaussMarkov,
-      TermType::kSinusoid,       TermType::kNonstationary};
+  const std::vector<TermType> types = {TermType::kQuantization,    TermType::kAngleRandomWalk,
+                                       TermType::kBiasInstability, TermType::kRateRandomWalk,
+                                       TermType::kRateRamp,        TermType::kGaussMarkov,
+                                       TermType::kSinusoid,        TermType::kNonstationary};
   constexpr int kSeeds = 3;
   std::vector<std::pair<Scenario, Tally>> rows;
   Tally singles_weak, singles_strong, pairs, controls;
@@ -223,8 +226,8 @@ TEST(DiagnoseDetectionStudy, RatesOverHiddenEffectsPairsAndControls) {
               "named first", "consistent");
   for (const auto& [scenario, t] : rows) {
     std::printf("[ study ] %-34s %5d %9d %12d %11d%s\n", scenario.name.c_str(), t.runs,
-                scenario.hidden.empty() ? t.any_iteration : t.detected, t.named_first,
-                t.consistent, scenario.hidden.empty() ? "   (false alarms in 'detected')" : "");
+                scenario.hidden.empty() ? t.any_iteration : t.detected, t.named_first, t.consistent,
+                scenario.hidden.empty() ? "   (false alarms in 'detected')" : "");
   }
   const auto rate = [](int k, int n) { return n > 0 ? 100.0 * k / n : 0.0; };
   std::printf("[ study ] single effects, weak:   detected %d/%d (%.0f %%), named at step 1 %d/%d\n",

@@ -3,10 +3,9 @@
 
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
@@ -55,9 +54,9 @@ TEST(DiagnoseCli, WritesTheReportJsonContractReportMdAndPlots) {
   const std::string record = write_hidden_gauss_markov(dir);
   const std::string model = dir.write("model.json", kBaseModel);
   const std::string out = dir.file("out");
-  const auto result = run_cli("diagnose --input '" + record + "' --model '" + model +
-                                  "' --out '" + out + "' --seeds 3",
-                              dir.path().string());
+  const auto result = run_cli(
+      "diagnose --input '" + record + "' --model '" + model + "' --out '" + out + "' --seeds 3",
+      dir.path().string());
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json report = read_json(fs::path(out) / "report.json");
   std::set<std::string> keys;
@@ -72,9 +71,8 @@ TEST(DiagnoseCli, WritesTheReportJsonContractReportMdAndPlots) {
   for (const auto& step : report["iterations"]) {
     std::set<std::string> step_keys;
     for (const auto& [key, value] : step.items()) step_keys.insert(key);
-    EXPECT_EQ(step_keys, (std::set<std::string>{"effect", "evidence", "tau_range_s",
-                                                "time_range_s", "added_term", "gap_before",
-                                                "gap_after"}));
+    EXPECT_EQ(step_keys, (std::set<std::string>{"effect", "evidence", "tau_range_s", "time_range_s",
+                                                "added_term", "gap_before", "gap_after"}));
     EXPECT_TRUE(step["evidence"].is_string());
     EXPECT_TRUE(step["tau_range_s"].is_null() || step["tau_range_s"].size() == 2);
     EXPECT_TRUE(step["time_range_s"].is_null() || step["time_range_s"].size() == 2);
@@ -111,9 +109,9 @@ TEST(DiagnoseCli, AConsistentModelGivesNoIterations) {
 
 struct BadCase {
   std::string name;
-  std::string model;      // model file content
-  std::string record;     // record file content
-  std::string expected;   // in the one-line message
+  std::string model;     // model file content
+  std::string record;    // record file content
+  std::string expected;  // in the one-line message
 };
 
 class DiagnoseCliErrors : public ::testing::TestWithParam<BadCase> {};
@@ -124,9 +122,9 @@ TEST_P(DiagnoseCliErrors, ExitTwoWithOneLocatedLineAndNoOutput) {
   const std::string record = dir.write("record.csv", c.record);
   const std::string model = dir.write("model.json", c.model);
   const std::string out = dir.file("out");
-  const auto result = run_cli("diagnose --input '" + record + "' --model '" + model +
-                                  "' --out '" + out + "'",
-                              dir.path().string());
+  const auto result =
+      run_cli("diagnose --input '" + record + "' --model '" + model + "' --out '" + out + "'",
+              dir.path().string());
   EXPECT_EQ(result.exit_code, 2) << result.err;
   EXPECT_NE(result.err.find(c.expected), std::string::npos) << result.err;
   EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
@@ -144,17 +142,19 @@ std::string good_record() {
 INSTANTIATE_TEST_SUITE_P(
     BadInputs, DiagnoseCliErrors,
     ::testing::Values(
-        BadCase{"NegativeCoefficient",
-                R"({"units": "deg/h", "rate_hz": 100, "terms": [{"type": "angle_random_walk", "N": -1}]})",
-                good_record(), "/terms/0/N"},
+        BadCase{
+            "NegativeCoefficient",
+            R"({"units": "deg/h", "rate_hz": 100, "terms": [{"type": "angle_random_walk", "N": -1}]})",
+            good_record(), "/terms/0/N"},
         BadCase{"UnknownTerm",
                 R"({"units": "deg/h", "rate_hz": 100, "terms": [{"type": "wobble"}]})",
                 good_record(), "/terms/0/type"},
         BadCase{"JsonSyntax", "{\"units\": \"deg/h\",\n \"rate_hz\": 100,,}", good_record(),
                 "line 2"},
-        BadCase{"RecordWithText",
-                R"({"units": "deg/h", "rate_hz": 100, "terms": [{"type": "angle_random_walk", "N": 1}]})",
-                "t,value\n0,1\n0.01,abc\n0.02,3\n", "record.csv:3"}),
+        BadCase{
+            "RecordWithText",
+            R"({"units": "deg/h", "rate_hz": 100, "terms": [{"type": "angle_random_walk", "N": 1}]})",
+            "t,value\n0,1\n0.01,abc\n0.02,3\n", "record.csv:3"}),
     [](const auto& test_info) { return test_info.param.name; });
 
 TEST(DiagnoseCliRealData, AdisGyroZHasALineNearTwentyHertz) {

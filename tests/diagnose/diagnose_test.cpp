@@ -1,12 +1,13 @@
 // Unit tests of the diagnose domain: gap calibration, stationarity, signature, the loop.
 
+#include "stochnav/diagnose/diagnose.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "diagnose_support.hpp"
 #include "stochnav/core/errors.hpp"
-#include "stochnav/diagnose/diagnose.hpp"
 #include "stochnav/diagnose/effective_model.hpp"
 #include "stochnav/diagnose/gap.hpp"
 #include "stochnav/diagnose/measured_statistics.hpp"
@@ -126,7 +127,8 @@ TEST(DiagnoseStationarity, AStationaryRecordPasses) {
     const MeasuredStatistics measured = measure_record(record, 32);
     const StationarityTest test = stationarity_test(measured.windows, white_and_walk());
     if (test.p_value < 1e-3) ++failures;
-    EXPECT_TRUE(std::none_of(test.deviating.begin(), test.deviating.end(), [](bool d) { return d; }));
+    EXPECT_TRUE(
+        std::none_of(test.deviating.begin(), test.deviating.end(), [](bool d) { return d; }));
   }
   EXPECT_EQ(failures, 0);
 }
@@ -145,7 +147,7 @@ Signature signature_of(const NoiseModel& model, const NoiseTerm& extra) {
     measured.tau_s.push_back(static_cast<double>(m) / kRate);
     measured.avar.push_back(allan_variance(truth, measured.tau_s.back()));
   }
-  for (double k = 0; ; k += 1.0) {
+  for (double k = 0;; k += 1.0) {
     const double m = std::round(std::pow(10.0, k / 20.0));
     if (4.0 * m >= static_cast<double>(phase_count)) break;
     if (!dense_tau.empty() && m / kRate <= dense_tau.back()) continue;
@@ -161,16 +163,19 @@ TEST(DiagnoseSignature, NamesPowerLawsBumpsAndLines) {
                         kRate,
                         {AngleRandomWalkTerm{natural(ParameterDimension::kAnglePerRootTime, 0.5)},
                          BiasInstabilityTerm{natural(ParameterDimension::kRate, 1.0)}}};
-  EXPECT_EQ(signature_of(base, RateRandomWalkTerm{natural(ParameterDimension::kRatePerRootTime, 10.0)})
-                .suggested,
-            TermType::kRateRandomWalk);
-  EXPECT_EQ(signature_of(base, RateRampTerm{natural(ParameterDimension::kRatePerTime, 20.0)}).suggested,
-            TermType::kRateRamp);
-  EXPECT_EQ(signature_of(base, QuantizationTerm{natural(ParameterDimension::kAngle, 5.0)}).suggested,
-            TermType::kQuantization);
-  EXPECT_EQ(signature_of(base, GaussMarkovTerm{natural(ParameterDimension::kRate, 20.0), 5.0})
-                .suggested,
-            TermType::kGaussMarkov);
+  EXPECT_EQ(
+      signature_of(base, RateRandomWalkTerm{natural(ParameterDimension::kRatePerRootTime, 10.0)})
+          .suggested,
+      TermType::kRateRandomWalk);
+  EXPECT_EQ(
+      signature_of(base, RateRampTerm{natural(ParameterDimension::kRatePerTime, 20.0)}).suggested,
+      TermType::kRateRamp);
+  EXPECT_EQ(
+      signature_of(base, QuantizationTerm{natural(ParameterDimension::kAngle, 5.0)}).suggested,
+      TermType::kQuantization);
+  EXPECT_EQ(
+      signature_of(base, GaussMarkovTerm{natural(ParameterDimension::kRate, 20.0), 5.0}).suggested,
+      TermType::kGaussMarkov);
   EXPECT_EQ(signature_of(base, SinusoidTerm{natural(ParameterDimension::kRate, 200.0), 0.05, {}})
                 .suggested,
             TermType::kSinusoid);

@@ -128,7 +128,8 @@ void run_diagnose(const DiagnoseArguments& arguments) {
   write_file_atomically(staging.path() / "report.md",
                         diagnose_report_markdown(result, source, arguments.model_path, plots));
   files.push_back("report.md");
-  write_file_atomically(staging.path() / "report.json", diagnose_report_json(result).dump(2) + "\n");
+  write_file_atomically(staging.path() / "report.json",
+                        diagnose_report_json(result).dump(2) + "\n");
   files.push_back("report.json");
   // Stale plots of an earlier run would contradict this report.
   for (const auto& entry : fs::directory_iterator(out)) {
@@ -155,25 +156,26 @@ void run_diagnose(const DiagnoseArguments& arguments) {
 void add_diagnose_command(CLI::App& app) {
   auto arguments = std::make_shared<DiagnoseArguments>();
   CLI::App* command = app.add_subcommand(
-      "diagnose", "Find what a noise model misses in a record, name it, add it, show the gap shrink");
+      "diagnose",
+      "Find what a noise model misses in a record, name it, add it, show the gap shrink");
   add_input_options(*command, arguments->input);
   command->add_option("--model", arguments->model_path, "Noise model JSON (or fit output)")
       ->required();
   command->add_option("--out", arguments->out_dir, "Folder for report.json, report.md and plots")
       ->required();
-  command->add_option("--seeds", arguments->options.seeds,
-                      "Simulated records per model for the band (0: none)")
+  command
+      ->add_option("--seeds", arguments->options.seeds,
+                   "Simulated records per model for the band (0: none)")
       ->capture_default_str();
   command->add_option("--seed", arguments->options.seed, "First simulation seed")
       ->capture_default_str();
-  command->add_option("--max-iterations", arguments->options.max_iterations,
-                      "Most terms to add")
+  command->add_option("--max-iterations", arguments->options.max_iterations, "Most terms to add")
       ->capture_default_str();
-  command->add_option("--alpha", arguments->options.alpha,
-                      "False-alarm probability of the consistency test")
+  command
+      ->add_option("--alpha", arguments->options.alpha,
+                   "False-alarm probability of the consistency test")
       ->capture_default_str();
-  command->add_option("--windows", arguments->options.windows,
-                      "Windows of the stationarity test")
+  command->add_option("--windows", arguments->options.windows, "Windows of the stationarity test")
       ->capture_default_str();
   command->add_option("--plots", arguments->plots, "png, svg or none")->capture_default_str();
   command->callback([arguments, command] {

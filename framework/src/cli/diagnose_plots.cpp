@@ -71,15 +71,17 @@ void plot_diagnose_step(const MeasuredStatistics& measured, const ModelAssessmen
       "$measured using 1:2 with lines lw 1.5 lc rgb '#1f77b4' title 'measured OADEV', "
       "$octave using 1:2:3:4 with yerrorbars pt 7 ps 0.6 lc rgb '#1f77b4' "
       "title 'octave taus (68.3 % interval)', ";
-  plots += fmt::format("$after using 1:2 with lines lw 2.5 lc rgb '#d62728' title 'model {} "
-                       "(gap {:.3g})'",
-                       before ? "after" : "as given", after.gap.value);
+  plots += fmt::format(
+      "$after using 1:2 with lines lw 2.5 lc rgb '#d62728' title 'model {} "
+      "(gap {:.3g})'",
+      before ? "after" : "as given", after.gap.value);
   if (before != nullptr) {
     const auto before_curve = model_curve(before->model, tau, measured.duration_s, per_natural);
     script += gnuplot_datablock("before", {&tau, &before_curve});
-    plots += fmt::format(", $before using 1:2 with lines dt 2 lw 2 lc rgb '#7f7f7f' title "
-                         "'model before (gap {:.3g})'",
-                         before->gap.value);
+    plots += fmt::format(
+        ", $before using 1:2 with lines dt 2 lw 2 lc rgb '#7f7f7f' title "
+        "'model before (gap {:.3g})'",
+        before->gap.value);
   }
   script += axes(fmt::format("Allan deviation ({})", unit_name(measured.unit)),
                  fmt::format("{} [{}]: {}", record.source, record.column, label));
@@ -95,8 +97,8 @@ void plot_diagnose_davar(const Record& record, const MeasuredStatistics& measure
                          const std::filesystem::path& output) {
   const auto& windows = measured.windows;
   if (windows.avar.empty()) return;
-  const std::size_t window =
-      static_cast<std::size_t>(std::llround((windows.end_s[0] - windows.start_s[0]) * record.rate_hz));
+  const std::size_t window = static_cast<std::size_t>(
+      std::llround((windows.end_s[0] - windows.start_s[0]) * record.rate_hz));
   DavarOptions options{.window = window, .step = std::max<std::size_t>(1, window / 2)};
   auto m = default_davar_m_values(window, record.kind);
   if (m.size() > 4) m.resize(4);
@@ -109,8 +111,9 @@ void plot_diagnose_davar(const Record& record, const MeasuredStatistics& measure
     for (const auto& row : davar.adev) column.push_back(row[j]);
     const std::string name = fmt::format("tau{}", j);
     script += gnuplot_datablock(name, {&davar.time_s, &column});
-    plots += fmt::format("{}${} using 1:2 with linespoints pt 7 ps 0.4 title 'DAVAR tau = {:.4g} s'",
-                         plots.empty() ? "" : ", ", name, davar.tau_s[j]);
+    plots +=
+        fmt::format("{}${} using 1:2 with linespoints pt 7 ps 0.4 title 'DAVAR tau = {:.4g} s'",
+                    plots.empty() ? "" : ", ", name, davar.tau_s[j]);
   }
   // Expected short-tau level under the model: quiet level times the window's scale^2.
   const double per_natural = 1.0 / si_per_unit(measured.unit);
@@ -124,13 +127,15 @@ void plot_diagnose_davar(const Record& record, const MeasuredStatistics& measure
     expected.push_back(level);
   }
   script += gnuplot_datablock("expected", {&time, &expected});
-  plots += fmt::format(", $expected using 1:2 with lines lw 2 dt 2 lc rgb '#d62728' title "
-                       "'final model at tau = {:.4g} s (quiet level x scale)'",
-                       davar.tau_s.front());
+  plots += fmt::format(
+      ", $expected using 1:2 with lines lw 2 dt 2 lc rgb '#d62728' title "
+      "'final model at tau = {:.4g} s (quiet level x scale)'",
+      davar.tau_s.front());
   script += fmt::format(
       "set logscale y\nset format y '10^{{%L}}'\nset grid lc rgb '#dddddd'\n"
       "set xlabel 'record time (s)'\nset ylabel 'Allan deviation ({})' noenhanced\n"
-      "set title '{} [{}]: DAVAR, window {} samples' noenhanced\nset key outside bottom center horizontal\n",
+      "set title '{} [{}]: DAVAR, window {} samples' noenhanced\nset key outside bottom center "
+      "horizontal\n",
       unit_name(measured.unit), record.source, record.column, window);
   script += "plot " + plots + "\n";
   render_gnuplot(script, output);

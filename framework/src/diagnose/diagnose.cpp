@@ -9,6 +9,7 @@
 #include "stochnav/core/errors.hpp"
 #include "stochnav/diagnose/candidate_fit.hpp"
 #include "stochnav/diagnose/effective_model.hpp"
+#include "stochnav/model/allan_variance.hpp"
 #include "stochnav/model/reporting_units.hpp"
 
 namespace stochnav {
@@ -18,6 +19,9 @@ std::string DiagnoseOptions::validate() const {
   if (max_iterations < 0) return fmt::format("max_iterations: {}; expected >= 0", max_iterations);
   if (!(alpha > 0.0 && alpha < 0.5)) return fmt::format("alpha: {}; expected in (0, 0.5)", alpha);
   if (windows < 4) return fmt::format("windows: {}; expected >= 4", windows);
+  if (!(min_term_share >= 0.0 && min_term_share < 1.0)) {
+    return fmt::format("min_term_share: {}; expected in [0, 1)", min_term_share);
+  }
   if (!(parameter_price >= 0.0) || !std::isfinite(parameter_price)) {
     return fmt::format("parameter_price: {}; expected a number >= 0", parameter_price);
   }
@@ -54,8 +58,8 @@ ModelAssessment assess_model(const NoiseModel& model, const MeasuredStatistics& 
   assessment.gap = combine_gap(avar_gap(model, measured.octave_avar),
                                stationarity_test(measured.windows, model), options.alpha);
   if (options.seeds > 0) {
-    assessment.band = simulate_band(model, measured.samples, measured.rate_hz, band_factors(measured),
-                                    options.seeds, options.seed);
+    assessment.band = simulate_band(model, measured.samples, measured.rate_hz,
+                                    band_factors(measured), options.seeds, options.seed);
   }
   return assessment;
 }
@@ -79,6 +83,19 @@ bool has_type(const NoiseModel& model, TermType type) {
 // refitted variant covers that). Gauss-Markov and sinusoid terms may repeat.
 bool repeatable(TermType type) {
   return type == TermType::kGaussMarkov || type == TermType::kSinusoid;
+}
+
+// Largest share of the term in the model's Allan variance over the octave taus.
+double largest_share(const NoiseTerm& term, const NoiseModel& model,
+                     const MeasuredStatistics& measured) {
+  const StationaryEquivalent equivalent = stationary_equivalent(model, measured.duration_s);
+  const NoiseTerm scaled = scale_amplitude(term, std::sqrt(equivalent.variance_factor));
+  double share = 0.0;
+  for (double tau : measured.octave_avar.tau_s) {
+    const double total = allan_variance(equivalent.model, tau);
+    if (total > 0.0) share = std::max(share, allan_variance(scaled, tau) / total);
+  }
+  return share;
 }
 
 struct Trial {
@@ -108,17 +125,18 @@ std::string evidence_text(const Signature& signature, const Gap& before, const T
         "The short-tau Allan variance of the {} windows disagrees between windows: "
         "chi-square {:.1f} on {:.0f} dof (reduced {:.2f}, p = {:.2g}); {} windows deviate from "
         "the median level by more than 4 sigma (largest |z| = {:.1f})",
-        test.z.size(), test.chi_square, test.dof, test.reduced_chi_square, test.p_value,
-        deviating, max_z);
-    if (time_range) text += fmt::format(", over t = {:.1f} .. {:.1f} s", (*time_range)[0], (*time_range)[1]);
+        test.z.size(), test.chi_square, test.dof, test.reduced_chi_square, test.p_value, deviating,
+        max_z);
+    if (time_range)
+      text += fmt::format(", over t = {:.1f} .. {:.1f} s", (*time_range)[0], (*time_range)[1]);
     text += ". ";
   } else if (signature.found) {
     text += fmt::format(
         "The measured Allan variance lies {} the model's band over tau = {:.4g} .. {:.4g} s "
         "(largest |z| = {:.1f} at tau = {:.4g} s); signature: {}, which reads as {}. ",
         signature.above ? "above" : "below", (*signature.tau_range_s)[0],
-        (*signature.tau_range_s)[1], signature.max_abs_z, signature.tau_at_max_s,
-        signature.shape, term_type_name(signature.suggested));
+        (*signature.tau_range_s)[1], signature.max_abs_z, signature.tau_at_max_s, signature.shape,
+        term_type_name(signature.suggested));
   } else {
     text += fmt::format(
         "No octave point leaves the model's 2-sigma band by itself (largest |z| = {:.1f}), but "
@@ -137,8 +155,8 @@ std::string evidence_text(const Signature& signature, const Gap& before, const T
                       kept.outcome.refitted ? "other terms refitted" : "other terms held",
                       before.value, kept.gap.value);
   if (ranked.size() > 1) {
-    const auto runner = std::find_if(ranked.begin(), ranked.end(),
-                                     [&](const auto& o) { return o.type != effect; });
+    const auto runner =
+        std::find_if(ranked.begin(), ranked.end(), [&](const auto& o) { return o.type != effect; });
     if (runner != ranked.end()) {
       text += fmt::format(" (next best: {} at {:.3g})", term_type_name(runner->type), runner->gap);
     }
@@ -197,9 +215,9 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
   const ModelAssessment* current = &result.initial;
   if (current->gap.consistent) {
     result.consistent = true;
-    result.conclusion = fmt::format(
-        "The model is consistent with the record (gap {:.3g}): nothing to add.",
-        current->gap.value);
+    result.conclusion =
+        fmt::format("The model is consistent with the record (gap {:.3g}): nothing to add.",
+                    current->gap.value);
   }
   for (int iteration = 0; !result.consistent && iteration < options.max_iterations; ++iteration) {
     const Gap& before = current->gap;
@@ -219,6 +237,13 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
         trial.outcome.gap = trial.gap.value;
       } catch (const ConfigError&) {
         trial.outcome.usable = false;
+      }
+      // A term that is nowhere a material part of the model names nothing: its gain comes from
+      // the refitted old terms.
+      if (trial.outcome.usable && type != TermType::kNonstationary &&
+          largest_share(term, candidate, measured) < options.min_term_share) {
+        trial.outcome.usable = false;
+        trial.outcome.immaterial = true;
       }
       trial.model = std::move(candidate);
       trial.term = std::move(term);
@@ -240,7 +265,7 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
         auto fitted = fit_candidate(base, measured.dense_fit, type, refit, measured.duration_s);
         if (!fitted) {
           Trial failed;
-          failed.outcome = {type, refit, false, 0.0, false};
+          failed.outcome = {type, refit, false, 0.0, false, false};
           trials.push_back(std::move(failed));
           continue;
         }
@@ -285,9 +310,9 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
       for (Trial* trial : contenders) {
         if (!trial->outcome.exact) {
           try {
-            trial->gap = combine_gap(avar_gap(trial->model, measured.octave_avar),
-                                     stationarity_test(measured.windows, trial->model),
-                                     options.alpha);
+            trial->gap =
+                combine_gap(avar_gap(trial->model, measured.octave_avar),
+                            stationarity_test(measured.windows, trial->model), options.alpha);
           } catch (const ConfigError&) {
             continue;
           }
@@ -311,9 +336,9 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
       result.conclusion = fmt::format(
           "No candidate shrinks the gap significantly (best: {}), so none was added; the model "
           "stays inconsistent (gap {:.3g}).",
-          best != nullptr ? fmt::format("{} at {:.3g}", term_type_name(best->outcome.type),
-                                        best->gap.value)
-                          : std::string("none usable"),
+          best != nullptr
+              ? fmt::format("{} at {:.3g}", term_type_name(best->outcome.type), best->gap.value)
+              : std::string("none usable"),
           before.value);
       break;
     }
@@ -330,8 +355,8 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     } else {
       step.tau_range_s = signature.tau_range_s;
     }
-    step.evidence = evidence_text(signature, before, *best, outcomes, step.time_range_s,
-                                  measured.unit);
+    step.evidence =
+        evidence_text(signature, before, *best, outcomes, step.time_range_s, measured.unit);
     step.after.model = best->model;
     step.after.gap = best->gap;
     if (options.seeds > 0) {
@@ -342,9 +367,9 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     current = &result.iterations.back().after;
     if (current->gap.consistent) {
       result.consistent = true;
-      result.conclusion = fmt::format(
-          "After {} step(s) the model is consistent with the record (gap {:.3g}).",
-          result.iterations.size(), current->gap.value);
+      result.conclusion =
+          fmt::format("After {} step(s) the model is consistent with the record (gap {:.3g}).",
+                      result.iterations.size(), current->gap.value);
     } else if (iteration + 1 == options.max_iterations) {
       result.conclusion = fmt::format(
           "Stopped after the maximum of {} steps; the model is still inconsistent (gap {:.3g}).",
@@ -355,7 +380,8 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     result.conclusion = "The model is inconsistent with the record; no steps were allowed.";
   }
   const ModelAssessment& last = result.final_assessment();
-  result.final_signature = read_signature(last.gap.avar, dense_tau, dense_avar, dense_edf, last.model);
+  result.final_signature =
+      read_signature(last.gap.avar, dense_tau, dense_avar, dense_edf, last.model);
   return result;
 }
 

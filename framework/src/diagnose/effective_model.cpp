@@ -77,9 +77,9 @@ StationaryEquivalent stationary_equivalent(const NoiseModel& model, double durat
   StationaryEquivalent result;
   result.variance_factor = mean_scale_power(model, duration_s, 2);
   const double fourth = mean_scale_power(model, duration_s, 4);
-  result.variance_inflation =
-      result.variance_factor > 0.0 ? fourth / (result.variance_factor * result.variance_factor)
-                                   : 1.0;
+  result.variance_inflation = result.variance_factor > 0.0
+                                  ? fourth / (result.variance_factor * result.variance_factor)
+                                  : 1.0;
   result.model = NoiseModel{model.unit, model.rate_hz, {}};
   const double amplitude = std::sqrt(result.variance_factor);
   for (const NoiseTerm& term : model.terms) {

@@ -19,10 +19,9 @@ namespace stochnav {
 AvarGap avar_gap(const NoiseModel& model, const AvarMeasurement& measured) {
   const double duration_s = static_cast<double>(measured.phase_count - 1) * measured.tau0_s;
   const StationaryEquivalent equivalent = stationary_equivalent(model, duration_s);
-  const Eigen::MatrixXd covariance =
-      oadev_estimate_covariance(equivalent.model, measured.tau0_s, measured.phase_count,
-                                measured.m) *
-      equivalent.variance_inflation;
+  const Eigen::MatrixXd covariance = oadev_estimate_covariance(equivalent.model, measured.tau0_s,
+                                                               measured.phase_count, measured.m) *
+                                     equivalent.variance_inflation;
   const auto count = static_cast<Eigen::Index>(measured.m.size());
   AvarGap gap;
   Eigen::VectorXd inv_sd(count);
@@ -41,8 +40,8 @@ AvarGap avar_gap(const NoiseModel& model, const AvarMeasurement& measured) {
     }
     const double terms = static_cast<double>(measured.phase_count - 2 * measured.m[index]);
     const double variance = covariance(i, i);
-    double edf = variance > 0.0 ? 2.0 * point.avar_model * point.avar_model / variance
-                                : 2.0 * terms;
+    double edf =
+        variance > 0.0 ? 2.0 * point.avar_model * point.avar_model / variance : 2.0 * terms;
     edf = std::clamp(edf, 1e-3, 2.0 * terms);
     point.edf_model = edf;
     const double half = 0.5 * edf;
@@ -80,9 +79,10 @@ AvarGap screening_avar_gap(const NoiseModel& model, const AvarMeasurement& measu
     AvarGapPoint point = reference.points[i];
     point.avar_model = allan_variance(equivalent, point.tau_s);
     if (!(point.avar_model > 0.0) || !std::isfinite(point.avar_model)) {
-      throw ConfigError(fmt::format("screening_avar_gap: the model's Allan variance is {} at "
-                                    "tau = {} s; expected > 0",
-                                    point.avar_model, point.tau_s));
+      throw ConfigError(
+          fmt::format("screening_avar_gap: the model's Allan variance is {} at "
+                      "tau = {} s; expected > 0",
+                      point.avar_model, point.tau_s));
     }
     const double half = 0.5 * point.edf_model;
     const double bias = boost::math::digamma(half) - std::log(half);
@@ -91,7 +91,8 @@ AvarGap screening_avar_gap(const NoiseModel& model, const AvarMeasurement& measu
     sum_z2 += point.z * point.z;
     gap.points.push_back(point);
   }
-  gap.reduced_chi_square = gap.points.empty() ? 0.0 : sum_z2 / static_cast<double>(gap.points.size());
+  gap.reduced_chi_square =
+      gap.points.empty() ? 0.0 : sum_z2 / static_cast<double>(gap.points.size());
   return gap;
 }
 
@@ -115,9 +116,9 @@ Gap combine_gap(AvarGap avar, StationarityTest stationarity, double alpha) {
                   : avar.reduced_chi_square;
   gap.avar_threshold = reduced_quantile(avar.effective_dof, 1.0 - 0.5 * alpha);
   gap.stationarity_threshold = reduced_quantile(stationarity.dof, 1.0 - 0.5 * alpha);
-  gap.consistent = avar.reduced_chi_square <= gap.avar_threshold &&
-                   (stationarity.dof <= 0.0 ||
-                    stationarity.reduced_chi_square <= gap.stationarity_threshold);
+  gap.consistent =
+      avar.reduced_chi_square <= gap.avar_threshold &&
+      (stationarity.dof <= 0.0 || stationarity.reduced_chi_square <= gap.stationarity_threshold);
   gap.avar = std::move(avar);
   gap.stationarity = std::move(stationarity);
   return gap;

@@ -51,7 +51,8 @@ MeasuredStatistics measure_record(const Record& record, std::size_t windows) {
     octave.avar.push_back(point.deviation * si * point.deviation * si);
   }
   if (octave.m.size() < 4) {
-    throw InputError(record.source + ": the record's Allan deviation is zero at most taus "
+    throw InputError(record.source +
+                     ": the record's Allan deviation is zero at most taus "
                      "(constant samples?); diagnose needs a noisy record");
   }
   measured.dense_fit =

@@ -60,8 +60,9 @@ std::string point_table(const MeasuredStatistics& measured, const ModelAssessmen
       "[min, max] ({0}) | z |\n|---|---|---|---|---|\n",
       unit_name(measured.unit));
   for (const auto& point : assessment.gap.avar.points) {
-    const auto row = std::find_if(measured.octave.begin(), measured.octave.end(),
-                                  [&](const auto& p) { return std::abs(p.tau_s - point.tau_s) < 1e-12 * point.tau_s; });
+    const auto row = std::find_if(
+        measured.octave.begin(), measured.octave.end(),
+        [&](const auto& p) { return std::abs(p.tau_s - point.tau_s) < 1e-12 * point.tau_s; });
     std::string interval = "";
     if (row != measured.octave.end() && std::isfinite(row->lower)) {
       interval = fmt::format(" [{:.4g}, {:.4g}]", row->lower, row->upper);
@@ -91,8 +92,8 @@ std::string diagnose_report_markdown(const DiagnoseResult& result, const std::st
                     measured.samples, measured.rate_hz, measured.duration_s,
                     unit_name(measured.unit));
   md += fmt::format("Model: `{}`.\n\n", model_source);
-  md += fmt::format("**Result: {}.** {}\n\n",
-                    result.consistent ? "consistent" : "not consistent", result.conclusion);
+  md += fmt::format("**Result: {}.** {}\n\n", result.consistent ? "consistent" : "not consistent",
+                    result.conclusion);
   md += fmt::format("Gap: {:.3g} initially, {:.3g} at the end, after {} step(s).\n\n",
                     result.initial.gap.value, result.final_assessment().gap.value,
                     result.iterations.size());
@@ -118,16 +119,19 @@ std::string diagnose_report_markdown(const DiagnoseResult& result, const std::st
                       trimmed(describe(step.added_term, quantity_of(step.after.model.unit))),
                       step.refitted ? " (the other terms refitted with it)" : "");
     md += fmt::format("- gap: {:.3g} -> {:.3g}\n\n", step.gap_before, step.gap_after);
-    md += "Candidates (gap by screening with the current model's estimator scatter; the best "
-          "three of each tier (held terms first, then refits) assessed exactly):\n\n| candidate | other terms | gap | assessed |\n"
-          "|---|---|---|---|\n";
+    md +=
+        "Candidates (gap by screening with the current model's estimator scatter; the best "
+        "three of each tier (held terms first, then refits) assessed exactly):\n\n| candidate | "
+        "other terms | gap | assessed |\n"
+        "|---|---|---|---|\n";
     for (const auto& candidate : step.candidates) {
       md += fmt::format("| {} | {} | {} | {} |\n", term_type_name(candidate.type),
                         candidate.type == TermType::kNonstationary
                             ? "-"
                             : (candidate.refitted ? "refitted" : "held"),
-                        candidate.usable ? fmt::format("{:.4g}", candidate.gap)
-                                         : std::string("fit failed"),
+                        candidate.usable       ? fmt::format("{:.4g}", candidate.gap)
+                        : candidate.immaterial ? std::string("immaterial (< min share)")
+                                               : std::string("fit failed"),
                         candidate.exact ? "exactly" : "screening");
     }
     md += "\nModel after the step:\n\n" + model_lines(step.after.model) + "\n";

@@ -135,8 +135,8 @@ Signature read_signature(const AvarGap& gap, std::span<const double> dense_tau_s
     if (top_index > 0 && top_index + 1 < excess.size() && significant[top_index] &&
         excess.front() < 0.5 * *top && excess.back() < 0.5 * *top) {
       signature.suggested = TermType::kGaussMarkov;
-      signature.shape = fmt::format("single bump of excess AVAR peaking near tau = {:.4g} s",
-                                    tau[top_index]);
+      signature.shape =
+          fmt::format("single bump of excess AVAR peaking near tau = {:.4g} s", tau[top_index]);
       return signature;
     }
   }

@@ -19,7 +19,8 @@ SimulatedBand simulate_band(const NoiseModel& model, std::size_t samples, double
   std::vector<std::vector<double>> runs;
   const double duration = static_cast<double>(samples) / rate_hz;
   for (int s = 0; s < seeds; ++s) {
-    const auto rate = simulate_noise(model, duration, rate_hz, seed + static_cast<std::uint64_t>(s));
+    const auto rate =
+        simulate_noise(model, duration, rate_hz, seed + static_cast<std::uint64_t>(s));
     const auto phase = phase_from_rate(rate, tau0);
     runs.push_back(deviation_values(Deviation::kOadev, phase, tau0, m));
   }

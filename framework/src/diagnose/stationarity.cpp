@@ -117,8 +117,8 @@ std::optional<NonstationaryTerm> nonstationary_candidate(const WindowVariances& 
         std::abs(scale / pieces.back().scale - 1.0) < 0.1) {
       const double a = pieces.back().end_s - pieces.back().start_s;
       const double b = windows.end_s[k] - windows.start_s[k];
-      pieces.back().scale = std::sqrt((a * pieces.back().scale * pieces.back().scale +
-                                       b * scale * scale) / (a + b));
+      pieces.back().scale =
+          std::sqrt((a * pieces.back().scale * pieces.back().scale + b * scale * scale) / (a + b));
       pieces.back().end_s = windows.end_s[k];
     } else {
       pieces.push_back({windows.start_s[k], windows.end_s[k], scale});
@@ -138,7 +138,8 @@ std::optional<NonstationaryTerm> nonstationary_candidate(const WindowVariances& 
       if (end > start) term.segments.push_back({start, end, segment.scale});
     }
   }
-  for (const auto& piece : pieces) term.segments.push_back({piece.start_s, piece.end_s, piece.scale});
+  for (const auto& piece : pieces)
+    term.segments.push_back({piece.start_s, piece.end_s, piece.scale});
   std::sort(term.segments.begin(), term.segments.end(),
             [](const auto& a, const auto& b) { return a.start_s < b.start_s; });
   return term;

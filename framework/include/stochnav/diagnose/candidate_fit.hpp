@@ -21,8 +21,8 @@
 namespace stochnav {
 
 struct CandidateFit {
-  NoiseModel model;    ///< the current model with the candidate (and refitted terms)
-  NoiseTerm term;      ///< the candidate term as fitted (natural units)
+  NoiseModel model;  ///< the current model with the candidate (and refitted terms)
+  NoiseTerm term;    ///< the candidate term as fitted (natural units)
   bool refitted = false;
 };
 

@@ -11,7 +11,8 @@
 //      candidate: each stationary vocabulary type, held and refitted (diagnose/candidate_fit.hpp),
 //      and, when the windows disagree, a nonstationary term built from them
 //      (diagnose/stationarity.hpp). Each candidate model is screened with the current model's
-//      estimator scatter (screening_avar_gap);
+//      estimator scatter (screening_avar_gap); a new stationary term that nowhere makes up
+//      `min_term_share` of the model's Allan variance is left out (immaterial);
 //   5. in two tiers, first the candidates that keep the model's terms as they are (held, or a
 //      nonstationary term), then, only if none of those is accepted, all of them (refits too: a
 //      refit can soak a second effect into the old coefficients, so it is the fallback for a
@@ -45,16 +46,19 @@
 namespace stochnav {
 
 struct DiagnoseOptions {
-  int seeds = 8;                 ///< simulated records per model assessment, >= 2 (0: no band)
-  std::uint64_t seed = 1;        ///< first simulation seed
-  int max_iterations = 4;        ///< >= 0
-  double alpha = 1e-3;           ///< false-alarm probability of the consistency test, (0, 0.5)
-  std::size_t windows = 32;      ///< stationarity windows, >= 4
+  int seeds = 6;             ///< simulated records per model assessment, >= 2 (0: no band)
+  std::uint64_t seed = 1;    ///< first simulation seed
+  int max_iterations = 4;    ///< >= 0
+  double alpha = 1e-3;       ///< false-alarm probability of the consistency test, (0, 0.5)
+  std::size_t windows = 32;  ///< stationarity windows, >= 4
   /// A kept term removes at least this fraction of the chi-square beyond its dof.
   double min_relative_shrink = 0.2;
   /// Chi-square a candidate pays per parameter of its new term when candidates are ranked
   /// (2: Akaike's price; a two-parameter term must explain 2 more than a one-parameter one).
   double parameter_price = 2.0;
+  /// A new stationary term must make up at least this share of the model's Allan variance at
+  /// some octave tau; a smaller one is a refit of the old terms in disguise, not an effect.
+  double min_term_share = 0.1;
   /// Stationary term types tried as the missing effect.
   std::vector<TermType> candidates = {TermType::kQuantization,    TermType::kAngleRandomWalk,
                                       TermType::kBiasInstability, TermType::kRateRandomWalk,
@@ -81,21 +85,22 @@ struct CandidateOutcome {
   /// The candidate model's gap (when usable): screening value (diagnose/gap.hpp,
   /// screening_avar_gap) unless `exact`.
   double gap = 0.0;
-  bool exact = false;     ///< assessed with its own estimator covariance
+  bool exact = false;       ///< assessed with its own estimator covariance
+  bool immaterial = false;  ///< left out: below DiagnoseOptions::min_term_share everywhere
 };
 
 struct DiagnoseIteration {
-  TermType effect = TermType::kAngleRandomWalk;  ///< the name: the kept candidate's type
-  std::string evidence;                           ///< one paragraph, numbers included
+  TermType effect = TermType::kAngleRandomWalk;       ///< the name: the kept candidate's type
+  std::string evidence;                               ///< one paragraph, numbers included
   std::optional<std::array<double, 2>> tau_range_s;   ///< where the AVAR leaves the band
   std::optional<std::array<double, 2>> time_range_s;  ///< deviating windows (record time)
-  NoiseTerm added_term;                           ///< natural units
-  bool refitted = false;                          ///< the other terms were refitted too
+  NoiseTerm added_term;                               ///< natural units
+  bool refitted = false;                              ///< the other terms were refitted too
   double gap_before = 0.0;
   double gap_after = 0.0;
-  Signature signature;                            ///< read before the step
-  std::vector<CandidateOutcome> candidates;       ///< every candidate tried, in order
-  ModelAssessment after;                          ///< the model after the step
+  Signature signature;                       ///< read before the step
+  std::vector<CandidateOutcome> candidates;  ///< every candidate tried, in order
+  ModelAssessment after;                     ///< the model after the step
 };
 
 struct DiagnoseResult {

@@ -18,7 +18,7 @@ struct StationaryEquivalent {
   /// The model's stationary terms with every amplitude coefficient scaled by sqrt(w) (so each
   /// term's Allan variance is multiplied by w); no nonstationary term; same unit and rate.
   NoiseModel model;
-  double variance_factor = 1.0;   ///< w
+  double variance_factor = 1.0;     ///< w
   double variance_inflation = 1.0;  ///< kappa, multiplies the variance of AVAR estimates
 };
 

@@ -44,11 +44,11 @@ namespace stochnav {
 
 /// The measured overlapping Allan variances the gap compares against (natural units).
 struct AvarMeasurement {
-  std::vector<std::size_t> m;       ///< averaging factors, ascending
-  std::vector<double> tau_s;        ///< m * tau0 (s)
-  std::vector<double> avar;         ///< measured OADEV variance, natural units^2, > 0
-  std::size_t phase_count = 0;      ///< phase points of the record (samples + 1)
-  double tau0_s = 0.0;              ///< sampling interval (s)
+  std::vector<std::size_t> m;   ///< averaging factors, ascending
+  std::vector<double> tau_s;    ///< m * tau0 (s)
+  std::vector<double> avar;     ///< measured OADEV variance, natural units^2, > 0
+  std::size_t phase_count = 0;  ///< phase points of the record (samples + 1)
+  double tau0_s = 0.0;          ///< sampling interval (s)
 };
 
 struct AvarGapPoint {
@@ -79,12 +79,12 @@ AvarGap screening_avar_gap(const NoiseModel& model, const AvarMeasurement& measu
 struct Gap {
   AvarGap avar;
   StationarityTest stationarity;
-  double value = 0.0;       ///< the gap: max(G_avar, G_stat)
-  double chi_square = 0.0;  ///< pooled: nu_avar G_avar + nu_stat G_stat
-  double dof = 0.0;         ///< nu_avar + nu_stat
+  double value = 0.0;                   ///< the gap: max(G_avar, G_stat)
+  double chi_square = 0.0;              ///< pooled: nu_avar G_avar + nu_stat G_stat
+  double dof = 0.0;                     ///< nu_avar + nu_stat
   double avar_threshold = 0.0;          ///< chi2 quantile (1 - alpha/2, nu_avar) / nu_avar
   double stationarity_threshold = 0.0;  ///< the same for nu_stat (1 without windows)
-  bool consistent = false;  ///< both parts below their thresholds
+  bool consistent = false;              ///< both parts below their thresholds
 };
 
 /// Combines the two parts. alpha in (0, 1): the false-alarm probability of `consistent`.

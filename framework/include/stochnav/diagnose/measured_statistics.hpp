@@ -15,15 +15,15 @@
 namespace stochnav {
 
 struct MeasuredStatistics {
-  Unit unit = Unit::kPlain;     ///< the record's unit (deviations below are in it)
+  Unit unit = Unit::kPlain;  ///< the record's unit (deviations below are in it)
   double rate_hz = 0.0;
-  std::size_t samples = 0;      ///< rate samples
-  double duration_s = 0.0;      ///< samples / rate_hz
+  std::size_t samples = 0;             ///< rate samples
+  double duration_s = 0.0;             ///< samples / rate_hz
   std::vector<DeviationPoint> octave;  ///< OADEV, octave m, record unit, 68.3 % intervals
   std::vector<DeviationPoint> dense;   ///< OADEV, dense m, record unit
-  AvarMeasurement octave_avar;  ///< the octave points in natural units (the gap's input)
-  FitData dense_fit;            ///< the dense points in natural units, Greenhall edf (fits)
-  WindowVariances windows;      ///< stationarity windows
+  AvarMeasurement octave_avar;         ///< the octave points in natural units (the gap's input)
+  FitData dense_fit;                   ///< the dense points in natural units, Greenhall edf (fits)
+  WindowVariances windows;             ///< stationarity windows
 };
 
 /// Measures a rate or phase record (phase records are differenced to rates for the windows).

@@ -11,9 +11,9 @@ namespace stochnav {
 
 /// File names (relative to the report's folder) of the plots written beside report.md.
 struct DiagnosePlotFiles {
-  std::string initial;               ///< measured vs initial model
-  std::vector<std::string> steps;    ///< measured vs the model after each step
-  std::string davar;                 ///< DAVAR plot, empty when not drawn
+  std::string initial;             ///< measured vs initial model
+  std::vector<std::string> steps;  ///< measured vs the model after each step
+  std::string davar;               ///< DAVAR plot, empty when not drawn
 };
 
 /// `source` names the record (file and column), `model_source` the model file.

@@ -27,14 +27,14 @@
 namespace stochnav {
 
 struct Signature {
-  bool found = false;               ///< some octave point has |z| > 2
-  bool above = true;                ///< the record lies above the model there
+  bool found = false;  ///< some octave point has |z| > 2
+  bool above = true;   ///< the record lies above the model there
   std::optional<std::array<double, 2>> tau_range_s;
   double max_abs_z = 0.0;
   double tau_at_max_s = 0.0;
-  double slope = 0.0;               ///< log-log slope of the excess AVAR over the range
+  double slope = 0.0;  ///< log-log slope of the excess AVAR over the range
   TermType suggested = TermType::kAngleRandomWalk;  ///< the vocabulary name of the shape
-  std::string shape;                ///< "slope -1.9", "single bump", "null at 0.053 s", ...
+  std::string shape;  ///< "slope -1.9", "single bump", "null at 0.053 s", ...
 };
 
 /// Reads the signature of `gap` (octave points) with the dense measured curve (tau_s, avar in

@@ -22,8 +22,8 @@ struct SimulatedBand {
 };
 
 /// Simulates `seeds` records of `samples` samples at rate_hz (seeds seed, seed + 1, ...) and
-/// computes their OADEV at the averaging factors `m` (each with 2m < samples + 1). With 8 seeds
-/// the [low, high] envelope holds a new record's value with probability 7/9 per tau.
+/// computes their OADEV at the averaging factors `m` (each with 2m < samples + 1). With k seeds
+/// the [low, high] envelope holds a new record's value with probability (k - 1)/(k + 1) per tau.
 SimulatedBand simulate_band(const NoiseModel& model, std::size_t samples, double rate_hz,
                             std::span<const std::size_t> m, int seeds, std::uint64_t seed);
 

@@ -39,17 +39,16 @@ struct WindowVariances {
 /// A_k and s_k of `windows` equal windows of the rate samples (natural units) of a record at
 /// rate_hz. Fewer windows are used when the record is short (each keeps >= 500 samples); none
 /// when it has fewer than 2000 samples.
-WindowVariances window_variances(std::span<const double> rate, double rate_hz,
-                                 std::size_t windows);
+WindowVariances window_variances(std::span<const double> rate, double rate_hz, std::size_t windows);
 
 struct StationarityTest {
-  std::vector<double> z;         ///< (r_k - median r) / s_k per window
-  std::vector<bool> deviating;   ///< |z_k| > z_deviating
-  double reference_log = 0.0;    ///< median of r_k: ln of the quiet level A at tau0
-  double chi_square = 0.0;       ///< X
-  double dof = 0.0;              ///< K - 1 (0 without windows)
+  std::vector<double> z;            ///< (r_k - median r) / s_k per window
+  std::vector<bool> deviating;      ///< |z_k| > z_deviating
+  double reference_log = 0.0;       ///< median of r_k: ln of the quiet level A at tau0
+  double chi_square = 0.0;          ///< X
+  double dof = 0.0;                 ///< K - 1 (0 without windows)
   double reduced_chi_square = 0.0;  ///< X / (K - 1); 1 without windows
-  double p_value = 1.0;          ///< P(chi2(K - 1) > X)
+  double p_value = 1.0;             ///< P(chi2(K - 1) > X)
 };
 
 /// The test of the file comment under `model`.
