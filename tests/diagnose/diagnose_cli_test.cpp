@@ -114,6 +114,8 @@ struct BadCase {
   std::string expected;  // in the one-line message
 };
 
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
 class DiagnoseCliErrors : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(DiagnoseCliErrors, ExitTwoWithOneLocatedLineAndNoOutput) {
