@@ -120,6 +120,20 @@ TEST(DiagnoseStationarity, FindsALoudStretchAndItsScale) {
   EXPECT_GT(stationarity_test(measured.windows, fixed).p_value, 1e-3);
 }
 
+TEST(DiagnoseStationarity, PlacesAnEdgeInsideAPartlyCoveredWindow) {
+  NoiseModel truth = white_and_walk();
+  truth.terms.push_back(NonstationaryTerm{{{420.0, 630.0, 3.0}}});
+  const Record record = simulated_record(truth, 100000, kRate, 12);
+  const MeasuredStatistics measured = measure_record(record, 20);  // 50 s windows
+  const StationarityTest test = stationarity_test(measured.windows, white_and_walk());
+  const auto term = nonstationary_candidate(measured.windows, test, white_and_walk());
+  ASSERT_TRUE(term.has_value());
+  ASSERT_EQ(term->segments.size(), 1u);
+  EXPECT_NEAR(term->segments[0].start_s, 420.0, 5.0);
+  EXPECT_NEAR(term->segments[0].end_s, 630.0, 5.0);
+  EXPECT_NEAR(term->segments[0].scale, 3.0, 0.1);
+}
+
 TEST(DiagnoseStationarity, AStationaryRecordPasses) {
   int failures = 0;
   for (int seed = 1; seed <= 10; ++seed) {

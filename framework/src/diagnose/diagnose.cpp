@@ -128,7 +128,8 @@ std::string evidence_text(const Signature& signature, const Gap& before, const T
         test.z.size(), test.chi_square, test.dof, test.reduced_chi_square, test.p_value, deviating,
         max_z);
     if (time_range)
-      text += fmt::format(", over t = {:.1f} .. {:.1f} s", (*time_range)[0], (*time_range)[1]);
+      text += fmt::format("; the stretch they point to: t = {:.1f} .. {:.1f} s", (*time_range)[0],
+                          (*time_range)[1]);
     text += ". ";
   } else if (signature.found) {
     text += fmt::format(
@@ -170,15 +171,26 @@ std::string evidence_text(const Signature& signature, const Gap& before, const T
   return text;
 }
 
-std::optional<std::array<double, 2>> deviating_time_range(const WindowVariances& windows,
-                                                          const StationarityTest& test) {
+// The record time spanned by the segments of `term` that `base` did not have.
+std::optional<std::array<double, 2>> segment_time_range(const NoiseTerm& term,
+                                                        const NoiseModel& base) {
+  const auto* nonstationary = std::get_if<NonstationaryTerm>(&term);
+  if (nonstationary == nullptr) return std::nullopt;
+  const NonstationaryTerm* old = find_nonstationary(base);
   std::optional<std::array<double, 2>> range;
-  for (std::size_t k = 0; k < test.deviating.size(); ++k) {
-    if (!test.deviating[k]) continue;
+  for (const auto& segment : nonstationary->segments) {
+    const bool kept =
+        old != nullptr &&
+        std::any_of(old->segments.begin(), old->segments.end(), [&](const NonstationarySegment& o) {
+          return o.start_s == segment.start_s && o.end_s == segment.end_s &&
+                 o.scale == segment.scale;
+        });
+    if (kept) continue;
     if (!range) {
-      range = std::array<double, 2>{windows.start_s[k], windows.end_s[k]};
+      range = std::array<double, 2>{segment.start_s, segment.end_s};
     } else {
-      (*range)[1] = windows.end_s[k];
+      (*range)[0] = std::min((*range)[0], segment.start_s);
+      (*range)[1] = std::max((*range)[1], segment.end_s);
     }
   }
   return range;
@@ -351,7 +363,7 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     step.signature = signature;
     step.candidates = outcomes;
     if (step.effect == TermType::kNonstationary) {
-      step.time_range_s = deviating_time_range(measured.windows, before.stationarity);
+      step.time_range_s = segment_time_range(best->term, base);
     } else {
       step.tau_range_s = signature.tau_range_s;
     }

@@ -124,6 +124,34 @@ std::optional<NonstationaryTerm> nonstationary_candidate(const WindowVariances& 
       pieces.push_back({windows.start_s[k], windows.end_s[k], scale});
     }
   }
+  // A window at the edge of a stretch that is only partly inside it shows a scale between 1 and
+  // the stretch's: with r^2 = 1 + f (s^2 - 1) the covered fraction is f, so the stretch's edge
+  // moves into that window by f of its width and the window's own piece goes.
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const Piece edge = pieces[i];
+    const double width = edge.end_s - edge.start_s;
+    const double r2 = edge.scale * edge.scale;
+    for (std::size_t j : {i + 1, i - 1}) {
+      if (j >= pieces.size()) continue;  // i - 1 wraps around for i == 0
+      Piece& stretch = pieces[j];
+      const double s2 = stretch.scale * stretch.scale;
+      const bool before = std::abs(edge.end_s - stretch.start_s) < 1e-9;
+      const bool after = std::abs(stretch.end_s - edge.start_s) < 1e-9;
+      const bool between = (r2 > 1.0 && s2 > r2) || (r2 < 1.0 && s2 < r2);
+      if (!(before || after) || !between || stretch.end_s - stretch.start_s < width * 0.999) {
+        continue;
+      }
+      const double fraction = (r2 - 1.0) / (s2 - 1.0);
+      if (before) {
+        stretch.start_s = edge.end_s - fraction * width;
+      } else {
+        stretch.end_s = edge.start_s + fraction * width;
+      }
+      pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(i));
+      i = static_cast<std::size_t>(-1);  // start over: the list changed
+      break;
+    }
+  }
   NonstationaryTerm term;
   // The model's own segments outside the deviating windows stay as they are.
   if (const NonstationaryTerm* existing = find_nonstationary(model)) {

@@ -56,9 +56,12 @@ StationarityTest stationarity_test(const WindowVariances& windows, const NoiseMo
                                    double z_deviating = 4.0);
 
 /// A nonstationary term that makes the deviating windows agree: each deviating window gets the
-/// scale sqrt(A_k / (f_k exp(reference_log))) times its current one; adjacent deviating windows
-/// whose scales agree within 10 % merge into one segment. Windows that do not deviate keep the
-/// model's scale (its segments inside them are kept). nullopt when no window deviates.
+/// scale sqrt(A_k / exp(reference_log)) (its variance relative to the quiet level); adjacent
+/// deviating windows whose scales agree within 10 % merge into one segment; a single window at
+/// the edge of a longer segment whose scale lies between 1 and the segment's is taken as partly
+/// covered, the fraction f from r^2 = 1 + f (s^2 - 1), and the segment's edge moves into it.
+/// Windows that do not deviate keep the model's scale (its segments inside them are kept).
+/// nullopt when no window deviates.
 std::optional<NonstationaryTerm> nonstationary_candidate(const WindowVariances& windows,
                                                          const StationarityTest& test,
                                                          const NoiseModel& model);
