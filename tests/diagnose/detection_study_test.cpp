@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <string>
 #include <vector>
@@ -179,7 +180,13 @@ TEST(DiagnoseDetectionStudy, RatesOverHiddenEffectsPairsAndControls) {
                                        TermType::kBiasInstability, TermType::kRateRandomWalk,
                                        TermType::kRateRamp,        TermType::kGaussMarkov,
                                        TermType::kSinusoid,        TermType::kNonstationary};
-  constexpr int kSeeds = 3;
+  // STOCHNAV_DIAGNOSE_STUDY_SEEDS=k runs k seeds per single-effect cell (default 3), k - 1 per
+  // pair and k + 1 per control base: the test runs a modest study; the README quotes a larger one.
+  int seeds = 3;
+  if (const char* text = std::getenv("STOCHNAV_DIAGNOSE_STUDY_SEEDS")) {
+    seeds = std::max(2, std::atoi(text));
+  }
+  const int kSeeds = seeds;
   std::vector<std::pair<Scenario, Tally>> rows;
   Tally singles_weak, singles_strong, pairs, controls;
   const auto add = [](Tally& total, const Tally& t) {
@@ -194,8 +201,8 @@ TEST(DiagnoseDetectionStudy, RatesOverHiddenEffectsPairsAndControls) {
     const bool nonstationary = type == TermType::kNonstationary;
     const Scenario weak = single(type, nonstationary ? 1.3 : 0.5, "weak");
     const Scenario strong = single(type, nonstationary ? 3.0 : 4.0, "strong");
-    const Tally w = run(weak, kSeeds, seed += 10);
-    const Tally s = run(strong, kSeeds, seed += 10);
+    const Tally w = run(weak, kSeeds, seed += 100);
+    const Tally s = run(strong, kSeeds, seed += 100);
     add(singles_weak, w);
     add(singles_strong, s);
     rows.emplace_back(weak, w);
@@ -206,7 +213,7 @@ TEST(DiagnoseDetectionStudy, RatesOverHiddenEffectsPairsAndControls) {
            {TermType::kRateRandomWalk, TermType::kSinusoid},
            {TermType::kNonstationary, TermType::kGaussMarkov}}) {
     const Scenario scenario = pair(a, b);
-    const Tally t = run(scenario, 2, seed += 10);
+    const Tally t = run(scenario, kSeeds - 1, seed += 100);
     add(pairs, t);
     rows.emplace_back(scenario, t);
   }
@@ -217,7 +224,7 @@ TEST(DiagnoseDetectionStudy, RatesOverHiddenEffectsPairsAndControls) {
     control.truth = control.base;
     control.name = "control (" + std::to_string(control.base.terms.size()) + " terms, base of " +
                    std::string(term_type_name(type)) + ")";
-    const Tally t = run(control, 4, seed += 10);
+    const Tally t = run(control, kSeeds + 1, seed += 100);
     add(controls, t);
     rows.emplace_back(control, t);
   }
@@ -245,7 +252,7 @@ TEST(DiagnoseDetectionStudy, RatesOverHiddenEffectsPairsAndControls) {
 
   // Loose floors: the study reports; these only catch a broken workflow.
   EXPECT_GE(rate(singles_strong.detected, singles_strong.runs), 75.0);
-  EXPECT_LE(controls.any_iteration, 2);
+  EXPECT_LE(rate(controls.any_iteration, controls.runs), 15.0);
 }
 
 }  // namespace
