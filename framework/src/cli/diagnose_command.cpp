@@ -159,6 +159,9 @@ void add_diagnose_command(CLI::App& app) {
       "diagnose",
       "Find what a noise model misses in a record, name it, add it, show the gap shrink");
   add_input_options(*command, arguments->input);
+  command->get_option("--unit")
+      ->description("deg/h, deg/s, rad/s, m/s^2, g or plain (default: the model's unit)")
+      ->default_str("");
   command->add_option("--model", arguments->model_path, "Noise model JSON (or fit output)")
       ->required();
   command->add_option("--out", arguments->out_dir, "Folder for report.json, report.md and plots")
