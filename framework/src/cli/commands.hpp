@@ -8,6 +8,7 @@ namespace stochnav::cli {
 
 void add_allan_command(CLI::App& app);
 void add_davar_command(CLI::App& app);
+void add_diagnose_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
 void add_simulate_command(CLI::App& app);
 void add_run_command(CLI::App& app);

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   stochnav::cli::add_allan_command(app);
   stochnav::cli::add_davar_command(app);
+  stochnav::cli::add_diagnose_command(app);
   stochnav::cli::add_fit_command(app);
   stochnav::cli::add_simulate_command(app);
   stochnav::cli::add_run_command(app);

@@ -144,6 +144,12 @@ std::string FitOptions::validate() const {
       }
     }
   }
+  for (const NoiseTerm& term : fixed_terms) {
+    if (term_type(term) == TermType::kNonstationary) {
+      return "fixed_terms: a nonstationary term has no Allan variance to hold; expected "
+             "stationary terms";
+    }
+  }
   if (terms.empty() && candidates.empty()) return "candidates: empty; expected at least one term";
   if (!(loss_scale > 0.0) || !std::isfinite(loss_scale)) {
     return fmt::format("loss_scale: {}; expected a number > 0", loss_scale);
@@ -179,8 +185,10 @@ struct Weighting {
   Eigen::MatrixXd correlation;  // empty: independent points
 };
 
-NoiseModel model_of(const Solution& solution, const FitData& data) {
-  NoiseModel model{data.unit, data.rate_hz, {}};
+// The fitted terms plus the held ones: the model the points are weighted by.
+NoiseModel model_of(const Solution& solution, const FitData& data,
+                    const std::vector<NoiseTerm>& fixed_terms) {
+  NoiseModel model{data.unit, data.rate_hz, fixed_terms};
   for (const auto& term : solution.terms) {
     NoiseTerm value = make_term(term.type);
     for (std::size_t k = 0; k < term.log_values.size(); ++k) {
@@ -252,7 +260,7 @@ FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
   diagnostics.model_weighting = false;
   if (data.phase_count > 0) {
     for (int pass = 0; pass < 2; ++pass) {
-      auto next = model_weighting(data, model_of(solution, data));
+      auto next = model_weighting(data, model_of(solution, data, options.fixed_terms));
       if (!next) {
         diagnostics.warnings.push_back(
             "points weighted by the input edf as independent: the taus are not integer "

@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 
+#include "stochnav/model/allan_variance.hpp"
 #include "stochnav/model/closed_forms.hpp"
 
 namespace stochnav::fit_detail {
@@ -45,10 +46,11 @@ struct LogAvarResidual {
   double tau;
   double target;
   double inv_sigma;
+  double background;  // AVAR of the held terms
 
   template <typename T>
   bool operator()(T const* const* parameters, T* residual) const {
-    T sum(0.0);
+    T sum(background);
     for (std::size_t j = 0; j < types->size(); ++j) {
       sum += term_avar((*types)[j], parameters[j], tau);
     }
@@ -108,6 +110,9 @@ LogAvarFit::LogAvarFit(const FitData& data, const FitOptions& options,
     const double bias = boost::math::digamma(half_nu) - std::log(half_nu);
     target_.push_back(std::log(avar_[i]) - bias);
     inv_sigma_.push_back(1.0 / std::sqrt(boost::math::trigamma(half_nu)));
+    double background = 0.0;
+    for (const NoiseTerm& term : options.fixed_terms) background += allan_variance(term, tau_[i]);
+    background_.push_back(background);
   }
   const auto [avar_min, avar_max] = std::minmax_element(avar_.begin(), avar_.end());
   log_root_avar_min_ = 0.5 * std::log(*avar_min);
@@ -215,7 +220,8 @@ namespace {
 
 BuiltProblem build_problem(const std::vector<TermParameters>& terms,
                            const std::vector<double>& tau, const std::vector<double>& target,
-                           const std::vector<double>& inv_sigma, const FitOptions& options) {
+                           const std::vector<double>& inv_sigma,
+                           const std::vector<double>& background, const FitOptions& options) {
   BuiltProblem built;
   for (const auto& term : terms) {
     built.types.push_back(term.type);
@@ -229,7 +235,7 @@ BuiltProblem build_problem(const std::vector<TermParameters>& terms,
   for (auto& block : built.blocks) pointers.push_back(block.data());
   for (std::size_t i = 0; i < tau.size(); ++i) {
     auto* cost = new ceres::DynamicAutoDiffCostFunction<LogAvarResidual, 4>(
-        new LogAvarResidual{&built.types, tau[i], target[i], inv_sigma[i]});
+        new LogAvarResidual{&built.types, tau[i], target[i], inv_sigma[i], background[i]});
     for (const auto& block : built.blocks) cost->AddParameterBlock(static_cast<int>(block.size()));
     cost->SetNumResiduals(1);
     built.problem->AddResidualBlock(cost, built.loss.get(), pointers);
@@ -248,7 +254,7 @@ Solution LogAvarFit::solve(std::vector<TermParameters> start) const {
     }
     solution.parameter_count += term.log_values.size();
   }
-  BuiltProblem built = build_problem(start, tau_, target_, inv_sigma_, options_);
+  BuiltProblem built = build_problem(start, tau_, target_, inv_sigma_, background_, options_);
   for (std::size_t j = 0; j < start.size(); ++j) {
     for (std::size_t k = 0; k < start[j].log_values.size(); ++k) {
       built.problem->SetParameterLowerBound(built.blocks[j].data(), static_cast<int>(k),
@@ -294,7 +300,7 @@ Eigen::MatrixXd LogAvarFit::covariance(const Solution& solution) const {
   Eigen::MatrixXd nan_matrix =
       Eigen::MatrixXd::Constant(n, n, std::numeric_limits<double>::quiet_NaN());
   if (n == 0) return nan_matrix;
-  BuiltProblem built = build_problem(solution.terms, tau_, target_, inv_sigma_, options_);
+  BuiltProblem built = build_problem(solution.terms, tau_, target_, inv_sigma_, background_, options_);
   ceres::Covariance::Options covariance_options;
   covariance_options.algorithm_type = ceres::DENSE_SVD;
   covariance_options.null_space_rank = -1;

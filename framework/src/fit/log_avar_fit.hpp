@@ -66,6 +66,7 @@ class LogAvarFit {
   std::vector<double> avar_;
   std::vector<double> target_;     // log avar_i - b_i
   std::vector<double> inv_sigma_;  // 1 / s_i
+  std::vector<double> background_;  // AVAR of the held terms (FitOptions::fixed_terms) at tau_i
   Eigen::MatrixXd correlation_;
   FitOptions options_;
   SlopeReadoffs readoffs_;

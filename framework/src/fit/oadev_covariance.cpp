@@ -159,7 +159,11 @@ class LagSummer {
             1e-9 * std::abs(both.squared) + squared_tolerance_ * (b - a) &&
         (!g_.has_ramp() || std::abs(both.linear - whole.linear) <=
                                1e-9 * std::abs(both.linear) + linear_tolerance_ * (b - a));
-    if (converged || depth >= 40 || b - a < 8.0) return both;
+    // Depth 10 (1024 pieces, 4-point Gauss each) is far beyond what a smooth stretch needs; where
+    // the contrasts of G lose their digits to cancellation (long tails of a random walk or
+    // flicker term) the tolerance can never be met, and deeper refinement would cost a direct
+    // sum over up to the whole record: seconds per pair of averaging factors.
+    if (converged || depth >= 10 || b - a < 8.0) return both;
     LagSums sums = adaptive(a, mid, left, depth + 1);
     sums += adaptive(mid, b, right, depth + 1);
     return sums;

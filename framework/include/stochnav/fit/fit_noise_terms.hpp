@@ -56,6 +56,11 @@ struct FitOptions {
   /// Terms to fit, in any order (repeats allowed, e.g. two Gauss-Markov terms). Empty: choose
   /// automatically among `candidates`. Nonstationary terms cannot be fitted to an AVAR curve.
   std::vector<TermType> terms;
+  /// Terms held at their values (natural units): their closed-form Allan variance is added to
+  /// the fitted terms' at every tau, and they weigh the points with the fitted terms, but they
+  /// are not in FitResult::model. Used to fit one new term beside a known model (diagnose).
+  /// Nonstationary terms are not allowed here either.
+  std::vector<NoiseTerm> fixed_terms;
   /// Terms automatic selection may use, each at most once.
   std::vector<TermType> candidates = {TermType::kQuantization,   TermType::kAngleRandomWalk,
                                       TermType::kBiasInstability, TermType::kRateRandomWalk,

@@ -1,0 +1,35 @@
+#pragma once
+// Fitting a candidate term to the measured Allan variance beside the current model (diagnose
+// step 5), with the robust Ceres fit of fit/fit_noise_terms.hpp on the dense OADEV points.
+//
+// Two variants per candidate type:
+//   held     the model's stationary terms are held at their values (FitOptions::fixed_terms)
+//            and only the candidate's parameters are fitted: the right choice when the model is
+//            right where it has terms and misses one effect;
+//   refitted the model's stationary term types and the candidate are all fitted together: when
+//            the missing effect also biased what the old terms stand for.
+// With a nonstationary term in the model, the fit works on the stationary equivalent
+// (diagnose/effective_model.hpp) and the fitted coefficients are scaled back by 1 / sqrt(w), so
+// that the nonstationary segments scale the new term like the others.
+
+#include <optional>
+#include <string>
+
+#include "stochnav/fit/fit_data.hpp"
+#include "stochnav/model/noise_model.hpp"
+
+namespace stochnav {
+
+struct CandidateFit {
+  NoiseModel model;  ///< the current model with the candidate (and refitted terms)
+  NoiseTerm term;    ///< the candidate term as fitted (natural units)
+  bool refitted = false;
+};
+
+/// The fit of one variant; nullopt when Ceres finds no usable solution or the fit rejects the
+/// data (too few points for the parameters). `type` must not be kNonstationary.
+/// duration_s: the record's duration (for the stationary equivalent).
+std::optional<CandidateFit> fit_candidate(const NoiseModel& model, const FitData& data,
+                                          TermType type, bool refit, double duration_s);
+
+}  // namespace stochnav

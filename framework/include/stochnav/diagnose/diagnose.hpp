@@ -1,0 +1,130 @@
+#pragma once
+// The discrepancy workflow (DESIGN.md): find where a record and its noise model disagree, name
+// the missing effect, add it, and show the gap shrink.
+//
+//   1. measure the record once (diagnose/measured_statistics.hpp);
+//   2. assess the model: the gap (diagnose/gap.hpp: closed forms and the exact estimator
+//      covariance, plus the stationarity test across windows) and the band of records simulated
+//      from it (diagnose/simulated_band.hpp);
+//   3. if the model is consistent, stop: no iterations, no false alarms;
+//   4. otherwise read the signature (diagnose/signature.hpp: tau range and shape) and try every
+//      candidate: each stationary vocabulary type, held and refitted (diagnose/candidate_fit.hpp),
+//      and, when the windows disagree, a nonstationary term built from them
+//      (diagnose/stationarity.hpp). Each candidate model is screened with the current model's
+//      estimator scatter (screening_avar_gap); a new stationary term that nowhere makes up
+//      `min_term_share` of the model's Allan variance is left out (immaterial);
+//   5. in two tiers, first the candidates that keep the model's terms as they are (held, or a
+//      nonstationary term), then, only if none of those is accepted, all of them (refits too: a
+//      refit can soak a second effect into the old coefficients, so it is the fallback for a
+//      model whose own coefficients are off): rank by pooled chi-square (diagnose/gap.hpp) plus
+//      `parameter_price` per parameter of the new term, assess the best three exactly, and keep
+//      the best if it shrinks the gap significantly: the pooled chi-square drops by more than
+//      the (1 - alpha) quantile of chi2(p), p the new term's parameter count, the gap itself
+//      shrinks, and the chi-square beyond its dof shrinks by at least `min_relative_shrink`;
+//      otherwise stop (nothing helps, and no term is added that does not shrink the gap);
+//   6. repeat from 2 until consistent or max_iterations.
+// The effect's name is the type of the kept candidate; the signature is reported beside it as
+// evidence (they usually agree; the report says when they do not).
+//
+// The result types do not depend on where the discrepancy evidence came from: a later source
+// (a filter run's innovations, `diagnose --run`) adds a component to Gap and candidates to the
+// same loop, and DiagnoseIteration stays as it is.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stochnav/diagnose/gap.hpp"
+#include "stochnav/diagnose/measured_statistics.hpp"
+#include "stochnav/diagnose/signature.hpp"
+#include "stochnav/diagnose/simulated_band.hpp"
+#include "stochnav/io/record.hpp"
+#include "stochnav/model/noise_model.hpp"
+
+namespace stochnav {
+
+struct DiagnoseOptions {
+  int seeds = 6;             ///< simulated records per model assessment, >= 2 (0: no band)
+  std::uint64_t seed = 1;    ///< first simulation seed
+  int max_iterations = 4;    ///< >= 0
+  double alpha = 1e-3;       ///< false-alarm probability of the consistency test, (0, 0.5)
+  std::size_t windows = 32;  ///< stationarity windows, >= 4
+  /// A kept term removes at least this fraction of the chi-square beyond its dof.
+  double min_relative_shrink = 0.2;
+  /// Chi-square a candidate pays per parameter of its new term when candidates are ranked
+  /// (2: Akaike's price; a two-parameter term must explain 2 more than a one-parameter one).
+  double parameter_price = 2.0;
+  /// A new stationary term must make up at least this share of the model's Allan variance at
+  /// some octave tau; a smaller one is a refit of the old terms in disguise, not an effect.
+  double min_term_share = 0.1;
+  /// Stationary term types tried as the missing effect.
+  std::vector<TermType> candidates = {TermType::kQuantization,    TermType::kAngleRandomWalk,
+                                      TermType::kBiasInstability, TermType::kRateRandomWalk,
+                                      TermType::kRateRamp,        TermType::kGaussMarkov,
+                                      TermType::kSinusoid};
+  bool try_nonstationary = true;  ///< offer a nonstationary term when the windows disagree
+
+  /// Empty when valid; otherwise the reason, naming the option.
+  std::string validate() const;
+};
+
+/// A model held against the record.
+struct ModelAssessment {
+  NoiseModel model;
+  Gap gap;
+  SimulatedBand band;  ///< at the dense and octave taus (empty when DiagnoseOptions::seeds == 0)
+};
+
+/// One candidate tried in an iteration.
+struct CandidateOutcome {
+  TermType type = TermType::kAngleRandomWalk;
+  bool refitted = false;  ///< the model's terms were refitted with it
+  bool usable = false;    ///< the fit produced a model
+  /// The candidate model's gap (when usable): screening value (diagnose/gap.hpp,
+  /// screening_avar_gap) unless `exact`.
+  double gap = 0.0;
+  bool exact = false;       ///< assessed with its own estimator covariance
+  bool immaterial = false;  ///< left out: below DiagnoseOptions::min_term_share everywhere
+};
+
+struct DiagnoseIteration {
+  TermType effect = TermType::kAngleRandomWalk;       ///< the name: the kept candidate's type
+  std::string evidence;                               ///< one paragraph, numbers included
+  std::optional<std::array<double, 2>> tau_range_s;   ///< where the AVAR leaves the band
+  std::optional<std::array<double, 2>> time_range_s;  ///< deviating windows (record time)
+  NoiseTerm added_term;                               ///< natural units
+  bool refitted = false;                              ///< the other terms were refitted too
+  double gap_before = 0.0;
+  double gap_after = 0.0;
+  Signature signature;                       ///< read before the step
+  std::vector<CandidateOutcome> candidates;  ///< every candidate tried, in order
+  ModelAssessment after;                     ///< the model after the step
+};
+
+struct DiagnoseResult {
+  MeasuredStatistics measured;
+  ModelAssessment initial;
+  std::vector<DiagnoseIteration> iterations;
+  bool consistent = false;  ///< the final model passes the consistency test
+  std::string conclusion;   ///< why the loop stopped, one sentence
+  /// Signature of the final model (what is left, when not consistent).
+  Signature final_signature;
+
+  const ModelAssessment& final_assessment() const {
+    return iterations.empty() ? initial : iterations.back().after;
+  }
+};
+
+/// Runs the workflow. Throws ConfigError for invalid options, a model whose unit measures
+/// another quantity than the record's, or a model with no positive Allan variance; InputError
+/// for a record too short to measure.
+DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
+                        const DiagnoseOptions& options = {});
+
+/// Assesses one model against measured statistics (steps 2 of the file comment).
+ModelAssessment assess_model(const NoiseModel& model, const MeasuredStatistics& measured,
+                             const DiagnoseOptions& options);
+
+}  // namespace stochnav

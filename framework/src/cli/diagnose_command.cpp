@@ -1,0 +1,190 @@
+// stochnav diagnose: where a noise model and a measured record disagree, the missing effect
+// named, added and the gap shown shrinking (DESIGN.md, "The discrepancy workflow").
+//
+// Outputs in --out DIR: report.json (the DESIGN.md contract), report.md, and the plots
+// allan_initial.png, allan_step<k>.png and davar.png (when an effect is nonstationary). All
+// files are written into a staging folder inside DIR and moved into place only when every one
+// of them is complete, so a failure leaves no partial output.
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <random>
+
+#include "command_support.hpp"
+#include "commands.hpp"
+#include "diagnose_plots.hpp"
+#include "json_file.hpp"
+#include "stochnav/core/errors.hpp"
+#include "stochnav/diagnose/diagnose.hpp"
+#include "stochnav/diagnose/effective_model.hpp"
+#include "stochnav/diagnose/report_json.hpp"
+#include "stochnav/diagnose/report_markdown.hpp"
+#include "stochnav/io/atomic_file.hpp"
+#include "stochnav/model/noise_model_json.hpp"
+#include "stochnav/report/gnuplot.hpp"
+
+namespace stochnav::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DiagnoseArguments {
+  InputArguments input;
+  bool unit_given = false;
+  std::string model_path;
+  std::string out_dir;
+  DiagnoseOptions options;
+  std::string plots = "png";
+};
+
+NoiseModel read_model(const std::string& path) {
+  const nlohmann::json json = read_json_file(path, "--model");
+  try {
+    return noise_model_from_json(json);
+  } catch (const ConfigError& error) {
+    throw ConfigError(path + ": " + error.what());
+  }
+}
+
+// A folder inside `out` that disappears unless its files were moved out.
+class StagingFolder final {
+ public:
+  explicit StagingFolder(const fs::path& out) {
+    std::random_device entropy;
+    path_ = out / fmt::format(".diagnose-staging-{:08x}", entropy());
+    fs::create_directories(path_);
+  }
+  ~StagingFolder() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  StagingFolder(const StagingFolder&) = delete;
+  StagingFolder& operator=(const StagingFolder&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+void run_diagnose(const DiagnoseArguments& arguments) {
+  if (arguments.plots != "png" && arguments.plots != "svg" && arguments.plots != "none") {
+    throw ConfigError("--plots '" + arguments.plots + "': use png, svg or none");
+  }
+  const NoiseModel model = read_model(arguments.model_path);
+  ReadOptions read_options = arguments.input.to_read_options();
+  if (!arguments.unit_given) read_options.unit = model.unit;
+  if (const auto problem = arguments.options.validate(); !problem.empty()) {
+    throw ConfigError(problem);
+  }
+  const fs::path out(arguments.out_dir);
+  const std::string extension = "." + arguments.plots;
+  const bool plotting = arguments.plots != "none";
+  if (plotting) check_plot_request(out / ("allan_initial" + extension));
+  const Record record = read_record(read_options);
+  if (quantity_of(model.unit) != quantity_of(record.unit)) {
+    throw ConfigError(arguments.model_path + ": the model is in " + unit_name(model.unit) +
+                      " but the record in " + unit_name(record.unit) +
+                      "; pass a matching --unit (or leave it out to use the model's)");
+  }
+  const DiagnoseResult result = diagnose(record, model, arguments.options);
+
+  std::error_code error;
+  fs::create_directories(out, error);
+  if (error || !fs::is_directory(out)) {
+    throw InputError(out.string() + ": cannot create the output folder (" + error.message() +
+                     "); choose a writable --out");
+  }
+  StagingFolder staging(out);
+  std::vector<std::string> files;
+  DiagnosePlotFiles plots;
+  if (plotting) {
+    plots.initial = "allan_initial" + extension;
+    plot_diagnose_step(result.measured, nullptr, result.initial, "model as given", record,
+                       staging.path() / plots.initial);
+    files.push_back(plots.initial);
+    const ModelAssessment* before = &result.initial;
+    for (std::size_t i = 0; i < result.iterations.size(); ++i) {
+      const auto& step = result.iterations[i];
+      const std::string name = fmt::format("allan_step{}{}", i + 1, extension);
+      plot_diagnose_step(result.measured, before, step.after,
+                         fmt::format("step {}: + {}", i + 1, term_type_name(step.effect)), record,
+                         staging.path() / name);
+      plots.steps.push_back(name);
+      files.push_back(name);
+      before = &step.after;
+    }
+    const ModelAssessment& last = result.final_assessment();
+    const bool nonstationary = find_nonstationary(last.model) != nullptr ||
+                               last.gap.stationarity.p_value < arguments.options.alpha;
+    if (nonstationary && !result.measured.windows.avar.empty()) {
+      plots.davar = "davar" + extension;
+      plot_diagnose_davar(record, result.measured, last.gap.stationarity, last.model,
+                          staging.path() / plots.davar);
+      files.push_back(plots.davar);
+    }
+  }
+  const std::string source = record.source + " [" + record.column + "]";
+  write_file_atomically(staging.path() / "report.md",
+                        diagnose_report_markdown(result, source, arguments.model_path, plots));
+  files.push_back("report.md");
+  write_file_atomically(staging.path() / "report.json",
+                        diagnose_report_json(result).dump(2) + "\n");
+  files.push_back("report.json");
+  // Stale plots of an earlier run would contradict this report.
+  for (const auto& entry : fs::directory_iterator(out)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("allan_step", 0) == 0 || name.rfind("davar.", 0) == 0) {
+      fs::remove(entry.path(), error);
+    }
+  }
+  for (const auto& name : files) fs::rename(staging.path() / name, out / name);
+
+  fmt::print("{}: {} (gap {:.3g} -> {:.3g}, {} step(s)); report in {}\n", source,
+             result.consistent ? "consistent" : "not consistent", result.initial.gap.value,
+             result.final_assessment().gap.value, result.iterations.size(),
+             (out / "report.md").string());
+  for (std::size_t i = 0; i < result.iterations.size(); ++i) {
+    const auto& step = result.iterations[i];
+    fmt::print("  step {}: {} (gap {:.3g} -> {:.3g})\n", i + 1, term_type_name(step.effect),
+               step.gap_before, step.gap_after);
+  }
+}
+
+}  // namespace
+
+void add_diagnose_command(CLI::App& app) {
+  auto arguments = std::make_shared<DiagnoseArguments>();
+  CLI::App* command = app.add_subcommand(
+      "diagnose",
+      "Find what a noise model misses in a record, name it, add it, show the gap shrink");
+  add_input_options(*command, arguments->input);
+  command->get_option("--unit")
+      ->description("deg/h, deg/s, rad/s, m/s^2, g or plain (default: the model's unit)")
+      ->default_str("");
+  command->add_option("--model", arguments->model_path, "Noise model JSON (or fit output)")
+      ->required();
+  command->add_option("--out", arguments->out_dir, "Folder for report.json, report.md and plots")
+      ->required();
+  command
+      ->add_option("--seeds", arguments->options.seeds,
+                   "Simulated records per model for the band (0: none)")
+      ->capture_default_str();
+  command->add_option("--seed", arguments->options.seed, "First simulation seed")
+      ->capture_default_str();
+  command->add_option("--max-iterations", arguments->options.max_iterations, "Most terms to add")
+      ->capture_default_str();
+  command
+      ->add_option("--alpha", arguments->options.alpha,
+                   "False-alarm probability of the consistency test")
+      ->capture_default_str();
+  command->add_option("--windows", arguments->options.windows, "Windows of the stationarity test")
+      ->capture_default_str();
+  command->add_option("--plots", arguments->plots, "png, svg or none")->capture_default_str();
+  command->callback([arguments, command] {
+    arguments->unit_given = command->count("--unit") > 0;
+    run_diagnose(*arguments);
+  });
+}
+
+}  // namespace stochnav::cli

@@ -1,0 +1,53 @@
+#include "stochnav/diagnose/candidate_fit.hpp"
+
+#include <cmath>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/diagnose/effective_model.hpp"
+#include "stochnav/fit/fit_noise_terms.hpp"
+
+namespace stochnav {
+
+std::optional<CandidateFit> fit_candidate(const NoiseModel& model, const FitData& data,
+                                          TermType type, bool refit, double duration_s) {
+  const StationaryEquivalent equivalent = stationary_equivalent(model, duration_s);
+  FitOptions options;
+  options.terms = {type};
+  if (refit) {
+    for (const NoiseTerm& term : equivalent.model.terms) options.terms.push_back(term_type(term));
+  } else {
+    options.fixed_terms = equivalent.model.terms;
+  }
+  FitResult fitted;
+  try {
+    fitted = fit_noise_terms(data, options);
+  } catch (const ConfigError&) {
+    return std::nullopt;  // too few points for the parameters, or no usable solution
+  }
+  const double back = 1.0 / std::sqrt(equivalent.variance_factor);
+  CandidateFit result;
+  result.refitted = refit;
+  result.model = NoiseModel{model.unit, model.rate_hz, {}};
+  const NonstationaryTerm* nonstationary = find_nonstationary(model);
+  if (!refit) {
+    for (const NoiseTerm& term : model.terms) {
+      if (term_type(term) != TermType::kNonstationary) result.model.terms.push_back(term);
+    }
+  }
+  bool candidate_seen = false;
+  for (const NoiseTerm& term : fitted.model.terms) {
+    NoiseTerm natural = scale_amplitude(term, back);
+    // The candidate is the fitted term of its type that is not one of the refitted old ones:
+    // with repeats (a second Gauss-Markov), the last of that type.
+    if (term_type(natural) == type) {
+      result.term = natural;
+      candidate_seen = true;
+    }
+    result.model.terms.push_back(std::move(natural));
+  }
+  if (!candidate_seen) return std::nullopt;
+  if (nonstationary != nullptr) result.model.terms.push_back(*nonstationary);
+  return result;
+}
+
+}  // namespace stochnav

@@ -1,0 +1,33 @@
+#include "stochnav/diagnose/report_json.hpp"
+
+#include "stochnav/model/noise_model_json.hpp"
+
+namespace stochnav {
+namespace {
+
+nlohmann::json range_json(const std::optional<std::array<double, 2>>& range) {
+  if (!range) return nullptr;
+  return nlohmann::json::array({(*range)[0], (*range)[1]});
+}
+
+}  // namespace
+
+nlohmann::json diagnose_report_json(const DiagnoseResult& result) {
+  nlohmann::json iterations = nlohmann::json::array();
+  for (const auto& step : result.iterations) {
+    iterations.push_back({{"effect", std::string(term_type_name(step.effect))},
+                          {"evidence", step.evidence},
+                          {"tau_range_s", range_json(step.tau_range_s)},
+                          {"time_range_s", range_json(step.time_range_s)},
+                          {"added_term", to_json(step.added_term, step.after.model.unit)},
+                          {"gap_before", step.gap_before},
+                          {"gap_after", step.gap_after}});
+  }
+  return {{"consistent", result.consistent},
+          {"gap_initial", result.initial.gap.value},
+          {"gap_final", result.final_assessment().gap.value},
+          {"iterations", std::move(iterations)},
+          {"final_model", to_json(result.final_assessment().model)}};
+}
+
+}  // namespace stochnav

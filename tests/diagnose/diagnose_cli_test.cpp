@@ -1,0 +1,206 @@
+// End-to-end tests of `stochnav diagnose`: the report.json contract, exit code 2 with a located
+// one-line message, no partial outputs, and the two real records of ../shared/data/imu-static.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "diagnose_support.hpp"
+#include "run_cli.hpp"
+#include "stochnav/model/noise_model_json.hpp"
+#include "temp_dir.hpp"
+
+namespace stochnav {
+namespace {
+
+using diagnose_testing::simulated_record;
+using testing::run_cli;
+using testing::TempDir;
+namespace fs = std::filesystem;
+
+const char* kBaseModel = R"({"units": "deg/h", "rate_hz": 100, "terms": [
+  {"type": "angle_random_walk", "N": 0.5}, {"type": "rate_random_walk", "K": 20}]})";
+
+std::string csv_of(const Record& record) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "t,value\n";
+  for (std::size_t i = 0; i < record.values.size(); ++i) {
+    out << static_cast<double>(i) / record.rate_hz << ',' << record.values[i] << '\n';
+  }
+  return out.str();
+}
+
+// A record with a Gauss-Markov term the base model lacks.
+std::string write_hidden_gauss_markov(const TempDir& dir) {
+  NoiseModel truth = noise_model_from_json(nlohmann::json::parse(kBaseModel));
+  truth.terms.push_back(noise_term_from_json(
+      nlohmann::json::parse(R"({"type": "gauss_markov", "sigma": 40, "tau_c": 4})"), truth.unit,
+      "/"));
+  return dir.write("record.csv", csv_of(simulated_record(truth, 100000, 100.0, 4)));
+}
+
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+TEST(DiagnoseCli, WritesTheReportJsonContractReportMdAndPlots) {
+  TempDir dir;
+  const std::string record = write_hidden_gauss_markov(dir);
+  const std::string model = dir.write("model.json", kBaseModel);
+  const std::string out = dir.file("out");
+  const auto result = run_cli(
+      "diagnose --input '" + record + "' --model '" + model + "' --out '" + out + "' --seeds 3",
+      dir.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json report = read_json(fs::path(out) / "report.json");
+  std::set<std::string> keys;
+  for (const auto& [key, value] : report.items()) keys.insert(key);
+  EXPECT_EQ(keys, (std::set<std::string>{"consistent", "gap_initial", "gap_final", "iterations",
+                                         "final_model"}));
+  EXPECT_TRUE(report["consistent"].is_boolean());
+  EXPECT_TRUE(report["gap_initial"].is_number());
+  EXPECT_TRUE(report["gap_final"].is_number());
+  ASSERT_TRUE(report["iterations"].is_array());
+  ASSERT_FALSE(report["iterations"].empty());
+  for (const auto& step : report["iterations"]) {
+    std::set<std::string> step_keys;
+    for (const auto& [key, value] : step.items()) step_keys.insert(key);
+    EXPECT_EQ(step_keys, (std::set<std::string>{"effect", "evidence", "tau_range_s", "time_range_s",
+                                                "added_term", "gap_before", "gap_after"}));
+    EXPECT_TRUE(step["evidence"].is_string());
+    EXPECT_TRUE(step["tau_range_s"].is_null() || step["tau_range_s"].size() == 2);
+    EXPECT_TRUE(step["time_range_s"].is_null() || step["time_range_s"].size() == 2);
+    EXPECT_EQ(step["added_term"]["type"], step["effect"]);
+    EXPECT_LT(step["gap_after"].get<double>(), step["gap_before"].get<double>());
+  }
+  EXPECT_EQ(report["iterations"][0]["effect"], "gauss_markov");
+  // final_model reads back as a noise model.
+  EXPECT_NO_THROW(noise_model_from_json(report["final_model"]));
+  EXPECT_TRUE(fs::exists(fs::path(out) / "report.md"));
+  EXPECT_TRUE(fs::exists(fs::path(out) / "allan_initial.png"));
+  EXPECT_TRUE(fs::exists(fs::path(out) / "allan_step1.png"));
+  // No staging folder is left behind.
+  for (const auto& entry : fs::directory_iterator(out)) {
+    EXPECT_EQ(entry.path().filename().string().find(".diagnose-staging"), std::string::npos);
+  }
+}
+
+TEST(DiagnoseCli, AConsistentModelGivesNoIterations) {
+  TempDir dir;
+  const NoiseModel model = noise_model_from_json(nlohmann::json::parse(kBaseModel));
+  const std::string record =
+      dir.write("record.csv", csv_of(simulated_record(model, 50000, 100.0, 9)));
+  const std::string model_path = dir.write("model.json", kBaseModel);
+  const std::string out = dir.file("out");
+  const auto result = run_cli("diagnose --input '" + record + "' --model '" + model_path +
+                                  "' --out '" + out + "' --plots none --seeds 0",
+                              dir.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json report = read_json(fs::path(out) / "report.json");
+  EXPECT_TRUE(report["consistent"].get<bool>());
+  EXPECT_TRUE(report["iterations"].empty());
+}
+
+struct BadCase {
+  std::string name;
+  std::string model;     // model file content
+  std::string record;    // record file content
+  std::string expected;  // in the one-line message
+};
+
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
+class DiagnoseCliErrors : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(DiagnoseCliErrors, ExitTwoWithOneLocatedLineAndNoOutput) {
+  const BadCase& c = GetParam();
+  TempDir dir;
+  const std::string record = dir.write("record.csv", c.record);
+  const std::string model = dir.write("model.json", c.model);
+  const std::string out = dir.file("out");
+  const auto result =
+      run_cli("diagnose --input '" + record + "' --model '" + model + "' --out '" + out + "'",
+              dir.path().string());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_NE(result.err.find(c.expected), std::string::npos) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_FALSE(fs::exists(out)) << "no output folder for a failed run";
+}
+
+std::string good_record() {
+  std::string text = "t,value\n";
+  for (int i = 0; i < 2000; ++i) {
+    text += std::to_string(i / 100.0) + "," + std::to_string(((i * 7919) % 101) - 50) + "\n";
+  }
+  return text;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    BadInputs, DiagnoseCliErrors,
+    ::testing::Values(
+        BadCase{
+            "NegativeCoefficient",
+            R"({"units": "deg/h", "rate_hz": 100, "terms": [{"type": "angle_random_walk", "N": -1}]})",
+            good_record(), "/terms/0/N"},
+        BadCase{"UnknownTerm",
+                R"({"units": "deg/h", "rate_hz": 100, "terms": [{"type": "wobble"}]})",
+                good_record(), "/terms/0/type"},
+        BadCase{"JsonSyntax", "{\"units\": \"deg/h\",\n \"rate_hz\": 100,,}", good_record(),
+                "line 2"},
+        BadCase{
+            "RecordWithText",
+            R"({"units": "deg/h", "rate_hz": 100, "terms": [{"type": "angle_random_walk", "N": 1}]})",
+            "t,value\n0,1\n0.01,abc\n0.02,3\n", "record.csv:3"}),
+    [](const auto& test_info) { return test_info.param.name; });
+
+TEST(DiagnoseCliRealData, AdisGyroZHasALineNearTwentyHertz) {
+  STOCHNAV_REQUIRE_SHARED_DATA(path, "imu-static/adis16405_imu1_static_100hz.csv");
+  TempDir dir;
+  // An old fit of the ADIS gyro z without the line (stochnav fit, octave taus, Q N B K).
+  const std::string model = dir.write("model.json", R"({"units": "deg/s", "rate_hz": 100,
+    "terms": [{"type": "quantization", "Q": 6.65e-06}, {"type": "angle_random_walk", "N": 2.3118},
+              {"type": "bias_instability", "B": 23.716}, {"type": "rate_random_walk", "K": 202.62}]})");
+  const std::string out = dir.file("out");
+  const auto result = run_cli("diagnose --input '" + path + "' --column gyro_z_dps --model '" +
+                                  model + "' --out '" + out + "' --plots none --seeds 2",
+                              dir.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  std::printf("%s", result.out.c_str());
+  const nlohmann::json report = read_json(fs::path(out) / "report.json");
+  ASSERT_FALSE(report["iterations"].empty());
+  const auto& first = report["iterations"][0];
+  EXPECT_EQ(first["effect"], "sinusoid");
+  const double frequency = first["added_term"]["frequency_hz"].get<double>();
+  EXPECT_GT(frequency, 17.0);
+  EXPECT_LT(frequency, 22.0);
+  EXPECT_LT(report["gap_final"].get<double>(), 0.05 * report["gap_initial"].get<double>());
+}
+
+TEST(DiagnoseCliRealData, MtigGyroWithOutliers) {
+  STOCHNAV_REQUIRE_SHARED_DATA(path, "imu-static/mtig_cont_imu1_gyrox_100hz.csv");
+  TempDir dir;
+  // An old three-term fit (stochnav fit --terms angle_random_walk,bias_instability,
+  // rate_random_walk, octave taus) of the MTi-G record.
+  const std::string model = dir.write("model.json", R"({"units": "rad/s", "rate_hz": 100,
+    "terms": [{"type": "angle_random_walk", "N": 1.9308}, {"type": "bias_instability", "B": 46.169},
+              {"type": "rate_random_walk", "K": 2.27e-05}]})");
+  const std::string out = dir.file("out");
+  const auto result = run_cli("diagnose --input '" + path + "' --column gyro_x --model '" + model +
+                                  "' --out '" + out + "' --plots none --seeds 2",
+                              dir.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  std::printf("%s", result.out.c_str());
+  const nlohmann::json report = read_json(fs::path(out) / "report.json");
+  ASSERT_FALSE(report["iterations"].empty());
+  EXPECT_EQ(report["iterations"][0]["effect"], "gauss_markov");
+  EXPECT_LT(report["gap_final"].get<double>(), 0.5 * report["gap_initial"].get<double>());
+}
+
+}  // namespace
+}  // namespace stochnav
