@@ -12,82 +12,20 @@
 #include "stochnav/plugin/plugin_registry.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 #include "stochnav/sim/noise_generator.hpp"
+#include "noise_model_properties.hpp"
 
 namespace stochnav::plugin {
 namespace {
 
-const PluginRegistry& registry() {
-  static const PluginRegistry instance({bundled_plugin_dir()});
-  return instance;
-}
+using testing::Case;
+using testing::case_name;
+using testing::context_for;
+using testing::expect_close;
+using testing::expect_symmetric_psd;
+using testing::make;
+using testing::NoiseModelProperties;
+using testing::registry;
 
-NoiseModelContext context_for(SensorGroup group) {
-  NoiseModelContext context;
-  context.group = group;
-  context.imu_rate_hz = 100.0;
-  context.params_pointer = "/noise/" + std::string(sensor_group_name(group)) + "/params";
-  return context;
-}
-
-std::shared_ptr<NoiseModelPlugin> make(const std::string& type, const nlohmann::json& params,
-                                       SensorGroup group = SensorGroup::kGyro) {
-  return registry().create_noise_model(type, params, context_for(group), "/noise/x/plugin");
-}
-
-struct Case {
-  std::string type;
-  nlohmann::json params;
-  SensorGroup group;
-};
-
-void PrintTo(const Case& c, std::ostream* os) {
-  *os << c.type << " " << sensor_group_name(c.group) << " " << c.params.dump();
-}
-
-std::string case_name(const ::testing::TestParamInfo<Case>& info) {
-  return info.param.type + "_" + std::string(sensor_group_name(info.param.group));
-}
-
-class NoiseModelProperties : public ::testing::TestWithParam<Case> {
- protected:
-  void SetUp() override {
-    model_ = make(GetParam().type, GetParam().params, GetParam().group);
-    n_ = model_->augmented_size();
-  }
-
-  struct Step {
-    Eigen::MatrixXd q_white = Eigen::MatrixXd(3, 3);
-    Eigen::MatrixXd q_bias = Eigen::MatrixXd(3, 3);
-    Eigen::MatrixXd phi, q_d;
-  };
-
-  Step step(double t, double dt) const {
-    Step s;
-    s.phi.resize(n_, n_);
-    s.q_d.resize(n_, n_);
-    model_->white_noise_covariance(t, dt, s.q_white);
-    model_->bias_walk_covariance(t, dt, s.q_bias);
-    model_->augmented_transition(t, dt, s.phi, s.q_d);
-    return s;
-  }
-
-  std::shared_ptr<NoiseModelPlugin> model_;
-  int n_ = 0;
-};
-
-void expect_symmetric_psd(const Eigen::MatrixXd& q, const char* what) {
-  if (q.size() == 0) return;
-  const double scale = std::max(q.cwiseAbs().maxCoeff(), 1e-300);
-  EXPECT_LE((q - q.transpose()).cwiseAbs().maxCoeff(), 1e-14 * scale) << what;
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(q);
-  EXPECT_GE(solver.eigenvalues().minCoeff(), -1e-14 * scale) << what;
-}
-
-void expect_close(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double rel,
-                  const char* what) {
-  const double scale = std::max({a.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff(), 1e-300});
-  EXPECT_LE((a - b).cwiseAbs().maxCoeff(), rel * scale) << what << "\n" << a << "\n" << b;
-}
 
 TEST_P(NoiseModelProperties, CovariancesAreSymmetricPositiveSemiDefinite) {
   for (double dt : {1e-4, 0.01, 1.0, 100.0}) {
@@ -113,7 +51,7 @@ TEST_P(NoiseModelProperties, ZeroStepGivesZeroNoiseAndIdentityTransition) {
 }
 
 TEST_P(NoiseModelProperties, ConsecutiveStepsComposeIntoOne) {
-  const double t = 5.0, dt1 = 0.37, dt2 = 1.9;
+  const double t = 5.0, dt1 = GetParam().dt1, dt2 = GetParam().dt2;
   const Step first = step(t, dt1), second = step(t + dt1, dt2), whole = step(t, dt1 + dt2);
   expect_close(first.q_white + second.q_white, whole.q_white, 1e-12, "q_white");
   expect_close(first.q_bias + second.q_bias, whole.q_bias, 1e-12, "q_bias");
@@ -130,7 +68,7 @@ TEST_P(NoiseModelProperties, StationaryCovarianceIsPreservedOverManySteps) {
   model_->augmented_initial_covariance(p0);
   p = p0;
   for (int k = 0; k < 100000; ++k) {
-    model_->augmented_transition(k * 0.01, 0.01, phi, q_d);
+    model_->augmented_transition(k * GetParam().step_s, GetParam().step_s, phi, q_d);
     p = phi * p * phi.transpose() + q_d;
   }
   expect_close(p, p0, 1e-9, "P after 1e5 steps");
