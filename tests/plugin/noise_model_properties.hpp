@@ -34,8 +34,7 @@ inline NoiseModelContext context_for(SensorGroup group) {
   return context;
 }
 
-inline std::shared_ptr<NoiseModelPlugin> make(const std::string& type,
-                                              const nlohmann::json& params,
+inline std::shared_ptr<NoiseModelPlugin> make(const std::string& type, const nlohmann::json& params,
                                               SensorGroup group = SensorGroup::kGyro) {
   return registry().create_noise_model(type, params, context_for(group), "/noise/x/plugin");
 }

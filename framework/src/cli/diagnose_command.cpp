@@ -14,6 +14,7 @@
 #include "command_support.hpp"
 #include "commands.hpp"
 #include "diagnose_plots.hpp"
+#include "diagnose_run.hpp"
 #include "json_file.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/diagnose/diagnose.hpp"
@@ -36,6 +37,8 @@ struct DiagnoseArguments {
   std::string out_dir;
   DiagnoseOptions options;
   std::string plots = "png";
+  std::string run_dir;                       ///< --run: diagnose a filter run instead
+  InnovationAnalysisOptions run_options;     ///< its options
 };
 
 NoiseModel read_model(const std::string& path) {
@@ -157,13 +160,24 @@ void add_diagnose_command(CLI::App& app) {
   auto arguments = std::make_shared<DiagnoseArguments>();
   CLI::App* command = app.add_subcommand(
       "diagnose",
-      "Find what a noise model misses in a record, name it, add it, show the gap shrink");
+      "Find what a noise model misses in a record (--input, --model), name it, add it, show the "
+      "gap shrink; or ask a filter run's innovations the same question (--run)");
   add_input_options(*command, arguments->input);
+  command->get_option("--input")->required(false);
   command->get_option("--unit")
       ->description("deg/h, deg/s, rad/s, m/s^2, g or plain (default: the model's unit)")
       ->default_str("");
-  command->add_option("--model", arguments->model_path, "Noise model JSON (or fit output)")
-      ->required();
+  command->add_option("--model", arguments->model_path, "Noise model JSON (or fit output)");
+  command->add_option("--run", arguments->run_dir,
+                      "Folder of a `stochnav run`: diagnose its innovations instead of a record");
+  command
+      ->add_option("--window-s", arguments->run_options.window_s,
+                   "--run: window of the innovation level test (s)")
+      ->capture_default_str();
+  command
+      ->add_option("--max-lag", arguments->run_options.max_lag,
+                   "--run: lags of the whiteness test")
+      ->capture_default_str();
   command->add_option("--out", arguments->out_dir, "Folder for report.json, report.md and plots")
       ->required();
   command
@@ -182,6 +196,20 @@ void add_diagnose_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--plots", arguments->plots, "png, svg or none")->capture_default_str();
   command->callback([arguments, command] {
+    if (!arguments->run_dir.empty()) {
+      if (command->count("--input") > 0 || command->count("--model") > 0) {
+        throw ConfigError("diagnose: --run diagnoses a filter run; do not also give --input or "
+                          "--model");
+      }
+      arguments->run_options.alpha = arguments->options.alpha;
+      run_innovation_diagnosis(arguments->run_dir, arguments->out_dir, arguments->run_options,
+                               arguments->plots);
+      return;
+    }
+    if (command->count("--input") == 0 || command->count("--model") == 0) {
+      throw ConfigError("diagnose: give --input F and --model M.json (a record), or --run DIR "
+                        "(a filter run)");
+    }
     arguments->unit_given = command->count("--unit") > 0;
     run_diagnose(*arguments);
   });
