@@ -10,7 +10,7 @@
 #      walk. The record carries a narrow-band line near 20 Hz.
 #   2. XSens MTi-G gyro x (rad/s, with outliers): angle random walk, bias instability, rate
 #      random walk.
-#   3. The quickstart's simulated FOG record (configs/noise/fog_vibration_example.json, a
+#   3. The Allan workflow's simulated FOG record (configs/noise/fog_vibration_example.json, a
 #      vibration episode from 2400 s to 3600 s scaling the noise by 8), diagnosed against the
 #      same model without its nonstationary term.
 #   4. At the filter level (`diagnose --run`): the random-vibration table experiment simulated,
