@@ -1,0 +1,347 @@
+// Noise plugin "davar": the paper's time-varying white noise (Zhang et al. 2017). The dynamic
+// Allan variance of each gyro axis is fitted window by window (Eqs. 7, 8; windowed_term_fit.hpp)
+// and the angle random walk of each window sets the filter's process noise at that time
+// (Eq. 24: Q_k = N(t_k)^2, a PSD; over a step Qw = int N(s)^2 ds).
+//
+// Modes (the difference matters; see the report of the recovery test):
+//   "offline"  centred windows, analysis time = window centre (the paper's Eq. 3), N^2 linear
+//              between analysis times. Post-processing: the value at t uses data up to half a
+//              window after t, so a rise of the noise is anticipated by half a window (it starts
+//              to show window/2 before it happens and is complete window/2 after).
+//   "causal"   trailing windows, analysis time = window end, N^2 held from one analysis time to
+//              the next: the value at t uses only data before t, as a tool running the filter
+//              in real time could. A rise shows with a lag: it starts to show when it happens and
+//              is complete one window later (half-level at about window/2 after the change).
+// Before the first analysis time both modes hold the first window's value (a real-time tool
+// would hold a prior until its first window completes); after the last, the last value.
+//
+// params (what the factory rebuilds; reporting units of DESIGN.md):
+//   "mode"  "offline" | "causal". Default "offline".
+//   "t"     analysis times (s), strictly ascending, at least one. Required.
+//   "N"     [[x...], [y...], [z...]]: angle random walk per axis at each analysis time, >= 0:
+//           deg/sqrt(h) (gyro), m/s/sqrt(h) (accel). Required.
+//   "K"     rate random walk of the core bias (constant), >= 0: deg/h/sqrt(h), m/s/h/sqrt(h);
+//           a number or [x, y, z]. Default 0.
+// Qw(t, dt) = diag(int_t^{t+dt} N_axis(s)^2 ds), Qb = diag(K^2) dt; no augmented states.
+//
+// Fit params (the fitter runs the windowed fit on the calibration record):
+//   "window_s"  window length (s), > 0. Default 60.
+//   "step_s"    step between windows (s), > 0. Default 5.
+//   "mode"      as above. Default "offline".
+//   "terms"     Eq. 7 terms fitted in each window, among "Q", "N", "B", "K"; must hold "N".
+//               Default ["N", "B"]: a window of 60 s is short for K, while B absorbs the flat
+//               floor that the bias instability of a FOG puts on every window (fitting N alone
+//               would read that floor as white noise).
+//   "rate_random_walk"  bool, default false: fit K once over the whole record (Ceres fit of
+//               N, B and K, plugin/calibration_fit.hpp) for bias_walk_covariance. The bias
+//               instability B itself is not given to the filter (it would need Gauss-Markov
+//               states; the classic filter omits it too).
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "noise_level_series.hpp"
+#include "stochnav/core/errors.hpp"
+#include "stochnav/model/reporting_units.hpp"
+#include "stochnav/plugin/calibration_fit.hpp"
+#include "stochnav/plugin/noise_model_plugin.hpp"
+#include "stochnav/plugin/params.hpp"
+#include "windowed_term_fit.hpp"
+
+namespace {
+
+using stochnav::ParameterDimension;
+using stochnav::davar_noise::Interpolation;
+using stochnav::davar_noise::NoiseLevelSeries;
+using stochnav::plugin::SensorGroup;
+using Axes = std::array<double, 3>;
+using AxisSeries = std::array<std::vector<double>, 3>;
+
+constexpr std::string_view kModes[] = {"offline", "causal"};
+
+struct DavarParams {
+  bool causal = false;
+  std::vector<double> time_s;  ///< analysis times (s), strictly ascending
+  AxisSeries n;                ///< angle random walk per axis and time, natural units
+  Axes k{};                    ///< rate random walk per axis, natural units
+};
+
+bool close(double a, double b, double rel_tol) {
+  return std::abs(a - b) <= rel_tol * std::max(std::abs(a), std::abs(b));
+}
+
+NoiseLevelSeries level_series(const DavarParams& params) {
+  AxisSeries psd;
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    for (double n : params.n[axis]) psd[axis].push_back(n * n);
+  }
+  return NoiseLevelSeries(params.time_s, std::move(psd),
+                          params.causal ? Interpolation::kHold : Interpolation::kLinear);
+}
+
+class DavarNoise final : public stochnav::plugin::NoiseModelPlugin {
+ public:
+  DavarNoise(SensorGroup group, DavarParams params)
+      : NoiseModelPlugin(group), params_(std::move(params)), levels_(level_series(params_)) {}
+
+  std::string_view type() const override { return "davar"; }
+  bool time_varying() const override { return true; }
+
+  void white_noise_covariance(double t_s, double dt_s,
+                              Eigen::Ref<Eigen::MatrixXd> q_white) const override {
+    q_white.setZero();
+    q_white.diagonal() = levels_.integral(t_s, dt_s);
+  }
+
+  void bias_walk_covariance(double, double dt_s,
+                            Eigen::Ref<Eigen::MatrixXd> q_bias) const override {
+    q_bias.setZero();
+    for (int i = 0; i < 3; ++i) q_bias(i, i) = params_.k[i] * params_.k[i] * dt_s;
+  }
+
+  nlohmann::json params() const override {
+    nlohmann::json n = nlohmann::json::array(), k = nlohmann::json::array();
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      nlohmann::json values = nlohmann::json::array();
+      for (double value : params_.n[axis]) {
+        values.push_back(reported(ParameterDimension::kAnglePerRootTime, value));
+      }
+      n.push_back(std::move(values));
+      k.push_back(reported(ParameterDimension::kRatePerRootTime, params_.k[axis]));
+    }
+    return {{"mode", params_.causal ? "causal" : "offline"},
+            {"t", params_.time_s},
+            {"N", std::move(n)},
+            {"K", std::move(k)}};
+  }
+
+  std::string describe() const override {
+    std::string text = fmt::format("davar ({}): {}, {} analysis times over [{:.6g}, {:.6g}] s;",
+                                   stochnav::plugin::sensor_group_name(group()),
+                                   params_.causal ? "causal" : "offline", params_.time_s.size(),
+                                   params_.time_s.front(), params_.time_s.back());
+    const char* axis_names[] = {"x", "y", "z"};
+    const std::string n_unit = unit(ParameterDimension::kAnglePerRootTime);
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      const auto [low, high] = std::minmax_element(params_.n[axis].begin(), params_.n[axis].end());
+      text += fmt::format(" {}: N = {:.6g} .. {:.6g} {}, K = {:.6g} {};", axis_names[axis],
+                          reported(ParameterDimension::kAnglePerRootTime, *low),
+                          reported(ParameterDimension::kAnglePerRootTime, *high), n_unit,
+                          reported(ParameterDimension::kRatePerRootTime, params_.k[axis]),
+                          unit(ParameterDimension::kRatePerRootTime));
+    }
+    text.pop_back();
+    return text;
+  }
+
+  bool equals(const NoiseModelPlugin& other, double rel_tol) const override {
+    const auto* that = dynamic_cast<const DavarNoise*>(&other);
+    if (that == nullptr || that->group() != group()) return false;
+    const DavarParams& a = params_;
+    const DavarParams& b = that->params_;
+    if (a.causal != b.causal || a.time_s.size() != b.time_s.size()) return false;
+    for (std::size_t j = 0; j < a.time_s.size(); ++j) {
+      if (!close(a.time_s[j], b.time_s[j], rel_tol)) return false;
+      for (std::size_t axis = 0; axis < 3; ++axis) {
+        if (!close(a.n[axis][j], b.n[axis][j], rel_tol)) return false;
+      }
+    }
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      if (!close(a.k[axis], b.k[axis], rel_tol)) return false;
+    }
+    return true;
+  }
+
+ private:
+  double reported(ParameterDimension dimension, double natural) const {
+    return stochnav::to_reported(stochnav::plugin::sensor_quantity(group()), dimension, natural);
+  }
+  std::string unit(ParameterDimension dimension) const {
+    return stochnav::reported_unit_name(stochnav::plugin::sensor_quantity(group()), dimension);
+  }
+
+  DavarParams params_;
+  NoiseLevelSeries levels_;
+};
+
+[[noreturn]] void reject(const std::string& pointer, const nlohmann::json& found,
+                         std::string_view expected) {
+  throw stochnav::ConfigError(
+      fmt::format("{}: found {}; expected {}", pointer, found.dump(), expected));
+}
+
+/// "t": finite, strictly ascending, at least one.
+std::vector<double> read_times(stochnav::plugin::ParamReader& reader) {
+  const nlohmann::json& json = reader.raw("t");
+  const std::string pointer = reader.pointer("t");
+  if (json.is_null()) reject(pointer, json, "an array of analysis times (s)");
+  if (!json.is_array() || json.empty()) reject(pointer, json, "a non-empty array of times (s)");
+  std::vector<double> times;
+  for (std::size_t j = 0; j < json.size(); ++j) {
+    const auto& value = json[j];
+    if (!value.is_number() || !std::isfinite(value.get<double>()) ||
+        (j > 0 && !(value.get<double>() > times.back()))) {
+      reject(pointer + "/" + std::to_string(j), value,
+             "a finite time (s) greater than the one before");
+    }
+    times.push_back(value.get<double>());
+  }
+  return times;
+}
+
+/// "N": three arrays of `count` values >= 0 in reporting units, returned in natural units.
+AxisSeries read_levels(stochnav::plugin::ParamReader& reader, SensorGroup group,
+                       std::size_t count) {
+  const auto quantity = stochnav::plugin::sensor_quantity(group);
+  const std::string unit =
+      stochnav::reported_unit_name(quantity, ParameterDimension::kAnglePerRootTime);
+  const nlohmann::json& json = reader.raw("N");
+  const std::string pointer = reader.pointer("N");
+  if (!json.is_array() || json.size() != 3) {
+    reject(pointer, json,
+           fmt::format("[[x...], [y...], [z...]], {} values of N ({}) per axis", count, unit));
+  }
+  AxisSeries levels;
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    const auto& values = json[axis];
+    const std::string axis_pointer = pointer + "/" + std::to_string(axis);
+    if (!values.is_array() || values.size() != count) {
+      reject(axis_pointer, values,
+             fmt::format("an array of {} values (one per analysis time in /t)", count));
+    }
+    for (std::size_t j = 0; j < count; ++j) {
+      const auto& value = values[j];
+      if (!value.is_number() || !std::isfinite(value.get<double>()) || value.get<double>() < 0.0) {
+        reject(axis_pointer + "/" + std::to_string(j), value,
+               fmt::format("a number >= 0 ({})", unit));
+      }
+      levels[axis].push_back(stochnav::to_natural(quantity, ParameterDimension::kAnglePerRootTime,
+                                                  value.get<double>()));
+    }
+  }
+  return levels;
+}
+
+Axes read_rate_random_walk(stochnav::plugin::ParamReader& reader, SensorGroup group) {
+  const auto quantity = stochnav::plugin::sensor_quantity(group);
+  Axes k =
+      reader.axes_or("K", {0.0, 0.0, 0.0}, stochnav::plugin::Bound::kNonNegative,
+                     stochnav::reported_unit_name(quantity, ParameterDimension::kRatePerRootTime));
+  for (double& value : k) {
+    value = stochnav::to_natural(quantity, ParameterDimension::kRatePerRootTime, value);
+  }
+  return k;
+}
+
+std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_davar(
+    const nlohmann::json& json, const stochnav::plugin::NoiseModelContext& context) {
+  stochnav::plugin::ParamReader reader(json, context.params_pointer);
+  DavarParams params;
+  params.causal = reader.choice_or("mode", "offline", kModes) == "causal";
+  params.time_s = read_times(reader);
+  params.n = read_levels(reader, context.group, params.time_s.size());
+  params.k = read_rate_random_walk(reader, context.group);
+  reader.finish();
+  return std::make_unique<DavarNoise>(context.group, std::move(params));
+}
+
+std::vector<stochnav::davar_noise::WindowTerm> read_terms(stochnav::plugin::ParamReader& reader) {
+  using stochnav::davar_noise::WindowTerm;
+  const nlohmann::json& json = reader.raw("terms");
+  if (json.is_null()) return {WindowTerm::kAngleRandomWalk, WindowTerm::kBiasInstability};
+  const std::string pointer = reader.pointer("terms");
+  constexpr std::string_view kExpected =
+      "an array of distinct terms among \"Q\", \"N\", \"B\", "
+      "\"K\" that holds \"N\"";
+  if (!json.is_array()) reject(pointer, json, kExpected);
+  std::vector<WindowTerm> terms;
+  for (std::size_t j = 0; j < json.size(); ++j) {
+    const std::string name = json[j].is_string() ? json[j].get<std::string>() : "";
+    WindowTerm term = WindowTerm::kAngleRandomWalk;
+    if (name == "Q") {
+      term = WindowTerm::kQuantization;
+    } else if (name == "N") {
+      term = WindowTerm::kAngleRandomWalk;
+    } else if (name == "B") {
+      term = WindowTerm::kBiasInstability;
+    } else if (name == "K") {
+      term = WindowTerm::kRateRandomWalk;
+    } else {
+      reject(pointer + "/" + std::to_string(j), json[j], kExpected);
+    }
+    if (std::find(terms.begin(), terms.end(), term) != terms.end()) {
+      reject(pointer + "/" + std::to_string(j), json[j], kExpected);
+    }
+    terms.push_back(term);
+  }
+  if (std::find(terms.begin(), terms.end(), WindowTerm::kAngleRandomWalk) == terms.end()) {
+    reject(pointer, json, kExpected);
+  }
+  return terms;
+}
+
+std::size_t samples_for(double seconds, double rate_hz) {
+  return static_cast<std::size_t>(std::llround(seconds * rate_hz));
+}
+
+std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
+    const stochnav::plugin::CalibrationRecord& record, const nlohmann::json& json,
+    const stochnav::plugin::NoiseModelContext& context) {
+  using stochnav::plugin::Bound;
+  stochnav::plugin::ParamReader reader(json, context.params_pointer);
+  const double window_s = reader.number_or("window_s", 60.0, Bound::kPositive, "s");
+  const double step_s = reader.number_or("step_s", 5.0, Bound::kPositive, "s");
+  const bool causal = reader.choice_or("mode", "offline", kModes) == "causal";
+  stochnav::davar_noise::WindowFitOptions options;
+  options.terms = read_terms(reader);
+  const bool with_walk = reader.boolean_or("rate_random_walk", false);
+  reader.finish();
+  options.window = samples_for(window_s, record.rate_hz);
+  options.step = std::max<std::size_t>(1, samples_for(step_s, record.rate_hz));
+  options.causal = causal;
+  if (options.window < 16) {
+    throw stochnav::ConfigError(fmt::format(
+        "{}: found {}; expected a window of at least 16 samples ({:.6g} s at {:.6g} Hz)",
+        reader.pointer("window_s"), window_s, 16.0 / record.rate_hz, record.rate_hz));
+  }
+
+  DavarParams params;
+  params.causal = causal;
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    stochnav::davar_noise::WindowFitSeries series;
+    try {
+      series = stochnav::davar_noise::fit_terms_per_window(record.axes[axis], record.rate_hz,
+                                                           record.start_time_s, options);
+    } catch (const stochnav::InputError& error) {
+      throw stochnav::InputError(record.source + ": " + error.what());
+    }
+    if (axis == 0) params.time_s = series.time_s;
+    params.n[axis] = std::move(series.angle_random_walk);
+  }
+  if (with_walk) {
+    stochnav::FitOptions walk_options;
+    walk_options.terms = {stochnav::TermType::kAngleRandomWalk,
+                          stochnav::TermType::kBiasInstability,
+                          stochnav::TermType::kRateRandomWalk};
+    const auto fits = stochnav::plugin::fit_calibration_axes(record, walk_options);
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      if (const auto* rrw =
+              stochnav::plugin::find_term(fits[axis].model, stochnav::TermType::kRateRandomWalk)) {
+        params.k[axis] = std::get<stochnav::RateRandomWalkTerm>(*rrw).k;
+      }
+    }
+  }
+  return std::make_unique<DavarNoise>(record.group, std::move(params));
+}
+
+}  // namespace
+
+STOCHNAV_NOISE_PLUGIN("davar",
+                      "time-varying white noise N(t) from windowed Allan-variance fits (DAVAR, "
+                      "offline or causal)",
+                      make_davar, fit_davar)
