@@ -32,6 +32,10 @@
 //               Default ["N", "B"]: a window of 60 s is short for K, while B absorbs the flat
 //               floor that the bias instability of a FOG puts on every window (fitting N alone
 //               would read that floor as white noise).
+//   "N_floor_fraction"  in [0, 1], default 0.1: per axis, windowed N below this fraction of the
+//               median of the axis' positive N values are raised to it. In quiet windows where
+//               the bias-instability floor dominates, the non-negative fit may drop N entirely;
+//               Q = 0 would make the filter trust the gyro blindly there.
 //   "rate_random_walk"  bool, default false: fit K once over the whole record (Ceres fit of
 //               N, B and K, plugin/calibration_fit.hpp) for bias_walk_covariance. The bias
 //               instability B itself is not given to the filter (it would need Gauss-Markov
@@ -39,6 +43,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -285,6 +290,19 @@ std::vector<stochnav::davar_noise::WindowTerm> read_terms(stochnav::plugin::Para
   return terms;
 }
 
+// Raises values below floor_fraction x (median of the positive values) to that floor.
+void raise_to_floor(std::vector<double>& values, double floor_fraction) {
+  std::vector<double> positive;
+  for (double v : values) {
+    if (v > 0.0) positive.push_back(v);
+  }
+  if (positive.empty()) return;
+  const auto middle = positive.begin() + static_cast<std::ptrdiff_t>(positive.size() / 2);
+  std::nth_element(positive.begin(), middle, positive.end());
+  const double floor = floor_fraction * *middle;
+  for (double& v : values) v = std::max(v, floor);
+}
+
 std::size_t samples_for(double seconds, double rate_hz) {
   return static_cast<std::size_t>(std::llround(seconds * rate_hz));
 }
@@ -300,6 +318,11 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
   stochnav::davar_noise::WindowFitOptions options;
   options.terms = read_terms(reader);
   const bool with_walk = reader.boolean_or("rate_random_walk", false);
+  const double floor_fraction = reader.number_or("N_floor_fraction", 0.1, Bound::kNonNegative, "");
+  if (floor_fraction > 1.0) {
+    throw stochnav::ConfigError(fmt::format("{}: found {}; expected a number in [0, 1]",
+                                            reader.pointer("N_floor_fraction"), floor_fraction));
+  }
   reader.finish();
   options.window = samples_for(window_s, record.rate_hz);
   options.step = std::max<std::size_t>(1, samples_for(step_s, record.rate_hz));
@@ -322,6 +345,7 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
     }
     if (axis == 0) params.time_s = series.time_s;
     params.n[axis] = std::move(series.angle_random_walk);
+    raise_to_floor(params.n[axis], floor_fraction);
   }
   if (with_walk) {
     stochnav::FitOptions walk_options;
