@@ -196,6 +196,14 @@ TEST_P(BlockProcessFit, RecoversTheVarianceAndLagOneCorrelationOfTheBlockMean) {
     EXPECT_NEAR(lag0(axis), variance, 0.15 * variance) << model->describe();
     EXPECT_NEAR(lag1(axis) / lag0(axis), correlation, 0.05) << model->describe();
   }
+  if (GetParam() == "arma") {
+    // The block mean of a Gauss-Markov process plus white noise is an ARMA(1, 1) whose AR root
+    // is exp(-T / tau): BIC should find it.
+    for (const auto& axis : model->params()["axes"]) {
+      ASSERT_EQ(axis["ar"].size(), 1u) << model->describe();
+      EXPECT_NEAR(axis["ar"][0].get<double>(), std::exp(-interval / truth.tau), 0.01);
+    }
+  }
   // A fitted model is like any other: it rebuilds from its params.
   EXPECT_TRUE(model->equals(*make(GetParam(), model->params()), 1e-12));
   EXPECT_NEAR(model->params()["K"][0].get<double>(), 0.001, 1e-15);

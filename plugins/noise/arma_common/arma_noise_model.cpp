@@ -96,14 +96,16 @@ class ArmaNoise final : public NoiseModelPlugin {
                                    sensor_group_name(group()), params_.interval_s);
     for (int axis = 0; axis < 3; ++axis) {
       const ArmaModel& model = params_.axes[axis];
-      text += fmt::format(
-          " {}: ARMA({}, {}) ar = [{:.6g}], ma = [{:.6g}], sigma = {:.6g} {}, K = "
-          "{:.6g} {};",
-          kAxisNames[axis], model.ar.size(), model.ma.size(), fmt::join(model.ar, ", "),
-          fmt::join(model.ma, ", "), reported(group(), ParameterDimension::kRate, model.sigma),
-          reported_unit_name(quantity, ParameterDimension::kRate),
-          reported(group(), ParameterDimension::kRatePerRootTime, params_.k[axis]),
-          reported_unit_name(quantity, ParameterDimension::kRatePerRootTime));
+      const std::string orders =
+          kind_ == Kind::kAr
+              ? fmt::format("AR({}) ar = [{:.6g}]", model.ar.size(), fmt::join(model.ar, ", "))
+              : fmt::format("ARMA({}, {}) ar = [{:.6g}], ma = [{:.6g}]", model.ar.size(),
+                            model.ma.size(), fmt::join(model.ar, ", "), fmt::join(model.ma, ", "));
+      text += fmt::format(" {}: {}, sigma = {:.6g} {}, K = {:.6g} {};", kAxisNames[axis], orders,
+                          reported(group(), ParameterDimension::kRate, model.sigma),
+                          reported_unit_name(quantity, ParameterDimension::kRate),
+                          reported(group(), ParameterDimension::kRatePerRootTime, params_.k[axis]),
+                          reported_unit_name(quantity, ParameterDimension::kRatePerRootTime));
     }
     text.pop_back();
     return text;
