@@ -199,6 +199,13 @@ TEST(Polynomials, StationarityAndInvertibilityFollowTheRoots) {
                std::invalid_argument);
 }
 
+TEST(InformationCriterion, IsLikelihoodTermPlusPenalty) {
+  EXPECT_DOUBLE_EQ(information_criterion(InformationCriterion::kAic, 2.0, 100, 3),
+                   100 * std::log(2.0) + 6.0);
+  EXPECT_DOUBLE_EQ(information_criterion(InformationCriterion::kBic, 2.0, 100, 3),
+                   100 * std::log(2.0) + 3.0 * std::log(100.0));
+}
+
 TEST(BlockMeans, AverageWholeBlocksAndDropThePartialOne) {
   const std::vector<double> x{1, 2, 3, 4, 5, 6, 7};
   EXPECT_EQ(block_means(x, 3), (std::vector<double>{2, 5}));
