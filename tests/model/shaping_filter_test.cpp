@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <vector>
 
@@ -63,10 +64,27 @@ TEST(ShapingFilter, FlickerBankHasTheFlatFloorOverTheBand) {
   ShapingOptions options;
   options.tau0_s = 0.01;
   options.flicker_band_max_s = 1000.0;
-  const ShapingFilter filter = build_shaping_filter(model, options);
+  options.fold_below_s = 0.0;
+  const ShapingFilter exact = build_shaping_filter(model, options);
+  options.fold_below_s = 0.1;
+  const ShapingFilter folded = build_shaping_filter(model, options);
+  EXPECT_LT(folded.size(), exact.size());
   const double floor = closed_form::bias_instability_avar(1.0);
   for (double tau : kTaus) {
-    EXPECT_NEAR(shaping_allan_variance(filter, tau) / floor, 1.0, 0.03) << "tau " << tau;
+    const double ratio_exact = shaping_allan_variance(exact, tau) / floor;
+    const double ratio_folded = shaping_allan_variance(folded, tau) / floor;
+    std::printf("flicker bank AVAR / floor at tau %6.1f s: all states %.4f, folded %.4f\n", tau,
+                ratio_exact, ratio_folded);
+    // The 10 ms point samples of this computation over-weight the bank's sub-10 ms components
+    // (a sample holds their full variance, not its interval mean's): compare from 3 s on.
+    if (tau >= 3.0) {
+      EXPECT_NEAR(ratio_exact, 1.0, 0.01) << "tau " << tau;
+    }
+    // Folding states faster than 0.1 s into white noise overstates the floor just above 0.1 s
+    // (their correlation is lost) but leaves it within a few % from 10 x the folding time on.
+    if (tau >= 1.0) {
+      EXPECT_NEAR(ratio_folded, 1.0, 0.03) << "tau " << tau;
+    }
   }
 }
 
@@ -80,7 +98,10 @@ TEST(ShapingFilter, SmallerBankTradesStatesForRipple) {
   EXPECT_LE(filter.size(), 6);
   const double floor = closed_form::bias_instability_avar(1.0);
   for (double tau : {1.0, 3.0, 10.0, 30.0, 100.0}) {
-    EXPECT_NEAR(shaping_allan_variance(filter, tau) / floor, 1.0, 0.1) << "tau " << tau;
+    const double ratio = shaping_allan_variance(filter, tau) / floor;
+    std::printf("1-per-decade bank (%d states) AVAR / floor at tau %6.1f s: %.4f\n", filter.size(),
+                tau, ratio);
+    EXPECT_NEAR(ratio, 1.0, 0.1) << "tau " << tau;
   }
 }
 
@@ -171,7 +192,8 @@ TEST(ShapingFilter, QuantizationAngleErrorDoesNotAccumulate) {
       ++count;
     }
     // 20 independent windows at the longest horizon: chi-square(20)/20 lies in [0.4, 1.9].
-    EXPECT_NEAR(sum_squares / count / (2.0 * q * q), 1.0, 0.6) << "horizon " << horizon;
+    EXPECT_NEAR(sum_squares / static_cast<double>(count) / (2.0 * q * q), 1.0, 0.6)
+        << "horizon " << horizon;
   }
 }
 

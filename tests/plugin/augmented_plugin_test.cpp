@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 

@@ -54,7 +54,8 @@ class ScenarioEnvironment : public ::testing::Environment {
     config.vibration_table->phases[1].accel_noise_scale = kAccelScale;
     for (std::size_t i = 0; i < 3; ++i) {
       config.gyro.noise[i].terms = {BiasInstabilityTerm{kGyroB}};
-      config.gyro.scheduled_noise[i].terms = {AngleRandomWalkTerm{kGyroN * (1.0 + 0.5 * i)}};
+      config.gyro.scheduled_noise[i].terms = {
+          AngleRandomWalkTerm{kGyroN * (1.0 + 0.5 * static_cast<double>(i))}};
       config.accel.scheduled_noise[i].terms = {AngleRandomWalkTerm{kAccelN}};
     }
     ScenarioOutputOptions options;

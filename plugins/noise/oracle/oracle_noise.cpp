@@ -26,6 +26,8 @@
 #include <cmath>
 #include <memory>
 #include <set>
+#include <utility>
+#include <variant>
 #include <string>
 #include <vector>
 

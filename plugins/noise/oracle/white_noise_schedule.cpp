@@ -1,6 +1,7 @@
 #include "white_noise_schedule.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <utility>
