@@ -75,6 +75,16 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"oracle", {{"scenario", scenario_dir().string()}}, SensorGroup::kAccel}),
     case_name);
 
+// The flicker bank's components faster than the 0.1 s folding time, as white PSD (rad^2/s).
+double folded_flicker_psd() {
+  const FlickerBank bank = design_flicker_bank(kGyroB, 0.01, 50.0);
+  double psd = 0.0;
+  for (std::size_t k = 0; k < bank.tau_c_s.size(); ++k) {
+    if (bank.tau_c_s[k] < 0.1) psd += 2.0 * bank.sigma[k] * bank.sigma[k] * bank.tau_c_s[k];
+  }
+  return psd;
+}
+
 std::shared_ptr<NoiseModelPlugin> oracle(SensorGroup group) {
   return make("oracle", {{"scenario", scenario_dir().string()}}, group);
 }
@@ -87,6 +97,8 @@ TEST(OracleNoise, WhiteNoiseOverEachPhaseIsTheScheduledPsdTimesItsDuration) {
   struct Phase {
     double start, end, gyro_scale, accel_scale;
   };
+  const double folded = folded_flicker_psd();
+  EXPECT_GT(folded, 0.0);
   Eigen::MatrixXd q(3, 3), sum(3, 3);
   for (const Phase& phase :
        {Phase{0, 20, 1, 1}, Phase{20, 30, kGyroScale, kAccelScale}, Phase{30, 50, 1, 1}}) {
@@ -94,7 +106,7 @@ TEST(OracleNoise, WhiteNoiseOverEachPhaseIsTheScheduledPsdTimesItsDuration) {
     gyro->white_noise_covariance(phase.start, duration, q);
     for (int i = 0; i < 3; ++i) {
       const double n = kGyroN * (1.0 + 0.5 * i);
-      const double expected = n * n * phase.gyro_scale * phase.gyro_scale * duration;
+      const double expected = (n * n * phase.gyro_scale * phase.gyro_scale + folded) * duration;
       EXPECT_NEAR(q(i, i), expected, 1e-12 * expected) << "gyro axis " << i << " " << phase.start;
     }
     EXPECT_EQ(q(0, 1), 0.0);
@@ -108,12 +120,12 @@ TEST(OracleNoise, WhiteNoiseOverEachPhaseIsTheScheduledPsdTimesItsDuration) {
       sum += q;
     }
     const double n = kGyroN;
-    const double expected_x = n * n * phase.gyro_scale * phase.gyro_scale * duration;
+    const double expected_x = (n * n * phase.gyro_scale * phase.gyro_scale + folded) * duration;
     EXPECT_NEAR(sum(0, 0), expected_x, 1e-9 * expected_x) << "epochs " << phase.start;
   }
   // An interval across a boundary integrates both sides: 5 s static + 5 s vibration.
   gyro->white_noise_covariance(15.0, 10.0, q);
-  const double expected = kGyroN * kGyroN * (5.0 + 5.0 * kGyroScale * kGyroScale);
+  const double expected = kGyroN * kGyroN * (5.0 + 5.0 * kGyroScale * kGyroScale) + folded * 10.0;
   EXPECT_NEAR(q(0, 0), expected, 1e-12 * expected);
 }
 
