@@ -26,9 +26,9 @@
 #include <cmath>
 #include <memory>
 #include <set>
+#include <string>
 #include <utility>
 #include <variant>
-#include <string>
 #include <vector>
 
 #include "scenario_noise.hpp"
@@ -205,8 +205,8 @@ class OracleNoise final : public stochnav::plugin::NoiseModelPlugin {
         shaping_.size(), white_.start_s().size());
     const char* axis_names[] = {"x", "y", "z"};
     for (std::size_t i = 0; i < 3; ++i) {
-      text += fmt::format("\n{}: constant {}\n   scheduled {}", axis_names[i],
-                          stochnav::describe(model_.truth.constant[i]),
+      text += fmt::format("\n{}: constant {}\n{}: scheduled {}", axis_names[i],
+                          stochnav::describe(model_.truth.constant[i]), axis_names[i],
                           stochnav::describe(model_.truth.scheduled[i]));
     }
     return text;
