@@ -7,12 +7,12 @@
 #include <cmath>
 #include <numbers>
 
-#include "noise_model_properties.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/noise_model.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 #include "stochnav/sim/noise_generator.hpp"
+#include "noise_model_properties.hpp"
 
 namespace stochnav::plugin {
 namespace {
@@ -25,6 +25,7 @@ using testing::expect_symmetric_psd;
 using testing::make;
 using testing::NoiseModelProperties;
 using testing::registry;
+
 
 TEST_P(NoiseModelProperties, CovariancesAreSymmetricPositiveSemiDefinite) {
   for (double dt : {1e-4, 0.01, 1.0, 100.0}) {
