@@ -9,7 +9,6 @@
 namespace stochnav {
 namespace {
 
-constexpr double kComponentsPerDecade = 2.0;
 constexpr double kLowestTauOverTau0 = 0.1;
 constexpr double kHighestTauOverBand = 3.0;
 constexpr double kFitTausPerDecade = 20.0;
@@ -43,7 +42,8 @@ Eigen::VectorXd non_negative_least_squares(const Eigen::MatrixXd& a, const Eigen
       const Eigen::VectorXd z = sub.colPivHouseholderQr().solve(b);
       if ((z.array() > 0.0).all()) {
         w.setZero();
-        for (std::size_t k = 0; k < index.size(); ++k) w[index[k]] = z[static_cast<Eigen::Index>(k)];
+        for (std::size_t k = 0; k < index.size(); ++k)
+          w[index[k]] = z[static_cast<Eigen::Index>(k)];
         break;
       }
       // Step back to the feasible boundary and drop the components that reach zero.
@@ -69,7 +69,8 @@ Eigen::VectorXd non_negative_least_squares(const Eigen::MatrixXd& a, const Eigen
 std::vector<double> log_spaced(double low, double high, std::size_t count) {
   std::vector<double> values(count);
   for (std::size_t i = 0; i < count; ++i) {
-    const double fraction = count == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(count - 1);
+    const double fraction =
+        count == 1 ? 0.0 : static_cast<double>(i) / static_cast<double>(count - 1);
     values[i] = low * std::pow(high / low, fraction);
   }
   return values;
@@ -81,7 +82,8 @@ std::size_t points_for(double low, double high, double per_decade) {
 
 }  // namespace
 
-FlickerBank design_flicker_bank(double b, double tau0_s, double band_max_s) {
+FlickerBank design_flicker_bank(double b, double tau0_s, double band_max_s,
+                                double components_per_decade) {
   FlickerBank bank;
   bank.band_min_s = tau0_s;
   bank.band_max_s = std::max(band_max_s, tau0_s);
@@ -89,7 +91,8 @@ FlickerBank design_flicker_bank(double b, double tau0_s, double band_max_s) {
 
   const double lowest = kLowestTauOverTau0 * tau0_s;
   const double highest = kHighestTauOverBand * bank.band_max_s;
-  const auto tau_c = log_spaced(lowest, highest, points_for(lowest, highest, kComponentsPerDecade));
+  const auto tau_c =
+      log_spaced(lowest, highest, points_for(lowest, highest, components_per_decade));
   // Fit in units of the floor: unit-variance components, target AVAR 1.
   const std::size_t fit_count =
       std::max<std::size_t>(points_for(tau0_s, bank.band_max_s, kFitTausPerDecade), 2);

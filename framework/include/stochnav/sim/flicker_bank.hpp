@@ -15,17 +15,23 @@
 namespace stochnav {
 
 struct FlickerBank {
-  std::vector<double> tau_c_s;  ///< correlation time of each component (s), ascending
-  std::vector<double> sigma;    ///< stationary standard deviation of each component, signal
-  double band_min_s = 0.0;      ///< tau0: the band over which the floor is flat (s)
-  double band_max_s = 0.0;      ///< (s)
+  std::vector<double> tau_c_s;       ///< correlation time of each component (s), ascending
+  std::vector<double> sigma;         ///< stationary standard deviation of each component, signal
+  double band_min_s = 0.0;           ///< tau0: the band over which the floor is flat (s)
+  double band_max_s = 0.0;           ///< (s)
   double max_relative_ripple = 0.0;  ///< max |AVAR_bank / floor - 1| over the band
 };
 
+/// Default density of the bank's correlation times: what the simulator uses.
+inline constexpr double kFlickerComponentsPerDecade = 2.0;
+
 /// Designs the bank for coefficient b (natural units, >= 0), sampling interval tau0_s (> 0) and
 /// flat band up to band_max_s (>= tau0_s; smaller values are raised to tau0_s). b = 0 gives an
-/// empty bank.
-FlickerBank design_flicker_bank(double b, double tau0_s, double band_max_s);
+/// empty bank. components_per_decade (> 0) sets the spacing of the candidate correlation times;
+/// below the default the floor ripples more (max_relative_ripple says how much), which is how a
+/// filter may trade states for flatness (model/shaping_filter.hpp).
+FlickerBank design_flicker_bank(double b, double tau0_s, double band_max_s,
+                                double components_per_decade = kFlickerComponentsPerDecade);
 
 /// Exact Allan variance of the bank at tau_s (s, > 0), signal^2.
 double flicker_bank_allan_variance(const FlickerBank& bank, double tau_s);

@@ -1,0 +1,241 @@
+// Noise plugin "augmented": a composite noise model per axis (quantization, angle and rate random
+// walk, bias instability, rate ramp, Gauss-Markov, sinusoid) turned into equivalent shaping-filter
+// states augmented into the filter (model/shaping_filter.hpp says how each term is represented,
+// including what is folded into white noise and why quantization is not represented).
+//
+// params:
+//   "model"   one noise model (JSON of model/noise_model_json.hpp) for all three axes, or
+//   "models"  [x, y, z]: one per axis. Exactly one of the two. Units of the sensor's quantity
+//             (angular rate for gyros, specific force for accelerometers); no nonstationary term.
+//   "flicker_band_max_s"            upper end of the bias-instability band (s), default 3600;
+//                                    the lower end is the models' sampling interval 1 / rate_hz.
+//   "flicker_components_per_decade" bank density, > 0, default 2 (the simulator's bank).
+//   "fold_below_s"                  first-order states faster than this (s) become white noise,
+//                                    >= 0, default 0.1 (the filter's covariance interval).
+// Fit params:
+//   "terms"   term names to fit (e.g. ["angle_random_walk", "gauss_markov"]); default: automatic
+//             selection (BIC) among quantization, angle_random_walk, bias_instability,
+//             rate_random_walk, rate_ramp, gauss_markov.
+//   "flicker_components_per_decade" default 1 (about 5 states over a 10 min record's band);
+//   "fold_below_s"                  default 0.1.
+// The fitted models (natural units) and the record duration as flicker_band_max_s are written
+// back by params(), so the fitted model rebuilds equal.
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/model/noise_model_json.hpp"
+#include "stochnav/model/sensor_shaping.hpp"
+#include "stochnav/plugin/calibration_fit.hpp"
+#include "stochnav/plugin/noise_model_plugin.hpp"
+#include "stochnav/plugin/params.hpp"
+
+namespace {
+
+using stochnav::NoiseModel;
+using stochnav::ShapingFilter;
+using stochnav::ShapingOptions;
+using stochnav::plugin::SensorGroup;
+using Models = std::array<NoiseModel, 3>;
+
+struct AugmentedParams {
+  Models models;  ///< per axis, natural units
+  double flicker_band_max_s = 3600.0;
+  double flicker_components_per_decade = 2.0;
+  double fold_below_s = 0.1;
+};
+
+bool close(double a, double b, double rel_tol) {
+  return std::abs(a - b) <= rel_tol * std::max(std::abs(a), std::abs(b));
+}
+
+std::array<ShapingFilter, 3> shaping_filters(const AugmentedParams& params) {
+  std::array<ShapingFilter, 3> filters;
+  for (std::size_t i = 0; i < 3; ++i) {
+    ShapingOptions options;
+    options.tau0_s = 1.0 / params.models[i].rate_hz;
+    options.flicker_band_max_s = std::max(params.flicker_band_max_s, options.tau0_s);
+    options.flicker_components_per_decade = params.flicker_components_per_decade;
+    options.fold_below_s = params.fold_below_s;
+    filters[i] = stochnav::build_shaping_filter(params.models[i], options);
+  }
+  return filters;
+}
+
+class AugmentedNoise final : public stochnav::plugin::NoiseModelPlugin {
+ public:
+  AugmentedNoise(SensorGroup group, const AugmentedParams& params)
+      : NoiseModelPlugin(group), params_(params), shaping_(shaping_filters(params)) {}
+
+  std::string_view type() const override { return "augmented"; }
+  int augmented_size() const override { return shaping_.size(); }
+
+  void white_noise_covariance(double, double dt_s,
+                              Eigen::Ref<Eigen::MatrixXd> q_white) const override {
+    shaping_.white_noise_covariance(dt_s, q_white);
+  }
+  void bias_walk_covariance(double, double dt_s,
+                            Eigen::Ref<Eigen::MatrixXd> q_bias) const override {
+    shaping_.bias_walk_covariance(dt_s, q_bias);
+  }
+  void augmented_transition(double, double dt_s, Eigen::Ref<Eigen::MatrixXd> phi,
+                            Eigen::Ref<Eigen::MatrixXd> q_d) const override {
+    shaping_.transition(dt_s, phi, q_d);
+  }
+  void augmented_initial_covariance(Eigen::Ref<Eigen::MatrixXd> p0) const override {
+    shaping_.initial_covariance(p0);
+  }
+  void augmented_sensor_map(Eigen::Ref<Eigen::MatrixXd> map) const override {
+    shaping_.sensor_map(map);
+  }
+
+  nlohmann::json params() const override {
+    nlohmann::json models = nlohmann::json::array();
+    for (const NoiseModel& model : params_.models) models.push_back(stochnav::to_json(model));
+    return {{"models", models},
+            {"flicker_band_max_s", params_.flicker_band_max_s},
+            {"flicker_components_per_decade", params_.flicker_components_per_decade},
+            {"fold_below_s", params_.fold_below_s}};
+  }
+
+  std::string describe() const override {
+    std::string text = fmt::format(
+        "augmented ({}): {} shaping states; flicker band up to {:.6g} s, {:.6g} states/decade, "
+        "first-order states under {:.6g} s folded into white noise",
+        stochnav::plugin::sensor_group_name(group()), shaping_.size(), params_.flicker_band_max_s,
+        params_.flicker_components_per_decade, params_.fold_below_s);
+    const char* axis_names[] = {"x", "y", "z"};
+    for (int i = 0; i < 3; ++i) {
+      text += fmt::format("\n{} ({} states): {}", axis_names[i], shaping_.axis(i).size(),
+                          stochnav::describe(params_.models[static_cast<std::size_t>(i)]));
+      if (shaping_.axis(i).quantization > 0.0) {
+        text += "\n  (quantization is not represented: its angle error does not accumulate)";
+      }
+    }
+    return text;
+  }
+
+  bool equals(const NoiseModelPlugin& other, double rel_tol) const override {
+    const auto* that = dynamic_cast<const AugmentedNoise*>(&other);
+    if (that == nullptr || that->group() != group()) return false;
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!stochnav::equals(params_.models[i], that->params_.models[i], rel_tol)) return false;
+    }
+    return close(params_.flicker_band_max_s, that->params_.flicker_band_max_s, rel_tol) &&
+           close(params_.flicker_components_per_decade, that->params_.flicker_components_per_decade,
+                 rel_tol) &&
+           close(params_.fold_below_s, that->params_.fold_below_s, rel_tol);
+  }
+
+ private:
+  AugmentedParams params_;
+  stochnav::SensorShaping shaping_;
+};
+
+// A noise model for the sensor group, without a nonstationary term.
+NoiseModel read_model(const nlohmann::json& json, const std::string& pointer, SensorGroup group) {
+  NoiseModel model = stochnav::noise_model_from_json(json, pointer);
+  const auto expected = stochnav::plugin::sensor_quantity(group);
+  if (stochnav::quantity_of(model.unit) != expected) {
+    throw stochnav::ConfigError(
+        pointer + "/units: found " + json.at("units").dump() + "; expected " +
+        (expected == stochnav::Quantity::kAngularRate ? "an angular-rate unit (deg/h, deg/s, rad/s)"
+                                                      : "a specific-force unit (m/s^2, g)"));
+  }
+  for (std::size_t t = 0; t < model.terms.size(); ++t) {
+    if (stochnav::term_type(model.terms[t]) == stochnav::TermType::kNonstationary) {
+      throw stochnav::ConfigError(pointer + "/terms/" + std::to_string(t) +
+                                  ": found a nonstationary term; expected stationary terms only "
+                                  "(the oracle plugin follows a schedule)");
+    }
+  }
+  return model;
+}
+
+std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_augmented(
+    const nlohmann::json& json, const stochnav::plugin::NoiseModelContext& context) {
+  using stochnav::plugin::Bound;
+  stochnav::plugin::ParamReader reader(json, context.params_pointer);
+  AugmentedParams params;
+  const bool one = reader.has("model"), each = reader.has("models");
+  if (one == each) {
+    throw stochnav::ConfigError(reader.pointer() + ": found " +
+                                (one ? "both \"model\" and \"models\"" : "neither") +
+                                "; expected \"model\" (all axes) or \"models\" ([x, y, z])");
+  }
+  if (one) {
+    const NoiseModel model =
+        read_model(reader.raw("model"), reader.pointer("model"), context.group);
+    params.models = {model, model, model};
+  } else {
+    const nlohmann::json& models = reader.raw("models");
+    if (!models.is_array() || models.size() != 3) {
+      throw stochnav::ConfigError(reader.pointer("models") + ": found " + models.dump() +
+                                  "; expected an array of three noise models [x, y, z]");
+    }
+    for (std::size_t i = 0; i < 3; ++i) {
+      params.models[i] =
+          read_model(models[i], reader.pointer("models") + "/" + std::to_string(i), context.group);
+    }
+  }
+  params.flicker_band_max_s = reader.number_or("flicker_band_max_s", 3600.0, Bound::kPositive, "s");
+  params.flicker_components_per_decade =
+      reader.number_or("flicker_components_per_decade", 2.0, Bound::kPositive, "");
+  params.fold_below_s = reader.number_or("fold_below_s", 0.1, Bound::kNonNegative, "s");
+  reader.finish();
+  return std::make_unique<AugmentedNoise>(context.group, params);
+}
+
+std::vector<stochnav::TermType> read_terms(stochnav::plugin::ParamReader& reader) {
+  if (!reader.has("terms")) return {};
+  const nlohmann::json& terms = reader.raw("terms");
+  const std::string expected =
+      "an array of term names among quantization, angle_random_walk, bias_instability, "
+      "rate_random_walk, rate_ramp, gauss_markov, sinusoid";
+  if (!terms.is_array() || terms.empty()) {
+    throw stochnav::ConfigError(reader.pointer("terms") + ": found " + terms.dump() +
+                                "; expected " + expected);
+  }
+  std::vector<stochnav::TermType> types;
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    const auto type = terms[i].is_string() ? stochnav::parse_term_type(terms[i].get<std::string>())
+                                           : std::nullopt;
+    if (!type || *type == stochnav::TermType::kNonstationary) {
+      throw stochnav::ConfigError(reader.pointer("terms") + "/" + std::to_string(i) + ": found " +
+                                  terms[i].dump() + "; expected " + expected);
+    }
+    types.push_back(*type);
+  }
+  return types;
+}
+
+std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_augmented(
+    const stochnav::plugin::CalibrationRecord& record, const nlohmann::json& json,
+    const stochnav::plugin::NoiseModelContext& context) {
+  using stochnav::plugin::Bound;
+  stochnav::plugin::ParamReader reader(json, context.params_pointer);
+  stochnav::FitOptions options;
+  options.terms = read_terms(reader);
+  AugmentedParams params;
+  params.flicker_components_per_decade =
+      reader.number_or("flicker_components_per_decade", 1.0, Bound::kPositive, "");
+  params.fold_below_s = reader.number_or("fold_below_s", 0.1, Bound::kNonNegative, "s");
+  reader.finish();
+  const auto fits = stochnav::plugin::fit_calibration_axes(record, options);
+  for (std::size_t i = 0; i < 3; ++i) params.models[i] = fits[i].model;
+  params.flicker_band_max_s = static_cast<double>(record.axes[0].size()) / record.rate_hz;
+  return std::make_unique<AugmentedNoise>(record.group, params);
+}
+
+}  // namespace
+
+STOCHNAV_NOISE_PLUGIN("augmented",
+                      "composite noise model as shaping-filter states (Gauss-Markov, flicker bank, "
+                      "ramp, sinusoid) plus white noise and bias random walk",
+                      make_augmented, fit_augmented)
