@@ -89,7 +89,8 @@ void check_name(const std::string& name, std::size_t index) {
 ExperimentConfig parse_experiment(const nlohmann::json& document, const fs::path& file) {
   if (!document.is_object()) throw ConfigError("/: expected a JSON object (an experiment)");
   reject_unknown_keys(document, "",
-                      {"description", "data", "baseline", "aids", "filter", "variants", "threads"});
+                      {"description", "comments", "data", "baseline", "aids", "filter", "variants",
+                       "threads"});
   ExperimentConfig config;
   config.file = file;
   config.config_dir = file.parent_path();

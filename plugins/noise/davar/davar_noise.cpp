@@ -37,9 +37,9 @@
 //               the bias-instability floor dominates, the non-negative fit may drop N entirely;
 //               Q = 0 would make the filter trust the gyro blindly there.
 //   "rate_random_walk"  bool, default false: fit K once over the whole record (Ceres fit of
-//               N, B and K, plugin/calibration_fit.hpp) for bias_walk_covariance. The bias
-//               instability B itself is not given to the filter (it would need Gauss-Markov
-//               states; the classic filter omits it too).
+//               N and K, as the white plugin, plugin/calibration_fit.hpp) for
+//               bias_walk_covariance. The bias instability B itself is not given to the
+//               filter (it would need Gauss-Markov states; the classic filter omits it too).
 
 #include <fmt/format.h>
 
@@ -349,8 +349,10 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
   }
   if (with_walk) {
     stochnav::FitOptions walk_options;
+    // N and K only, as the white plugin fits them: B is not given to the filter, so K must
+    // absorb the bias wander that B would otherwise take (with B in the fit, K comes out ~0 and
+    // the filter's bias cannot follow the bias instability).
     walk_options.terms = {stochnav::TermType::kAngleRandomWalk,
-                          stochnav::TermType::kBiasInstability,
                           stochnav::TermType::kRateRandomWalk};
     const auto fits = stochnav::plugin::fit_calibration_axes(record, walk_options);
     for (std::size_t axis = 0; axis < 3; ++axis) {

@@ -6,6 +6,7 @@
 //
 //   {
 //     "description": "...",                                         // optional
+//     "comments": {...},                                 // optional, any JSON, for readers only
 //     "data": {"scenario_config": "../scenarios/paper_random_vibration.json",
 //              "seeds": 5}              // or [11, 12, ...]: Monte-Carlo seeds of the scenario
 //           | {"scenario": "runs/vib1"}                             // one simulated folder
