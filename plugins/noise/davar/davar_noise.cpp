@@ -38,7 +38,10 @@
 //               Q = 0 would make the filter trust the gyro blindly there.
 //   "rate_random_walk"  bool, default false: fit K once over the whole record (Ceres fit of
 //               N and K, as the white plugin, plugin/calibration_fit.hpp) for
-//               bias_walk_covariance. The bias instability B itself is not given to the
+//               bias_walk_covariance. "rate_random_walk_end_s" (s, > 0) fits it over the
+//               record before that time only (a static calibration span): over a record with
+//               a noise episode the episode's energy at long taus reads as a rate random walk.
+//               The bias instability B itself is not given to the
 //               filter (it would need Gauss-Markov states; the classic filter omits it too).
 
 #include <fmt/format.h>
@@ -290,6 +293,20 @@ std::vector<stochnav::davar_noise::WindowTerm> read_terms(stochnav::plugin::Para
   return terms;
 }
 
+// The samples of `record` before end_s (s, record time), all of it when end_s is past its end.
+stochnav::plugin::CalibrationRecord leading_part(const stochnav::plugin::CalibrationRecord& record,
+                                                 double end_s) {
+  stochnav::plugin::CalibrationRecord part = record;
+  const double samples = std::floor((end_s - record.start_time_s) * record.rate_hz);
+  for (auto& axis : part.axes) {
+    if (samples >= 0.0 && samples < static_cast<double>(axis.size())) {
+      axis.resize(static_cast<std::size_t>(samples));
+    }
+  }
+  part.source += fmt::format(" (before {} s)", end_s);
+  return part;
+}
+
 // Raises values below floor_fraction x (median of the positive values) to that floor.
 void raise_to_floor(std::vector<double>& values, double floor_fraction) {
   std::vector<double> positive;
@@ -318,6 +335,7 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
   stochnav::davar_noise::WindowFitOptions options;
   options.terms = read_terms(reader);
   const bool with_walk = reader.boolean_or("rate_random_walk", false);
+  const double walk_end_s = reader.number_or("rate_random_walk_end_s", 0.0, Bound::kNonNegative, "s");
   const double floor_fraction = reader.number_or("N_floor_fraction", 0.1, Bound::kNonNegative, "");
   if (floor_fraction > 1.0) {
     throw stochnav::ConfigError(fmt::format("{}: found {}; expected a number in [0, 1]",
@@ -354,7 +372,8 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
     // the filter's bias cannot follow the bias instability).
     walk_options.terms = {stochnav::TermType::kAngleRandomWalk,
                           stochnav::TermType::kRateRandomWalk};
-    const auto fits = stochnav::plugin::fit_calibration_axes(record, walk_options);
+    const auto fits = stochnav::plugin::fit_calibration_axes(
+        walk_end_s > 0.0 ? leading_part(record, walk_end_s) : record, walk_options);
     for (std::size_t axis = 0; axis < 3; ++axis) {
       if (const auto* rrw =
               stochnav::plugin::find_term(fits[axis].model, stochnav::TermType::kRateRandomWalk)) {
