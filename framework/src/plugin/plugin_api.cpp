@@ -53,6 +53,14 @@ void NoiseModelPlugin::augmented_sensor_map(Eigen::Ref<Eigen::MatrixXd>) const {
 
 void NoiseModelPlugin::on_update(const UpdateFeedback&) {}
 
+double NoiseModelPlugin::reported(ParameterDimension dimension, double natural) const {
+  return to_reported(sensor_quantity(group_), dimension, natural);
+}
+
+std::string NoiseModelPlugin::reported_unit(ParameterDimension dimension) const {
+  return reported_unit_name(sensor_quantity(group_), dimension);
+}
+
 std::unique_ptr<NoiseModelPlugin> fit_not_supported(const CalibrationRecord&, const nlohmann::json&,
                                                     const NoiseModelContext& context) {
   throw ConfigError(context.params_pointer +

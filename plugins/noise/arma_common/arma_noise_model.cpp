@@ -102,9 +102,9 @@ class ArmaNoise final : public NoiseModelPlugin {
               : fmt::format("ARMA({}, {}) ar = [{:.6g}], ma = [{:.6g}]", model.ar.size(),
                             model.ma.size(), fmt::join(model.ar, ", "), fmt::join(model.ma, ", "));
       text += fmt::format(" {}: {}, sigma = {:.6g} {}, K = {:.6g} {};", kAxisNames[axis], orders,
-                          reported(group(), ParameterDimension::kRate, model.sigma),
+                          reported(ParameterDimension::kRate, model.sigma),
                           reported_unit_name(quantity, ParameterDimension::kRate),
-                          reported(group(), ParameterDimension::kRatePerRootTime, params_.k[axis]),
+                          reported(ParameterDimension::kRatePerRootTime, params_.k[axis]),
                           reported_unit_name(quantity, ParameterDimension::kRatePerRootTime));
     }
     text.pop_back();

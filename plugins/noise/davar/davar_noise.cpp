@@ -134,14 +134,14 @@ class DavarNoise final : public stochnav::plugin::NoiseModelPlugin {
                                    params_.causal ? "causal" : "offline", params_.time_s.size(),
                                    params_.time_s.front(), params_.time_s.back());
     const char* axis_names[] = {"x", "y", "z"};
-    const std::string n_unit = unit(ParameterDimension::kAnglePerRootTime);
+    const std::string n_unit = reported_unit(ParameterDimension::kAnglePerRootTime);
     for (std::size_t axis = 0; axis < 3; ++axis) {
       const auto [low, high] = std::minmax_element(params_.n[axis].begin(), params_.n[axis].end());
       text += fmt::format(" {}: N = {:.6g} .. {:.6g} {}, K = {:.6g} {};", axis_names[axis],
                           reported(ParameterDimension::kAnglePerRootTime, *low),
                           reported(ParameterDimension::kAnglePerRootTime, *high), n_unit,
                           reported(ParameterDimension::kRatePerRootTime, params_.k[axis]),
-                          unit(ParameterDimension::kRatePerRootTime));
+                          reported_unit(ParameterDimension::kRatePerRootTime));
     }
     text.pop_back();
     return text;
@@ -166,13 +166,6 @@ class DavarNoise final : public stochnav::plugin::NoiseModelPlugin {
   }
 
  private:
-  double reported(ParameterDimension dimension, double natural) const {
-    return stochnav::to_reported(stochnav::plugin::sensor_quantity(group()), dimension, natural);
-  }
-  std::string unit(ParameterDimension dimension) const {
-    return stochnav::reported_unit_name(stochnav::plugin::sensor_quantity(group()), dimension);
-  }
-
   DavarParams params_;
   NoiseLevelSeries levels_;
 };
@@ -335,7 +328,8 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
   stochnav::davar_noise::WindowFitOptions options;
   options.terms = read_terms(reader);
   const bool with_walk = reader.boolean_or("rate_random_walk", false);
-  const double walk_end_s = reader.number_or("rate_random_walk_end_s", 0.0, Bound::kNonNegative, "s");
+  const double walk_end_s =
+      reader.number_or("rate_random_walk_end_s", 0.0, Bound::kNonNegative, "s");
   const double floor_fraction = reader.number_or("N_floor_fraction", 0.1, Bound::kNonNegative, "");
   if (floor_fraction > 1.0) {
     throw stochnav::ConfigError(fmt::format("{}: found {}; expected a number in [0, 1]",

@@ -110,11 +110,11 @@ class GaussMarkovNoise final : public stochnav::plugin::NoiseModelPlugin {
     for (int i = 0; i < 3; ++i) {
       text += fmt::format(" {}: sigma = {:.6g} {}, tau_c = {:.6g} s, N = {:.6g} {}, K = {:.6g} {};",
                           axis_names[i], reported(ParameterDimension::kRate, params_.sigma[i]),
-                          unit(ParameterDimension::kRate), params_.tau_c[i],
+                          reported_unit(ParameterDimension::kRate), params_.tau_c[i],
                           reported(ParameterDimension::kAnglePerRootTime, params_.n[i]),
-                          unit(ParameterDimension::kAnglePerRootTime),
+                          reported_unit(ParameterDimension::kAnglePerRootTime),
                           reported(ParameterDimension::kRatePerRootTime, params_.k[i]),
-                          unit(ParameterDimension::kRatePerRootTime));
+                          reported_unit(ParameterDimension::kRatePerRootTime));
     }
     text.pop_back();
     return text;
@@ -135,13 +135,6 @@ class GaussMarkovNoise final : public stochnav::plugin::NoiseModelPlugin {
   }
 
  private:
-  double reported(ParameterDimension dimension, double natural) const {
-    return stochnav::to_reported(stochnav::plugin::sensor_quantity(group()), dimension, natural);
-  }
-  std::string unit(ParameterDimension dimension) const {
-    return stochnav::reported_unit_name(stochnav::plugin::sensor_quantity(group()), dimension);
-  }
-
   GaussMarkovParams params_;
   mutable double cached_dt_ = std::numeric_limits<double>::quiet_NaN();
   mutable Axes cached_decay_{};  ///< exp(-dt / tau_c) per axis

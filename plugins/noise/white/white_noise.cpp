@@ -69,9 +69,9 @@ class WhiteNoise final : public stochnav::plugin::NoiseModelPlugin {
     for (int i = 0; i < 3; ++i) {
       text += fmt::format(" {}: N = {:.6g} {}, K = {:.6g} {};", axis_names[i],
                           reported(ParameterDimension::kAnglePerRootTime, params_.n[i]),
-                          unit(ParameterDimension::kAnglePerRootTime),
+                          reported_unit(ParameterDimension::kAnglePerRootTime),
                           reported(ParameterDimension::kRatePerRootTime, params_.k[i]),
-                          unit(ParameterDimension::kRatePerRootTime));
+                          reported_unit(ParameterDimension::kRatePerRootTime));
     }
     text.pop_back();
     return text;
@@ -88,13 +88,6 @@ class WhiteNoise final : public stochnav::plugin::NoiseModelPlugin {
   }
 
  private:
-  double reported(ParameterDimension dimension, double natural) const {
-    return stochnav::to_reported(stochnav::plugin::sensor_quantity(group()), dimension, natural);
-  }
-  std::string unit(ParameterDimension dimension) const {
-    return stochnav::reported_unit_name(stochnav::plugin::sensor_quantity(group()), dimension);
-  }
-
   WhiteParams params_;
 };
 

@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "stochnav/core/units.hpp"
+#include "stochnav/model/reporting_units.hpp"
 #include "stochnav/plugin/plugin_api.hpp"
 
 namespace stochnav::plugin {
@@ -162,6 +163,12 @@ class NoiseModelPlugin {
 
  protected:
   explicit NoiseModelPlugin(SensorGroup group) : group_(group) {}
+
+  /// A parameter in natural SI units converted to this group's reporting units (params(),
+  /// describe()), e.g. rad/sqrt(s) -> deg/sqrt(h) for a gyro's angle random walk.
+  double reported(ParameterDimension dimension, double natural) const;
+  /// The name of this group's reporting unit of `dimension`, e.g. "deg/sqrt(h)".
+  std::string reported_unit(ParameterDimension dimension) const;
 
  private:
   SensorGroup group_;
