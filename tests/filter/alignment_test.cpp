@@ -68,9 +68,10 @@ TEST(PsinsRecord, GyrocompassingFindsTheEarthRateAndTheHeaderHeading) {
   // The header gives yaw -90.6 deg (counter-clockwise), i.e. 90.6 deg clockwise, "maybe
   // inaccurate"; the vehicle was disturbed during the record.
   EXPECT_NEAR(heading, 90.6, 3.0);
-  std::printf("PSINS lasergyro, whole record: |omega| = %.3f deg/h (Earth %.3f), |f| = %.5f "
-              "m/s^2, coarse heading of the forward axis %.2f deg\n",
-              measured_deg_h, earth_rate_deg_h, means.f_ib_b.norm(), heading);
+  std::printf(
+      "PSINS lasergyro, whole record: |omega| = %.3f deg/h (Earth %.3f), |f| = %.5f "
+      "m/s^2, coarse heading of the forward axis %.2f deg\n",
+      measured_deg_h, earth_rate_deg_h, means.f_ib_b.norm(), heading);
 
   NavState initial;
   initial.latitude_rad = latitude;
@@ -89,11 +90,11 @@ TEST(PsinsRecord, GyrocompassingFindsTheEarthRateAndTheHeaderHeading) {
   const FineAlignmentResult fine =
       fine_alignment(initial, first_300_s, gyro, accel, {&zero_velocity}, options);
   const double fine_heading = azimuth_deg(fine.state.q_nb, Eigen::Vector3d::UnitY());
-  std::printf("fine alignment (300 s, zero-velocity/position updates): heading %.2f deg "
-              "(1-sigma %.2f deg), gyro bias %.4f %.4f %.4f deg/h\n",
-              fine_heading, fine.attitude_sigma_rad.z() / kDeg,
-              fine.gyro_bias_b.x() / kDeg * 3600, fine.gyro_bias_b.y() / kDeg * 3600,
-              fine.gyro_bias_b.z() / kDeg * 3600);
+  std::printf(
+      "fine alignment (300 s, zero-velocity/position updates): heading %.2f deg "
+      "(1-sigma %.2f deg), gyro bias %.4f %.4f %.4f deg/h\n",
+      fine_heading, fine.attitude_sigma_rad.z() / kDeg, fine.gyro_bias_b.x() / kDeg * 3600,
+      fine.gyro_bias_b.y() / kDeg * 3600, fine.gyro_bias_b.z() / kDeg * 3600);
   EXPECT_NEAR(fine_heading, 90.6, 1.0);
   EXPECT_LT(fine.attitude_sigma_rad.z(), options.attitude_sigma_rad.z());
 }

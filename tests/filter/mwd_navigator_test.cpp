@@ -41,8 +41,8 @@ TEST(MwdNavigator, NoiseFreeStationaryToolStaysOnTruthForAnHour) {
   TestWhiteNoise accel(plugin::SensorGroup::kAccel, 1e-5);
   MwdNavigator navigator(truth, gyro, accel, {}, FilterOptions{});
   for (int k = 0; k < 3600 * 100; ++k) navigator.step(imu.next());
-  const auto dx = core_error(navigator.state(), truth, navigator.accel_bias_b(),
-                             navigator.gyro_bias_b(), {});
+  const auto dx =
+      core_error(navigator.state(), truth, navigator.accel_bias_b(), navigator.gyro_bias_b(), {});
   EXPECT_LT(dx.head<3>().norm(), 1e-3) << "position error (m)";
   EXPECT_LT(dx.segment<3>(3).norm(), 1e-6) << "velocity error (m/s)";
   EXPECT_LT(dx.segment<3>(6).norm(), 1e-8) << "attitude error (rad)";
@@ -110,6 +110,33 @@ TEST(MwdNavigator, AverageNeesIsInsideItsChiSquareBounds) {
   }
   // Ten check times at 99 % each: at most one outside by chance.
   EXPECT_LE(outside, 1) << "average NEES outside [" << lower << ", " << upper << "]:" << trace;
+}
+
+// A state far outside its covariance makes every NIS fail the gate; each rejection lets the
+// error grow, so a strict gate never lets the aid back in. The lockout rule applies the aid
+// ungated after FilterOptions::max_consecutive_rejections rejections in a row.
+TEST(MwdNavigator, TheNisGateDoesNotLockTheAidOutForGood) {
+  const NavState truth = testing::static_truth_state();
+  Eigen::Matrix<double, 15, 1> initial_error = Eigen::Matrix<double, 15, 1>::Zero();
+  initial_error(0) = 50.0;  // 50 m east, while P says 0.1 m
+  const auto position_error_after_a_minute = [&](int max_rejections) {
+    FilterOptions options;
+    options.max_consecutive_rejections = max_rejections;
+    StaticImu imu(truth, {}, kRateHz, 5);
+    TestWhiteNoise gyro(plugin::SensorGroup::kGyro, 1e-6);
+    TestWhiteNoise accel(plugin::SensorGroup::kAccel, 1e-5);
+    NoisyStaticAid aid(
+        truth, 0.05, 0.002, 6,
+        plugin::NisGate{.enabled = true, .threshold = plugin::chi_square_quantile(0.999, 6)});
+    MwdNavigator navigator(perturbed(truth, initial_error), gyro, accel, {&aid}, options);
+    for (int k = 0; k < 60 * static_cast<int>(kRateHz); ++k) navigator.step(imu.next());
+    return core_error(navigator.state(), truth, navigator.accel_bias_b(), navigator.gyro_bias_b(),
+                      {})
+        .head<3>()
+        .norm();
+  };
+  EXPECT_GT(position_error_after_a_minute(0), 49.0) << "a strict gate keeps the aid out";
+  EXPECT_LT(position_error_after_a_minute(10), 5.0) << "the lockout rule lets it back in";
 }
 
 TEST(MwdNavigator, IntervalPropagationMatchesEveryEpochPropagation) {

@@ -23,16 +23,15 @@ inline NavState static_truth_state() {
   truth.latitude_rad = 39.9778 * kDeg;
   truth.longitude_rad = 116.3448 * kDeg;
   truth.height_m = 50.0;
-  truth.q_nb = quaternion_from_mwd({.inclination_rad = 60.0 * kDeg,
-                                    .toolface_rad = 30.0 * kDeg,
-                                    .azimuth_rad = 100.0 * kDeg});
+  truth.q_nb = quaternion_from_mwd(
+      {.inclination_rad = 60.0 * kDeg, .toolface_rad = 30.0 * kDeg, .azimuth_rad = 100.0 * kDeg});
   return truth;
 }
 
 /// Sensor errors of one simulated IMU (SI units, body axes).
 struct StaticImuErrors {
-  double gyro_arw = 0.0;               ///< rad/sqrt(s)
-  double accel_vrw = 0.0;              ///< m/s/sqrt(s)
+  double gyro_arw = 0.0;                                 ///< rad/sqrt(s)
+  double accel_vrw = 0.0;                                ///< m/s/sqrt(s)
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();   ///< rad/s
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  ///< m/s^2
 };
@@ -94,8 +93,8 @@ class TestWhiteNoise final : public plugin::NoiseModelPlugin {
 class NoisyStaticAid final : public plugin::AidPlugin {
  public:
   NoisyStaticAid(const NavState& site, double sigma_position_m, double sigma_velocity_mps,
-                 std::uint64_t seed)
-      : AidPlugin(plugin::NisGate{.enabled = false}),
+                 std::uint64_t seed, plugin::NisGate gate = plugin::NisGate{.enabled = false})
+      : AidPlugin(gate),
         site_(site),
         sigma_position_m_(sigma_position_m),
         sigma_velocity_mps_(sigma_velocity_mps),

@@ -42,8 +42,8 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
       filter_(initial_covariance(layout_, options, gyro_noise, accel_noise)),
       interval_start_s_(initial.t_s),
       c_nb_(initial.q_nb.toRotationMatrix()) {
-  for (auto [group, model] : {std::pair{&gyro_augmented_, &gyro_noise},
-                              std::pair{&accel_augmented_, &accel_noise}}) {
+  for (auto [group, model] :
+       {std::pair{&gyro_augmented_, &gyro_noise}, std::pair{&accel_augmented_, &accel_noise}}) {
     group->model = model;
     group->size = model->augmented_size();
     group->offset = model->placement().augmented_offset;
@@ -58,6 +58,7 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
   q_d_ = Eigen::MatrixXd::Zero(n, n);
   correction_ = Eigen::VectorXd::Zero(n);
   innovations_.reserve(aids_.size());
+  consecutive_rejections_.assign(aids_.size(), 0);
 }
 
 Eigen::Vector3d MwdNavigator::sensor_correction(const AugmentedGroup& group) const {
@@ -165,10 +166,13 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
     const bool adaptive = gyro_noise_.time_varying() || accel_noise_.time_varying();
     const Eigen::MatrixXd prior = adaptive ? filter_.covariance() : Eigen::MatrixXd();
     correction_.setZero();
-    const UpdateOutcome outcome =
-        filter_.update(residual_, h_full_, r_, aid.gate().enabled ? aid.gate().threshold
-                                                                  : INFINITY,
-                       correction_);
+    int& rejections = consecutive_rejections_[index];
+    const bool locked_out = options_.max_consecutive_rejections > 0 &&
+                            rejections >= options_.max_consecutive_rejections;
+    const bool gated = aid.gate().enabled && !locked_out;
+    const UpdateOutcome outcome = filter_.update(
+        residual_, h_full_, r_, gated ? aid.gate().threshold : INFINITY, correction_);
+    rejections = outcome.accepted ? 0 : rejections + 1;
     InnovationRecord record{.t_s = t_s,
                             .aid_index = static_cast<int>(index),
                             .accepted = outcome.accepted,

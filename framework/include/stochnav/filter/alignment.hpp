@@ -42,8 +42,8 @@ Eigen::Quaterniond coarse_alignment(const StaticMeans& means, double latitude_ra
 /// estimates.
 struct FineAlignmentResult {
   NavState state;
-  Eigen::Vector3d gyro_bias_b = Eigen::Vector3d::Zero();   ///< rad/s
-  Eigen::Vector3d accel_bias_b = Eigen::Vector3d::Zero();  ///< m/s^2
+  Eigen::Vector3d gyro_bias_b = Eigen::Vector3d::Zero();         ///< rad/s
+  Eigen::Vector3d accel_bias_b = Eigen::Vector3d::Zero();        ///< m/s^2
   Eigen::Vector3d attitude_sigma_rad = Eigen::Vector3d::Zero();  ///< 1-sigma of phi, E N U
 };
 FineAlignmentResult fine_alignment(const NavState& initial,

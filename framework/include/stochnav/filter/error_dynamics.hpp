@@ -30,9 +30,9 @@ using CoreMatrix = Eigen::Matrix<double, 15, 15>;
 
 /// Integrals over one covariance interval [t, t + T] of the fast-changing inputs.
 struct FastInputIntegrals {
-  double interval_s = 0.0;                                   ///< T (s)
-  Eigen::Matrix3d c_nb_dt = Eigen::Matrix3d::Zero();         ///< integral of C_nb dt (s)
-  Eigen::Vector3d f_n_dt = Eigen::Vector3d::Zero();          ///< integral of f_n dt (m/s)
+  double interval_s = 0.0;                            ///< T (s)
+  Eigen::Matrix3d c_nb_dt = Eigen::Matrix3d::Zero();  ///< integral of C_nb dt (s)
+  Eigen::Vector3d f_n_dt = Eigen::Vector3d::Zero();   ///< integral of f_n dt (m/s)
 };
 
 /// The integral of the core error-dynamics matrix F over the interval, F_bar T (15 x 15,

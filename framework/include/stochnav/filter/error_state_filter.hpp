@@ -19,7 +19,9 @@ struct FilterHealth {
   std::uint64_t singular_innovations = 0;  ///< S = H P H^T + R not positive definite: skipped
   std::uint64_t repaired_diagonals = 0;    ///< diagonal entries of P found <= 0 and reset
   std::uint64_t non_finite = 0;            ///< NaN or infinity met in P (P reset to P0)
-  bool ok() const { return singular_innovations == 0 && repaired_diagonals == 0 && non_finite == 0; }
+  bool ok() const {
+    return singular_innovations == 0 && repaired_diagonals == 0 && non_finite == 0;
+  }
 };
 
 /// Outcome of one measurement update.

@@ -14,10 +14,16 @@ struct FilterOptions {
   /// every-epoch propagation by far less than its own uncertainty (tests/filter).
   double covariance_interval_s = 0.1;
 
+  /// After this many consecutive NIS-gate rejections of one aid, its next measurement is
+  /// applied ungated. A gate must not lock the filter out of its aiding for good once the state
+  /// has drifted past the gate (the classic gate lockout: rejected updates let the error grow,
+  /// which makes the next NIS larger still). 0 keeps the gate strict.
+  int max_consecutive_rejections = 10;
+
   // Initial 1-sigma uncertainties of the core error states.
-  Eigen::Vector3d position_sigma_m{0.1, 0.1, 0.1};        ///< ENU (m)
-  Eigen::Vector3d velocity_sigma_mps{0.01, 0.01, 0.01};   ///< ENU (m/s)
-  Eigen::Vector3d attitude_sigma_rad{1e-3, 1e-3, 1e-2};   ///< phi about E, N, U (rad)
+  Eigen::Vector3d position_sigma_m{0.1, 0.1, 0.1};          ///< ENU (m)
+  Eigen::Vector3d velocity_sigma_mps{0.01, 0.01, 0.01};     ///< ENU (m/s)
+  Eigen::Vector3d attitude_sigma_rad{1e-3, 1e-3, 1e-2};     ///< phi about E, N, U (rad)
   Eigen::Vector3d accel_bias_sigma_mps2{1e-3, 1e-3, 1e-3};  ///< body axes (m/s^2)
   Eigen::Vector3d gyro_bias_sigma_radps{5e-6, 5e-6, 5e-6};  ///< body axes (rad/s) (~1 deg/h)
 };

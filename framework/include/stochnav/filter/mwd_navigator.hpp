@@ -30,11 +30,11 @@ namespace stochnav {
 
 /// One measurement update attempt, as recorded in innovations.csv.
 struct InnovationRecord {
-  double t_s = 0.0;        ///< time (s)
-  int aid_index = 0;       ///< position of the aid in the run's list
-  bool accepted = false;   ///< passed the NIS gate and S was positive definite
-  double nis = 0.0;        ///< normalised innovation squared (NaN when S was singular)
-  int size = 0;            ///< measurement size m (<= kMaxSize)
+  double t_s = 0.0;       ///< time (s)
+  int aid_index = 0;      ///< position of the aid in the run's list
+  bool accepted = false;  ///< passed the NIS gate and S was positive definite
+  double nis = 0.0;       ///< normalised innovation squared (NaN when S was singular)
+  int size = 0;           ///< measurement size m (<= kMaxSize)
   static constexpr int kMaxSize = 6;
   double innovation[kMaxSize] = {};        ///< z (aid units)
   double innovation_sigma[kMaxSize] = {};  ///< sqrt(diag S)
@@ -82,6 +82,7 @@ class MwdNavigator final {
   plugin::NoiseModelPlugin& gyro_noise_;
   plugin::NoiseModelPlugin& accel_noise_;
   std::vector<plugin::AidPlugin*> aids_;
+  std::vector<int> consecutive_rejections_;  ///< per aid, for FilterOptions' lockout rule
   FilterOptions options_;
   plugin::StateLayout layout_;
   StrapdownIntegrator ins_;
