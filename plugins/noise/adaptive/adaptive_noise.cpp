@@ -57,9 +57,7 @@ struct AdaptiveParams {
   double forgetting = 0.98;  ///< fading-memory factor b, (0, 1)
 };
 
-bool close(double a, double b, double rel_tol) {
-  return std::abs(a - b) <= rel_tol * std::max(std::abs(a), std::abs(b));
-}
+using stochnav::plugin::parameters_close;
 
 class AdaptiveNoise final : public stochnav::plugin::NoiseModelPlugin {
  public:
@@ -124,10 +122,10 @@ class AdaptiveNoise final : public stochnav::plugin::NoiseModelPlugin {
   bool equals(const NoiseModelPlugin& other, double rel_tol) const override {
     const auto* that = dynamic_cast<const AdaptiveNoise*>(&other);
     if (that == nullptr || that->group() != group()) return false;
-    return close(params_.n_initial, that->params_.n_initial, rel_tol) &&
-           close(params_.n_min, that->params_.n_min, rel_tol) &&
-           close(params_.n_max, that->params_.n_max, rel_tol) &&
-           close(params_.forgetting, that->params_.forgetting, rel_tol);
+    return parameters_close(params_.n_initial, that->params_.n_initial, rel_tol) &&
+           parameters_close(params_.n_min, that->params_.n_min, rel_tol) &&
+           parameters_close(params_.n_max, that->params_.n_max, rel_tol) &&
+           parameters_close(params_.forgetting, that->params_.forgetting, rel_tol);
   }
 
  private:

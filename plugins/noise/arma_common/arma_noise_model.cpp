@@ -15,14 +15,12 @@ namespace {
 
 constexpr const char* kAxisNames[] = {"x", "y", "z"};
 
-bool close(double a, double b, double rel_tol) {
-  return std::abs(a - b) <= rel_tol * std::max(std::abs(a), std::abs(b));
-}
+using stochnav::plugin::parameters_close;
 
-bool close(const std::vector<double>& a, const std::vector<double>& b, double rel_tol) {
+bool parameters_close(const std::vector<double>& a, const std::vector<double>& b, double rel_tol) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i) {
-    if (!close(a[i], b[i], rel_tol)) return false;
+    if (!parameters_close(a[i], b[i], rel_tol)) return false;
   }
   return true;
 }
@@ -114,14 +112,14 @@ class ArmaNoise final : public NoiseModelPlugin {
   bool equals(const NoiseModelPlugin& other, double rel_tol) const override {
     const auto* that = dynamic_cast<const ArmaNoise*>(&other);
     if (that == nullptr || that->kind_ != kind_ || that->group() != group() ||
-        !close(params_.interval_s, that->params_.interval_s, rel_tol)) {
+        !parameters_close(params_.interval_s, that->params_.interval_s, rel_tol)) {
       return false;
     }
     for (int axis = 0; axis < 3; ++axis) {
       const ArmaModel &a = params_.axes[axis], &b = that->params_.axes[axis];
-      if (!close(a.ar, b.ar, rel_tol) || !close(a.ma, b.ma, rel_tol) ||
-          !close(a.sigma, b.sigma, rel_tol) ||
-          !close(params_.k[axis], that->params_.k[axis], rel_tol)) {
+      if (!parameters_close(a.ar, b.ar, rel_tol) || !parameters_close(a.ma, b.ma, rel_tol) ||
+          !parameters_close(a.sigma, b.sigma, rel_tol) ||
+          !parameters_close(params_.k[axis], that->params_.k[axis], rel_tol)) {
         return false;
       }
     }

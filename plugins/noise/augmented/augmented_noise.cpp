@@ -51,9 +51,7 @@ struct AugmentedParams {
   double fold_below_s = 0.1;
 };
 
-bool close(double a, double b, double rel_tol) {
-  return std::abs(a - b) <= rel_tol * std::max(std::abs(a), std::abs(b));
-}
+using stochnav::plugin::parameters_close;
 
 std::array<ShapingFilter, 3> shaping_filters(const AugmentedParams& params) {
   std::array<ShapingFilter, 3> filters;
@@ -127,10 +125,11 @@ class AugmentedNoise final : public stochnav::plugin::NoiseModelPlugin {
     for (std::size_t i = 0; i < 3; ++i) {
       if (!stochnav::equals(params_.models[i], that->params_.models[i], rel_tol)) return false;
     }
-    return close(params_.flicker_band_max_s, that->params_.flicker_band_max_s, rel_tol) &&
-           close(params_.flicker_components_per_decade, that->params_.flicker_components_per_decade,
-                 rel_tol) &&
-           close(params_.fold_below_s, that->params_.fold_below_s, rel_tol);
+    return parameters_close(params_.flicker_band_max_s, that->params_.flicker_band_max_s,
+                            rel_tol) &&
+           parameters_close(params_.flicker_components_per_decade,
+                            that->params_.flicker_components_per_decade, rel_tol) &&
+           parameters_close(params_.fold_below_s, that->params_.fold_below_s, rel_tol);
   }
 
  private:

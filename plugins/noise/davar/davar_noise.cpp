@@ -79,9 +79,7 @@ struct DavarParams {
   Axes k{};                    ///< rate random walk per axis, natural units
 };
 
-bool close(double a, double b, double rel_tol) {
-  return std::abs(a - b) <= rel_tol * std::max(std::abs(a), std::abs(b));
-}
+using stochnav::plugin::parameters_close;
 
 NoiseLevelSeries level_series(const DavarParams& params) {
   AxisSeries psd;
@@ -154,13 +152,13 @@ class DavarNoise final : public stochnav::plugin::NoiseModelPlugin {
     const DavarParams& b = that->params_;
     if (a.causal != b.causal || a.time_s.size() != b.time_s.size()) return false;
     for (std::size_t j = 0; j < a.time_s.size(); ++j) {
-      if (!close(a.time_s[j], b.time_s[j], rel_tol)) return false;
+      if (!parameters_close(a.time_s[j], b.time_s[j], rel_tol)) return false;
       for (std::size_t axis = 0; axis < 3; ++axis) {
-        if (!close(a.n[axis][j], b.n[axis][j], rel_tol)) return false;
+        if (!parameters_close(a.n[axis][j], b.n[axis][j], rel_tol)) return false;
       }
     }
     for (std::size_t axis = 0; axis < 3; ++axis) {
-      if (!close(a.k[axis], b.k[axis], rel_tol)) return false;
+      if (!parameters_close(a.k[axis], b.k[axis], rel_tol)) return false;
     }
     return true;
   }

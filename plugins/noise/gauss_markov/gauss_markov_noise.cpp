@@ -39,9 +39,7 @@ struct GaussMarkovParams {
   Axes k{};      ///< rate random walk per axis, rad/s/sqrt(s) or m/s^2/sqrt(s)
 };
 
-bool close(double a, double b, double rel_tol) {
-  return std::abs(a - b) <= rel_tol * std::max(std::abs(a), std::abs(b));
-}
+using stochnav::plugin::parameters_close;
 
 class GaussMarkovNoise final : public stochnav::plugin::NoiseModelPlugin {
  public:
@@ -124,10 +122,10 @@ class GaussMarkovNoise final : public stochnav::plugin::NoiseModelPlugin {
     const auto* that = dynamic_cast<const GaussMarkovNoise*>(&other);
     if (that == nullptr || that->group() != group()) return false;
     for (int i = 0; i < 3; ++i) {
-      if (!close(params_.sigma[i], that->params_.sigma[i], rel_tol) ||
-          !close(params_.tau_c[i], that->params_.tau_c[i], rel_tol) ||
-          !close(params_.n[i], that->params_.n[i], rel_tol) ||
-          !close(params_.k[i], that->params_.k[i], rel_tol)) {
+      if (!parameters_close(params_.sigma[i], that->params_.sigma[i], rel_tol) ||
+          !parameters_close(params_.tau_c[i], that->params_.tau_c[i], rel_tol) ||
+          !parameters_close(params_.n[i], that->params_.n[i], rel_tol) ||
+          !parameters_close(params_.k[i], that->params_.k[i], rel_tol)) {
         return false;
       }
     }

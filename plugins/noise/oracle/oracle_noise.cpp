@@ -216,7 +216,7 @@ class OracleNoise final : public stochnav::plugin::NoiseModelPlugin {
     const auto* that = dynamic_cast<const OracleNoise*>(&other);
     if (that == nullptr || that->group() != group()) return false;
     const auto close = [rel_tol](double a, double b) {
-      return std::abs(a - b) <= rel_tol * std::max(std::abs(a), std::abs(b));
+      return stochnav::plugin::parameters_close(a, b, rel_tol);
     };
     for (std::size_t i = 0; i < 3; ++i) {
       if (!stochnav::equals(model_.truth.constant[i], that->model_.truth.constant[i], rel_tol) ||

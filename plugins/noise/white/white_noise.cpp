@@ -31,9 +31,7 @@ struct WhiteParams {
   Axes k{};  ///< rate random walk per axis, rad/s/sqrt(s) or m/s^2/sqrt(s)
 };
 
-bool close(double a, double b, double rel_tol) {
-  return std::abs(a - b) <= rel_tol * std::max(std::abs(a), std::abs(b));
-}
+using stochnav::plugin::parameters_close;
 
 class WhiteNoise final : public stochnav::plugin::NoiseModelPlugin {
  public:
@@ -81,8 +79,8 @@ class WhiteNoise final : public stochnav::plugin::NoiseModelPlugin {
     const auto* that = dynamic_cast<const WhiteNoise*>(&other);
     if (that == nullptr || that->group() != group()) return false;
     for (int i = 0; i < 3; ++i) {
-      if (!close(params_.n[i], that->params_.n[i], rel_tol)) return false;
-      if (!close(params_.k[i], that->params_.k[i], rel_tol)) return false;
+      if (!parameters_close(params_.n[i], that->params_.n[i], rel_tol)) return false;
+      if (!parameters_close(params_.k[i], that->params_.k[i], rel_tol)) return false;
     }
     return true;
   }

@@ -31,7 +31,9 @@
 // fixed-size caller matrices such as Matrix3d too, without copies).
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -174,6 +176,12 @@ class NoiseModelPlugin {
   SensorGroup group_;
   StatePlacement placement_;
 };
+
+/// The tolerance rule of NoiseModelPlugin::equals for one parameter:
+/// |a - b| <= rel_tol max(|a|, |b|).
+inline bool parameters_close(double a, double b, double rel_tol) {
+  return std::abs(a - b) <= rel_tol * std::max(std::abs(a), std::abs(b));
+}
 
 /// Builds a model from its params. Throws ConfigError naming context.params_pointer (+ the key)
 /// when params are invalid. Exported by STOCHNAV_NOISE_PLUGIN as stochnav_noise_factory.
