@@ -33,8 +33,9 @@ stochnav::ScenarioConfig load(const std::string& name) {
   return stochnav::scenario_config_from_json(nlohmann::json::parse(in), name);
 }
 
-// Epochs per second of the generator: wall clock and process CPU time (best of two runs; CPU
-// time sums the noise threads, and is the fairer figure on a shared machine).
+// Epochs per second of the generator over the whole scenario (set-up included): wall clock and
+// process CPU time (best of two runs; CPU time sums the noise threads of sim/block_pipeline.hpp,
+// and is the fairer figure on a shared machine).
 struct Rate {
   double wall = 0.0;
   double cpu = 0.0;
@@ -87,7 +88,7 @@ int main(int argc, char** argv) {
   }
 
   // The same table with white noise only (no bias-instability flicker banks, which cost about
-  // 30 Gauss-Markov draws per sample and axis in sim/noise_generator.hpp).
+  // 16 Gauss-Markov draws per sample and axis in sim/noise_generator.hpp).
   {
     auto white_only = fixed;
     for (auto* sensor : {&white_only.gyro, &white_only.accel}) {

@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <future>
 #include <numbers>
-#include <thread>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/noise_model_json.hpp"
@@ -78,50 +76,37 @@ ScenarioSimulator::ScenarioSimulator(const ScenarioConfig& config, std::uint64_t
       scheduled_noise_[axis] = std::make_unique<NoiseGenerator>(
           scheduled, rate_hz_, derive_stream_seed(seed, 200 + axis), duration);
     }
-    noise_block_[axis].assign(kBlock, 0.0);
     NormalGenerator turn_on(derive_stream_seed(seed, 2000 + axis));
     turn_on_bias_[gyro ? 0 : 1][i] = sensor.turn_on_bias_sigma * turn_on();
     bias_[axis] = sensor.constant_bias[i] + turn_on_bias_[gyro ? 0 : 1][i];
     scale_factor_[axis] = sensor.scale_factor[i];
   }
-  const auto generators = static_cast<unsigned>(
-      std::count_if(noise_.begin(), noise_.end(), [](const auto& g) { return g != nullptr; }) +
-      std::count_if(scheduled_noise_.begin(), scheduled_noise_.end(),
-                    [](const auto& g) { return g != nullptr; }));
-  noise_threads_ = generators >= 4 ? std::clamp(std::thread::hardware_concurrency(), 1u, 4u) : 1u;
+  std::vector<BlockPipeline::Stream> streams;
+  for (std::size_t axis = 0; axis < 6; ++axis) {
+    NoiseGenerator* noise = noise_[axis].get();
+    NoiseGenerator* scheduled = scheduled_noise_[axis].get();
+    if (noise == nullptr && scheduled == nullptr) continue;
+    noise_stream_[axis] = static_cast<int>(streams.size());
+    streams.push_back([noise, scheduled, scratch = std::vector<double>(kBlock)](
+                          std::span<double> out) mutable {
+      if (noise != nullptr) {
+        noise->generate(out);
+      } else {
+        std::fill(out.begin(), out.end(), 0.0);
+      }
+      if (scheduled == nullptr) return;
+      scheduled->generate(std::span(scratch).first(out.size()));
+      for (std::size_t k = 0; k < out.size(); ++k) out[k] += scratch[k];
+    });
+  }
+  if (!streams.empty()) {
+    const unsigned threads = BlockPipeline::default_threads(streams.size());
+    noise_blocks_ = std::make_unique<BlockPipeline>(std::move(streams), kBlock, threads);
+  }
   block_used_ = kBlock;
 }
 
 ScenarioSimulator::~ScenarioSimulator() = default;
-
-void ScenarioSimulator::refill_noise() {
-  const auto fill_axes = [this](unsigned first, unsigned stride) {
-    std::vector<double> scratch(kBlock);
-    for (unsigned axis = first; axis < 6; axis += stride) {
-      std::vector<double>& block = noise_block_[axis];
-      if (noise_[axis]) {
-        noise_[axis]->generate(block);
-      } else {
-        std::fill(block.begin(), block.end(), 0.0);
-      }
-      if (scheduled_noise_[axis]) {
-        scheduled_noise_[axis]->generate(scratch);
-        for (std::size_t k = 0; k < kBlock; ++k) block[k] += scratch[k];
-      }
-    }
-  };
-  if (noise_threads_ <= 1) {
-    fill_axes(0, 1);
-  } else {
-    std::vector<std::future<void>> workers;
-    for (unsigned t = 1; t < noise_threads_; ++t) {
-      workers.push_back(std::async(std::launch::async, fill_axes, t, noise_threads_));
-    }
-    fill_axes(0, noise_threads_);
-    for (auto& worker : workers) worker.get();
-  }
-  block_used_ = 0;
-}
 
 TruthSample ScenarioSimulator::initial_truth() { return motion_->truth(0.0); }
 
@@ -136,11 +121,15 @@ void ScenarioSimulator::next(ScenarioEpoch& epoch, bool with_truth) {
   epoch.measured.t_s = t1;
   epoch.measured.dt_s = dt;
   if (sensor_errors_) {
-    if (block_used_ == kBlock) refill_noise();
+    if (block_used_ == kBlock && noise_blocks_) {
+      noise_blocks_->advance();
+      block_used_ = 0;
+    }
     for (std::size_t axis = 0; axis < 6; ++axis) {
       const double ideal =
           axis < 3 ? epoch.ideal.delta_theta_b[axis] : epoch.ideal.delta_v_b[axis - 3];
-      const double noise = noise_block_[axis][block_used_];
+      const int stream = noise_stream_[axis];
+      const double noise = stream < 0 ? 0.0 : noise_blocks_->current(stream)[block_used_];
       const double measured = (1.0 + scale_factor_[axis]) * ideal + (bias_[axis] + noise) * dt;
       if (axis < 3) {
         epoch.measured.delta_theta_b[axis] = measured;

@@ -1,5 +1,7 @@
 #include "term_samplers.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <type_traits>
@@ -91,85 +93,105 @@ class RampSampler final : public TermSampler {
 //   x' = a x + w1,  I = T (1 - a) x + w2,
 //   Var w1 = s^2 (1 - a^2), Cov = s^2 T (1 - a)^2, Var w2 = 2 s^2 T^2 g(tau0/T),
 // g from closed_form::ou_integral_shape. With g1, g2 independent standard normals,
-// w1 = c11 g1 and w2 = c21 g1 + c22 g2 (Cholesky factor).
-class GaussMarkovSampler final : public TermSampler {
- public:
-  /// With with_independent_part false, the c22 g2 part is left out of the samples: a bank adds
-  /// the parts of all its components as one white sequence of variance sum c22^2 / tau0^2,
-  /// which has the same distribution (the parts are white, Gaussian and independent of all
-  /// else) for one normal draw per sample instead of one per component.
-  GaussMarkovSampler(double sigma, double tau_c, double tau0, std::uint64_t seed,
-                     bool with_independent_part = true)
-      : normal_(seed), with_independent_part_(with_independent_part) {
+// w1 = c11 g1 and w2 = c21 g1 + c22 g2 (Cholesky factor). The sample (interval mean) is
+// I / tau0 = mean_gain x + mean_noise_correlated g1 + mean_noise_independent g2.
+struct GaussMarkovStep {
+  GaussMarkovStep(double sigma, double tau_c, double tau0) {
     const double h = tau0 / tau_c;
     const double one_minus_a = -std::expm1(-h);
     const double one_minus_a2 = -std::expm1(-2.0 * h);
-    decay_ = std::exp(-h);
-    state_noise_ = sigma * std::sqrt(one_minus_a2);
+    decay = std::exp(-h);
+    state_noise = sigma * std::sqrt(one_minus_a2);
     const double covariance = sigma * sigma * tau_c * one_minus_a * one_minus_a;
     const double integral_variance =
         2.0 * sigma * sigma * tau_c * tau_c * closed_form::ou_integral_shape(h);
-    const double c21 = state_noise_ > 0.0 ? covariance / state_noise_ : 0.0;
+    const double c21 = state_noise > 0.0 ? covariance / state_noise : 0.0;
     const double c22 = std::sqrt(std::max(0.0, integral_variance - c21 * c21));
-    mean_gain_ = tau_c * one_minus_a / tau0;
-    mean_noise_correlated_ = c21 / tau0;
-    mean_noise_independent_ = c22 / tau0;
+    mean_gain = tau_c * one_minus_a / tau0;
+    mean_noise_correlated = c21 / tau0;
+    mean_noise_independent = c22 / tau0;
+  }
+  double decay = 0.0;                   // a
+  double state_noise = 0.0;             // c11
+  double mean_gain = 0.0;               // T (1 - a) / tau0
+  double mean_noise_correlated = 0.0;   // c21 / tau0
+  double mean_noise_independent = 0.0;  // c22 / tau0
+};
+
+class GaussMarkovSampler final : public TermSampler {
+ public:
+  GaussMarkovSampler(double sigma, double tau_c, double tau0, std::uint64_t seed)
+      : step_(sigma, tau_c, tau0), normal_(seed) {
     state_ = sigma * normal_();  // stationary start
   }
 
-  /// Standard deviation of the independent part of a sample (c22 / tau0).
-  double independent_part_sigma() const { return mean_noise_independent_; }
-
   void add_to(std::span<double> out, std::uint64_t /*first_index*/) override {
-    if (!with_independent_part_) {
-      for (double& y : out) {
-        const double g1 = normal_();
-        y += mean_gain_ * state_ + mean_noise_correlated_ * g1;
-        state_ = decay_ * state_ + state_noise_ * g1;
-      }
-      return;
-    }
     for (double& y : out) {
       const double g1 = normal_();
       const double g2 = normal_();
-      y += mean_gain_ * state_ + mean_noise_correlated_ * g1 + mean_noise_independent_ * g2;
-      state_ = decay_ * state_ + state_noise_ * g1;
+      y += step_.mean_gain * state_ + step_.mean_noise_correlated * g1 +
+           step_.mean_noise_independent * g2;
+      state_ = step_.decay * state_ + step_.state_noise * g1;
     }
   }
 
  private:
+  GaussMarkovStep step_;
   NormalGenerator normal_;
-  bool with_independent_part_;
-  double decay_ = 0.0;
-  double state_noise_ = 0.0;
-  double mean_gain_ = 0.0;
-  double mean_noise_correlated_ = 0.0;
-  double mean_noise_independent_ = 0.0;
   double state_ = 0.0;
 };
 
+// A bias-instability bank (sim/flicker_bank.hpp). The c22 g2 parts of all components are added
+// as one white sequence of variance sum c22^2 / tau0^2, which has the same distribution (the
+// parts are white, Gaussian and independent of all else) for one normal draw per sample
+// instead of one per component.
+// The bank's components advance four at a time, sample by sample: each component's state
+// recursion is a serial chain, and interleaving four chains keeps the core busy (one component
+// at a time over a block is latency-bound, about three times slower). Each component still
+// draws from its own stream in sample order, and adds into a sample in component order.
 class FlickerSampler final : public TermSampler {
  public:
   FlickerSampler(double b, double tau0, std::uint64_t seed, double band_max_s) : white_(seed) {
     const FlickerBank bank = design_flicker_bank(b, tau0, band_max_s);
     double white_variance = 0.0;
     for (std::size_t k = 0; k < bank.tau_c_s.size(); ++k) {
-      components_.push_back(std::make_unique<GaussMarkovSampler>(
-          bank.sigma[k], bank.tau_c_s[k], tau0, derive_stream_seed(seed, k + 1), false));
-      const double part = components_.back()->independent_part_sigma();
-      white_variance += part * part;
+      const GaussMarkovStep step(bank.sigma[k], bank.tau_c_s[k], tau0);
+      normals_.emplace_back(derive_stream_seed(seed, k + 1));
+      steps_.push_back(step);
+      states_.push_back(bank.sigma[k] * normals_.back()());  // stationary start
+      white_variance += step.mean_noise_independent * step.mean_noise_independent;
     }
     white_sigma_ = std::sqrt(white_variance);
   }
-  void add_to(std::span<double> out, std::uint64_t first_index) override {
+  void add_to(std::span<double> out, std::uint64_t /*first_index*/) override {
     for (double& y : out) y += white_sigma_ * white_();
-    for (auto& component : components_) component->add_to(out, first_index);
+    std::size_t k = 0;
+    for (; k + 4 <= steps_.size(); k += 4) advance<4>(out, k);
+    for (; k < steps_.size(); ++k) advance<1>(out, k);
   }
 
  private:
+  template <std::size_t kWidth>
+  void advance(std::span<double> out, std::size_t first) {
+    std::array<double, kWidth> state;
+    for (std::size_t j = 0; j < kWidth; ++j) state[j] = states_[first + j];
+    const GaussMarkovStep* step = &steps_[first];
+    NormalGenerator* normal = &normals_[first];
+    for (double& y : out) {
+      for (std::size_t j = 0; j < kWidth; ++j) {
+        const double g1 = normal[j]();
+        y += step[j].mean_gain * state[j] + step[j].mean_noise_correlated * g1;
+        state[j] = step[j].decay * state[j] + step[j].state_noise * g1;
+      }
+    }
+    for (std::size_t j = 0; j < kWidth; ++j) states_[first + j] = state[j];
+  }
+
   NormalGenerator white_;
   double white_sigma_ = 0.0;
-  std::vector<std::unique_ptr<GaussMarkovSampler>> components_;
+  std::vector<NormalGenerator> normals_;
+  std::vector<GaussMarkovStep> steps_;
+  std::vector<double> states_;
 };
 
 // Interval mean of A sin(phi + w t): A [cos(phi + w t_k) - cos(phi + w t_k+1)] / (w tau0).

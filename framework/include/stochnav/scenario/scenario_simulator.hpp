@@ -14,8 +14,9 @@
 // a (gyro x, y, z = 0..2, accel x, y, z = 3..5) from streams 100 + a (noise) and 200 + a
 // (scheduled); turn-on bias from 2000 + a; random vibration of phase p from 3000 + p; aid errors
 // from 4000. Memory is independent of the duration (blocks of 4096 samples per noise stream).
-// The noise streams of the six axes are generated in up to 4 threads (hardware concurrency);
-// the records do not depend on the number of threads.
+// The noise of the six axes is generated a block ahead by background threads
+// (sim/block_pipeline.hpp) while the caller integrates the true motion; the records do not
+// depend on the number of threads.
 
 #include <array>
 #include <cstdint>
@@ -26,6 +27,7 @@
 #include "stochnav/ins/strapdown.hpp"
 #include "stochnav/scenario/scenario_config.hpp"
 #include "stochnav/scenario/true_motion.hpp"
+#include "stochnav/sim/block_pipeline.hpp"
 #include "stochnav/sim/noise_generator.hpp"
 
 namespace stochnav {
@@ -73,9 +75,6 @@ class ScenarioSimulator final {
   nlohmann::json noise_schedule_json() const;
 
  private:
-  // Refills the noise blocks of all axes (in parallel threads when there are several).
-  void refill_noise();
-
   ScenarioConfig config_;
   std::unique_ptr<TrueMotion> motion_;
   double rate_hz_ = 0.0;
@@ -83,13 +82,14 @@ class ScenarioSimulator final {
   std::uint64_t next_epoch_ = 1;
   bool sensor_errors_ = true;
   std::array<NoiseModel, 6> scheduled_;
-  // Per axis: the noise and scheduled-noise generators (null without terms) and the block of
-  // summed samples in use; all axes are consumed in lockstep.
+  // Per axis: the noise and scheduled-noise generators (null without terms), and the axis'
+  // stream in the pipeline of summed samples (-1: no noise); all axes are consumed in
+  // lockstep. The pipeline calls the generators, so it is declared after them (destroyed first).
   std::array<std::unique_ptr<NoiseGenerator>, 6> noise_;
   std::array<std::unique_ptr<NoiseGenerator>, 6> scheduled_noise_;
-  std::array<std::vector<double>, 6> noise_block_;
+  std::array<int, 6> noise_stream_{-1, -1, -1, -1, -1, -1};
+  std::unique_ptr<BlockPipeline> noise_blocks_;
   std::size_t block_used_ = 0;
-  unsigned noise_threads_ = 1;
   std::array<std::array<double, 3>, 2> turn_on_bias_{};
   std::array<double, 6> bias_{};  // constant + turn-on, natural units
   std::array<double, 6> scale_factor_{};
