@@ -35,7 +35,7 @@
 namespace stochnav {
 
 /// Streaming generator: memory independent of the record length (a few kB per term, plus
-/// ~2.5 kB per flicker component). Not thread-safe; use one per thread.
+/// about 100 bytes per flicker component). Not thread-safe; use one per thread.
 class NoiseGenerator final {
  public:
   /// Throws ConfigError if the model breaks a rule of find_model_issue, rate_hz is not > 0, or
