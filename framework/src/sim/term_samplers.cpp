@@ -145,6 +145,7 @@ class GaussMarkovSampler final : public TermSampler {
 // as one white sequence of variance sum c22^2 / tau0^2, which has the same distribution (the
 // parts are white, Gaussian and independent of all else) for one normal draw per sample
 // instead of one per component.
+//
 // The bank's components advance four at a time, sample by sample: each component's state
 // recursion is a serial chain, and interleaving four chains keeps the core busy (one component
 // at a time over a block is latency-bound, about three times slower). Each component still

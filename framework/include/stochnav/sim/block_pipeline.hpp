@@ -9,13 +9,10 @@
 // same whatever the number of threads (0 threads: streams are called on the consumer's thread
 // when a block is requested).
 
-#include <condition_variable>
 #include <cstddef>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <span>
-#include <thread>
 #include <vector>
 
 namespace stochnav {
@@ -24,7 +21,8 @@ class BlockPipeline final {
  public:
   using Stream = std::function<void(std::span<double>)>;
 
-  /// `streams` must outlive the pipeline's use of them (they are called until destruction).
+  /// Whatever the streams refer to must outlive the pipeline (producers may call them until
+  /// the destructor has joined them).
   /// `threads`: producer threads (0 = synchronous; more than streams.size() is capped).
   BlockPipeline(std::vector<Stream> streams, std::size_t block_size, unsigned threads);
   ~BlockPipeline();
