@@ -10,8 +10,10 @@
 #include <numbers>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "noise_model_properties.hpp"
+#include "recovery_stats.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/noise_model.hpp"
 #include "stochnav/model/noise_model_json.hpp"
@@ -23,6 +25,7 @@ namespace {
 using testing::Case;
 using testing::case_name;
 using testing::context_for;
+using testing::expect_recovered;
 using testing::make;
 using testing::NoiseModelProperties;
 using testing::registry;
@@ -130,13 +133,14 @@ TEST(AugmentedNoise, BadParamsNameTheirPointer) {
   }
 }
 
-CalibrationRecord simulated_record(const NoiseModel& model, double duration_s) {
+CalibrationRecord simulated_record(const NoiseModel& model, double duration_s,
+                                   std::uint64_t first_seed = 31) {
   CalibrationRecord record;
   record.group = SensorGroup::kGyro;
   record.rate_hz = model.rate_hz;
   record.source = "simulated";
   for (std::size_t axis = 0; axis < 3; ++axis) {
-    record.axes[axis] = simulate_noise(model, duration_s, model.rate_hz, 31 + axis);
+    record.axes[axis] = simulate_noise(model, duration_s, model.rate_hz, first_seed + axis);
   }
   return record;
 }
@@ -174,32 +178,43 @@ FittedAxis fitted_axis(const nlohmann::json& model_json) {
   return axis;
 }
 
-TEST(AugmentedFit, RecoversGaussMarkovWhiteAndRateRandomWalk) {
-  const auto record = simulated_record(kTruth, 3600.0);
-  const auto model = registry().fit_noise_model(
-      "augmented", record, {{"terms", {"angle_random_walk", "gauss_markov", "rate_random_walk"}}},
-      context_for(SensorGroup::kGyro), "/p");
-  const nlohmann::json params = model->params();
-  for (int axis = 0; axis < 3; ++axis) {
-    const FittedAxis fit = fitted_axis(params["models"][axis]);
-    std::printf("axis %d: N = %.4f deg/sqrt(h), sigma = %.3f deg/h, tau_c = %.2f s, K = %.3f\n",
-                axis, fit.n, fit.sigma, fit.tau_c, fit.k);
-    EXPECT_NEAR(fit.n, 0.05, 0.005) << model->describe();
-    EXPECT_NEAR(fit.sigma, 2.0, 0.5) << model->describe();
-    EXPECT_NEAR(fit.tau_c, 5.0, 2.0) << model->describe();
-    EXPECT_NEAR(fit.k, 6.0, 2.5) << model->describe();
+// Eight records of three axes (24 independent fits) with the terms given: the estimates scatter
+// around the truth (their mean within three standard errors of it or 1 %, so no bias that matters
+// shows: N, measured to 0.1 %, comes out 0.06 % low) and at least 90 % of them fall within a
+// tolerance of about 2.5 of their standard deviations (measured: 4.7e-5 deg/sqrt(h), 0.1 deg/h,
+// 1.0 s, 1.3 deg/h/sqrt(h)); one lucky record could show neither.
+TEST(AugmentedFit, RecoversGaussMarkovWhiteAndRateRandomWalkOverManyRecords) {
+  std::vector<double> n, sigma, tau_c, k;
+  for (std::uint64_t record_index = 0; record_index < 8; ++record_index) {
+    const auto record = simulated_record(kTruth, 3600.0, 200 + 3 * record_index);
+    const auto model = registry().fit_noise_model(
+        "augmented", record, {{"terms", {"angle_random_walk", "gauss_markov", "rate_random_walk"}}},
+        context_for(SensorGroup::kGyro), "/p");
+    const nlohmann::json params = model->params();
+    for (int axis = 0; axis < 3; ++axis) {
+      const FittedAxis fit = fitted_axis(params["models"][axis]);
+      n.push_back(fit.n);
+      sigma.push_back(fit.sigma);
+      tau_c.push_back(fit.tau_c);
+      k.push_back(fit.k);
+    }
+    if (record_index > 0) continue;
+    // What the filter gets: one Gauss-Markov state per axis, N^2 white, K^2 bias walk.
+    ASSERT_EQ(model->augmented_size(), 3);
+    Eigen::MatrixXd p0(3, 3), q_white(3, 3), q_bias(3, 3);
+    model->augmented_initial_covariance(p0);
+    model->white_noise_covariance(0.0, 1.0, q_white);
+    model->bias_walk_covariance(0.0, 1.0, q_bias);
+    const FittedAxis x = fitted_axis(params["models"][0]);
+    EXPECT_NEAR(p0(0, 0), std::pow(x.sigma * kDegPerHour, 2), 1e-9 * p0(0, 0));
+    EXPECT_NEAR(q_white(0, 0), std::pow(x.n * kDegPerRootHour, 2), 1e-9 * q_white(0, 0));
+    EXPECT_NEAR(q_bias(0, 0), std::pow(x.k * kDegPerHourRootHour, 2), 1e-9 * q_bias(0, 0));
+    EXPECT_TRUE(model->equals(*make("augmented", params), 1e-12)) << model->describe();
   }
-  // What the filter gets: one Gauss-Markov state per axis, N^2 white, K^2 bias walk.
-  ASSERT_EQ(model->augmented_size(), 3);
-  Eigen::MatrixXd p0(3, 3), q_white(3, 3), q_bias(3, 3);
-  model->augmented_initial_covariance(p0);
-  model->white_noise_covariance(0.0, 1.0, q_white);
-  model->bias_walk_covariance(0.0, 1.0, q_bias);
-  const FittedAxis x = fitted_axis(params["models"][0]);
-  EXPECT_NEAR(p0(0, 0), std::pow(x.sigma * kDegPerHour, 2), 1e-9 * p0(0, 0));
-  EXPECT_NEAR(q_white(0, 0), std::pow(x.n * kDegPerRootHour, 2), 1e-9 * q_white(0, 0));
-  EXPECT_NEAR(q_bias(0, 0), std::pow(x.k * kDegPerHourRootHour, 2), 1e-9 * q_bias(0, 0));
-  EXPECT_TRUE(model->equals(*make("augmented", params), 1e-12)) << model->describe();
+  expect_recovered("N (deg/sqrt(h))", n, 0.05, 2e-4);
+  expect_recovered("sigma (deg/h)", sigma, 2.0, 0.25);
+  expect_recovered("tau_c (s)", tau_c, 5.0, 2.5);
+  expect_recovered("K (deg/h/sqrt(h))", k, 6.0, 3.3);
 }
 
 // The default, automatic term selection (BIC) on the same record: the white and Gauss-Markov

@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/noise_model.hpp"
@@ -13,6 +14,7 @@
 #include "stochnav/plugin/state_layout.hpp"
 #include "stochnav/sim/noise_generator.hpp"
 #include "noise_model_properties.hpp"
+#include "recovery_stats.hpp"
 
 namespace stochnav::plugin {
 namespace {
@@ -21,6 +23,7 @@ using testing::Case;
 using testing::case_name;
 using testing::context_for;
 using testing::expect_close;
+using testing::expect_recovered;
 using testing::expect_symmetric_psd;
 using testing::make;
 using testing::NoiseModelProperties;
@@ -151,34 +154,45 @@ TEST(StateLayout, RuntimeAssignsOffsetsAfterTheCoreStates) {
   EXPECT_THROW(assign_state_layout(*accel, *gyro), std::invalid_argument);
 }
 
-CalibrationRecord simulated_record(const NoiseModel& model, double duration_s) {
+CalibrationRecord simulated_record(const NoiseModel& model, double duration_s,
+                                   std::uint64_t first_seed = 11) {
   CalibrationRecord record;
   record.group = SensorGroup::kGyro;
   record.rate_hz = model.rate_hz;
   record.source = "simulated";
   for (std::size_t axis = 0; axis < 3; ++axis) {
-    record.axes[axis] = simulate_noise(model, duration_s, model.rate_hz, 11 + axis);
+    record.axes[axis] = simulate_noise(model, duration_s, model.rate_hz, first_seed + axis);
   }
   return record;
 }
 
-TEST(GaussMarkovFit, RecoversSigmaAndCorrelationTimeThroughTheAllanEngine) {
+// Eight records of three axes (24 independent fits): the estimates scatter around the truth
+// (their mean within three standard errors of it or 1 %: no bias that matters) and 90 % of them
+// fall within a tolerance of about 2.5 of their standard deviations (0.4 deg/h, 0.46 s and
+// 7.5e-5 deg/sqrt(h) measured; 99 % expected); one lucky record could show neither.
+TEST(GaussMarkovFit, RecoversSigmaAndCorrelationTimeOverManyRecords) {
   const double deg_h = std::numbers::pi / 180.0 / 3600.0;   // rad/s per deg/h
   const double deg_rt_h = std::numbers::pi / 180.0 / 60.0;  // rad/sqrt(s) per deg/sqrt(h)
   NoiseModel truth{Unit::kRadPerSecond,
                    100.0,
                    {AngleRandomWalkTerm{0.05 * deg_rt_h}, GaussMarkovTerm{10.0 * deg_h, 5.0}}};
-  const auto record = simulated_record(truth, 2000.0);
-  const auto model = registry().fit_noise_model(
-      "gauss_markov", record, {}, context_for(SensorGroup::kGyro), "/noise/gyro/plugin");
-  const auto params = model->params();
-  for (int axis = 0; axis < 3; ++axis) {
-    EXPECT_NEAR(params["sigma"][axis].get<double>(), 10.0, 2.5) << model->describe();
-    EXPECT_NEAR(params["tau_c"][axis].get<double>(), 5.0, 1.5) << model->describe();
-    EXPECT_NEAR(params["N"][axis].get<double>(), 0.05, 0.01) << model->describe();
+  std::vector<double> sigma, tau_c, n;
+  for (std::uint64_t record_index = 0; record_index < 8; ++record_index) {
+    const auto record = simulated_record(truth, 2000.0, 100 + 3 * record_index);
+    const auto model = registry().fit_noise_model(
+        "gauss_markov", record, {}, context_for(SensorGroup::kGyro), "/noise/gyro/plugin");
+    const auto params = model->params();
+    for (int axis = 0; axis < 3; ++axis) {
+      sigma.push_back(params["sigma"][axis].get<double>());
+      tau_c.push_back(params["tau_c"][axis].get<double>());
+      n.push_back(params["N"][axis].get<double>());
+    }
+    // The fitted model behaves like any other: it rebuilds from its params.
+    EXPECT_TRUE(model->equals(*make("gauss_markov", params), 1e-12));
   }
-  // The fitted model behaves like any other: it rebuilds from its params.
-  EXPECT_TRUE(model->equals(*make("gauss_markov", params), 1e-12));
+  expect_recovered("sigma (deg/h)", sigma, 10.0, 1.0);
+  expect_recovered("tau_c (s)", tau_c, 5.0, 1.2);
+  expect_recovered("N (deg/sqrt(h))", n, 0.05, 3e-4);
 }
 
 TEST(WhiteFit, RecoversTheAngleRandomWalk) {

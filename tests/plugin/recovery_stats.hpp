@@ -1,0 +1,43 @@
+#pragma once
+// Summary of a parameter recovered from many simulated records, for the fit-recovery tests.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace stochnav::plugin::testing {
+
+struct Recovery {
+  double mean = 0.0;
+  double std = 0.0;     ///< sample standard deviation of the estimates
+  double within = 0.0;  ///< fraction of the estimates within the tolerance of the truth
+};
+
+inline Recovery recovery(const std::vector<double>& estimates, double truth, double tolerance) {
+  const auto count = static_cast<double>(estimates.size());
+  Recovery r;
+  for (double x : estimates) r.mean += x / count;
+  for (double x : estimates) {
+    r.std += (x - r.mean) * (x - r.mean) / (count - 1.0);
+    r.within += std::abs(x - truth) <= tolerance ? 1.0 / count : 0.0;
+  }
+  r.std = std::sqrt(r.std);
+  return r;
+}
+
+/// The recovery checks: the mean within three standard errors of the truth or 1 % of it (no
+/// bias that matters), and at least 90 % of the estimates within `tolerance`. Prints the summary.
+inline void expect_recovered(const char* name, const std::vector<double>& estimates, double truth,
+                             double tolerance) {
+  const Recovery r = recovery(estimates, truth, tolerance);
+  std::printf("%s: true %g, mean %g, std %g, within %g: %.0f %%\n", name, truth, r.mean, r.std,
+              tolerance, 100.0 * r.within);
+  const double standard_error = r.std / std::sqrt(static_cast<double>(estimates.size()));
+  EXPECT_NEAR(r.mean, truth, std::max(3.0 * standard_error, 0.01 * std::abs(truth))) << name;
+  EXPECT_GE(r.within, 0.9) << name;
+}
+
+}  // namespace stochnav::plugin::testing
