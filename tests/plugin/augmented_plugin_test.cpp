@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "noise_model_properties.hpp"
-#include "recovery_stats.hpp"
+#include "fit_recovery.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/noise_model.hpp"
 #include "stochnav/model/noise_model_json.hpp"
@@ -29,6 +29,7 @@ using testing::expect_recovered;
 using testing::make;
 using testing::NoiseModelProperties;
 using testing::registry;
+using testing::simulated_record;
 
 constexpr double kDegPerHour = std::numbers::pi / 180.0 / 3600.0;    // rad/s
 constexpr double kDegPerRootHour = std::numbers::pi / 180.0 / 60.0;  // rad/sqrt(s)
@@ -133,18 +134,6 @@ TEST(AugmentedNoise, BadParamsNameTheirPointer) {
   }
 }
 
-CalibrationRecord simulated_record(const NoiseModel& model, double duration_s,
-                                   std::uint64_t first_seed = 31) {
-  CalibrationRecord record;
-  record.group = SensorGroup::kGyro;
-  record.rate_hz = model.rate_hz;
-  record.source = "simulated";
-  for (std::size_t axis = 0; axis < 3; ++axis) {
-    record.axes[axis] = simulate_noise(model, duration_s, model.rate_hz, first_seed + axis);
-  }
-  return record;
-}
-
 // Truth: ARW 0.05 deg/sqrt(h), Gauss-Markov 2 deg/h over 5 s, RRW 6 deg/h/sqrt(h): ARW dominates
 // the Allan variance below 1 s, the Gauss-Markov bump 2-50 s, RRW from 110 s on (1 h record).
 const NoiseModel kTruth{
@@ -222,7 +211,7 @@ TEST(AugmentedFit, RecoversGaussMarkovWhiteAndRateRandomWalkOverManyRecords) {
 // ramp rather than a rate random walk (both rise over the last octaves), so only its presence is
 // required.
 TEST(AugmentedFit, AutomaticSelectionFindsTheWhiteAndGaussMarkovParts) {
-  const auto record = simulated_record(kTruth, 3600.0);
+  const auto record = simulated_record(kTruth, 3600.0, 31);
   const auto model =
       registry().fit_noise_model("augmented", record, {}, context_for(SensorGroup::kGyro), "/p");
   const nlohmann::json params = model->params();

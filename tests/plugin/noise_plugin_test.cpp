@@ -14,7 +14,7 @@
 #include "stochnav/plugin/state_layout.hpp"
 #include "stochnav/sim/noise_generator.hpp"
 #include "noise_model_properties.hpp"
-#include "recovery_stats.hpp"
+#include "fit_recovery.hpp"
 
 namespace stochnav::plugin {
 namespace {
@@ -28,6 +28,7 @@ using testing::expect_symmetric_psd;
 using testing::make;
 using testing::NoiseModelProperties;
 using testing::registry;
+using testing::simulated_record;
 
 
 TEST_P(NoiseModelProperties, CovariancesAreSymmetricPositiveSemiDefinite) {
@@ -154,18 +155,6 @@ TEST(StateLayout, RuntimeAssignsOffsetsAfterTheCoreStates) {
   EXPECT_THROW(assign_state_layout(*accel, *gyro), std::invalid_argument);
 }
 
-CalibrationRecord simulated_record(const NoiseModel& model, double duration_s,
-                                   std::uint64_t first_seed = 11) {
-  CalibrationRecord record;
-  record.group = SensorGroup::kGyro;
-  record.rate_hz = model.rate_hz;
-  record.source = "simulated";
-  for (std::size_t axis = 0; axis < 3; ++axis) {
-    record.axes[axis] = simulate_noise(model, duration_s, model.rate_hz, first_seed + axis);
-  }
-  return record;
-}
-
 // Eight records of three axes (24 independent fits): the estimates scatter around the truth
 // (their mean within three standard errors of it or 1 %: no bias that matters) and 90 % of them
 // fall within a tolerance of about 2.5 of their standard deviations (0.4 deg/h, 0.46 s and
@@ -198,7 +187,7 @@ TEST(GaussMarkovFit, RecoversSigmaAndCorrelationTimeOverManyRecords) {
 TEST(WhiteFit, RecoversTheAngleRandomWalk) {
   const double deg_rt_h = std::numbers::pi / 180.0 / 60.0;
   NoiseModel truth{Unit::kRadPerSecond, 100.0, {AngleRandomWalkTerm{0.2 * deg_rt_h}}};
-  const auto record = simulated_record(truth, 300.0);
+  const auto record = simulated_record(truth, 300.0, 11);
   const auto model =
       registry().fit_noise_model("white", record, {}, context_for(SensorGroup::kGyro), "/p");
   for (int axis = 0; axis < 3; ++axis) {

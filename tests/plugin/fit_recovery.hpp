@@ -1,14 +1,34 @@
 #pragma once
-// Summary of a parameter recovered from many simulated records, for the fit-recovery tests.
+// Fit-recovery tests: simulated calibration records, and the summary of a parameter recovered
+// from many of them.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <vector>
 
+#include "stochnav/model/noise_model.hpp"
+#include "stochnav/plugin/noise_model_plugin.hpp"
+#include "stochnav/sim/noise_generator.hpp"
+
 namespace stochnav::plugin::testing {
+
+/// A gyro calibration record of three axes simulated from `model`, axis i with seed
+/// first_seed + i.
+inline CalibrationRecord simulated_record(const NoiseModel& model, double duration_s,
+                                          std::uint64_t first_seed) {
+  CalibrationRecord record;
+  record.group = SensorGroup::kGyro;
+  record.rate_hz = model.rate_hz;
+  record.source = "simulated";
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    record.axes[axis] = simulate_noise(model, duration_s, model.rate_hz, first_seed + axis);
+  }
+  return record;
+}
 
 struct Recovery {
   double mean = 0.0;
