@@ -26,6 +26,16 @@ struct FilterOptions {
   Eigen::Vector3d attitude_sigma_rad{1e-3, 1e-3, 1e-2};     ///< phi about E, N, U (rad)
   Eigen::Vector3d accel_bias_sigma_mps2{1e-3, 1e-3, 1e-3};  ///< body axes (m/s^2)
   Eigen::Vector3d gyro_bias_sigma_radps{5e-6, 5e-6, 5e-6};  ///< body axes (rad/s) (~1 deg/h)
+
+  // Scale-factor error states (plugin/state_layout.hpp: blocks "gyro_scale_factor" and
+  // "accel_scale_factor", 3 states each, after the 15 core states): the sensor reads
+  // (1 + s) times the true rate or specific force per body axis, s a random constant
+  // (dimensionless; 1e-6 = 1 ppm). A group's 3 states exist when any of its sigmas is > 0; they
+  // start at zero with these 1-sigma uncertainties. A tool rotating at 60 rpm turns a 10 ppm
+  // z scale factor into a 13 deg/h apparent z bias while drilling that vanishes at every
+  // connection: without these states the filter attributes it to the bias.
+  Eigen::Vector3d gyro_scale_factor_sigma{0.0, 0.0, 0.0};   ///< body axes (dimensionless)
+  Eigen::Vector3d accel_scale_factor_sigma{0.0, 0.0, 0.0};  ///< body axes (dimensionless)
 };
 
 }  // namespace stochnav
