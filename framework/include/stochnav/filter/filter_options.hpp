@@ -27,6 +27,11 @@ struct FilterOptions {
   Eigen::Vector3d accel_bias_sigma_mps2{1e-3, 1e-3, 1e-3};  ///< body axes (m/s^2)
   Eigen::Vector3d gyro_bias_sigma_radps{5e-6, 5e-6, 5e-6};  ///< body axes (rad/s) (~1 deg/h)
 
+  // Initial estimates of the sensor biases (the navigator starts from these, not from zero):
+  // a run started from an alignment hands over its bias estimates here.
+  Eigen::Vector3d initial_accel_bias_mps2{0.0, 0.0, 0.0};  ///< body axes (m/s^2)
+  Eigen::Vector3d initial_gyro_bias_radps{0.0, 0.0, 0.0};  ///< body axes (rad/s)
+
   // Scale-factor error states (plugin/state_layout.hpp: blocks "gyro_scale_factor" and
   // "accel_scale_factor", 3 states each, after the 15 core states): the sensor reads
   // (1 + s) times the true rate or specific force per body axis, s a random constant
