@@ -158,7 +158,7 @@ void plot_survey(const SurveyRecorder& recorder,
     script += ellipses_datablock(stations, minimum_curvature_stations, magnification);
   }
   script += "set multiplot layout 1,2 title 'survey: INS path and minimum-curvature stations'\n";
-  script += "set grid\nset key bottom right box opaque noenhanced\n";
+  script += "set grid\nset key below noenhanced\nset bmargin 7\n";
 
   // Plan view, equal scales so the path and the ellipses keep their shape.
   script += fmt::format(
@@ -168,7 +168,7 @@ void plot_survey(const SurveyRecorder& recorder,
       magnified);
   if (has_stations) {
     script += fmt::format(
-        ", $stations using 1:2 with points pt 7 ps 0.7 lc rgb '#d62728' "
+        ", $stations using 1:2 with points pt 7 ps 0.5 lc rgb '#d62728' "
         "title 'stations (minimum curvature)', $ellipses using 1:2 with lines lc rgb '#2ca02c' "
         "title '2-sigma ellipses {}'",
         magnified);
@@ -184,7 +184,7 @@ void plot_survey(const SurveyRecorder& recorder,
       azimuth_deg(section_azimuth_rad));
   if (has_stations) {
     script += fmt::format(
-        ", $stations using 4:3:5 with yerrorbars pt 7 ps 0.7 lc rgb '#d62728' "
+        ", $stations using 4:3:5 with yerrorbars pt 7 ps 0.5 lc rgb '#d62728' "
         "title 'stations, +/-2-sigma TVD {}'",
         magnified);
   }
