@@ -15,6 +15,7 @@
 
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
+#include "survey_plot.hpp"
 #include "temp_dir.hpp"
 
 namespace stochnav {
@@ -464,6 +465,22 @@ TEST(SurveyFiles, NoErrorFileWithoutTruth) {
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "survey.csv"));
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "well_path.csv"));
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "survey_errors.csv"));
+}
+
+TEST(SurveyPlot, EllipseMagnificationIsOneTwoOrFiveTimesAPowerOfTen) {
+  // A 4 m ellipse on a 2 km plan: 3 % is 60 m, 15x wanted, 10x drawn.
+  EXPECT_EQ(ellipse_magnification(4.0, 2000.0), 10.0);
+  EXPECT_EQ(ellipse_magnification(1.0, 2000.0), 50.0);     // 60x wanted
+  EXPECT_EQ(ellipse_magnification(0.02, 2000.0), 2000.0);  // 3000x wanted
+  EXPECT_EQ(ellipse_magnification(0.2, 10.0), 1.0);        // 1.5x wanted: not worth it
+  EXPECT_EQ(ellipse_magnification(100.0, 1000.0), 1.0);    // never shrunk
+  EXPECT_EQ(ellipse_magnification(0.0, 1000.0), 1.0);      // no uncertainty
+  EXPECT_EQ(ellipse_magnification(1.0, 0.0), 1.0);         // no extent
+  for (double axis_m : {0.013, 0.5, 3.7, 11.0}) {
+    const double factor = ellipse_magnification(axis_m, 5000.0);
+    EXPECT_LE(factor * axis_m, 0.03 * 5000.0 * (1 + 1e-12)) << axis_m;
+    EXPECT_GT(factor * axis_m, 0.03 * 5000.0 / 2.5) << axis_m;
+  }
 }
 
 TEST(SurveyFiles, PlotIsAPngAndLeavesNoTemporaries) {
