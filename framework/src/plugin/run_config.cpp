@@ -371,6 +371,8 @@ RunConfig parse_run_config(const nlohmann::json& document, const fs::path& confi
   ParamReader root(document, "");
   RunConfig config;
   config.config_dir = config_dir;
+  root.raw("description");  // free text for readers, ignored
+  root.raw("comments");
   if (data) {
     root.raw("data");  // replaced by --data: neither read nor an unknown key
     config.data = *data;

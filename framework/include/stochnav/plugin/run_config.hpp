@@ -5,6 +5,7 @@
 // Relative paths are relative to the config file's folder.
 //
 //   {
+//     "description": "...", "comments": {...},                 // optional, ignored
 //     "data": {"scenario": "runs/vib1"}                        // a `simulate scenario` folder
 //          |  {"imu": "imu.csv", "truth": "truth.csv", "aids": "aids.csv"},   // truth, aids
 //          optional. Required unless `stochnav run --data DIR` replaces it (data_from_folder).
@@ -128,11 +129,14 @@ struct AttitudeConfig {
 /// record (coarse levelling + gyrocompassing, then fine alignment: the filter with
 /// zero-velocity and known-position updates at 1 Hz). Navigation starts at the end of the span.
 /// The span must be static: the standard deviation, over the span's 1-s blocks, of the blocks'
-/// mean |omega| and mean |f| must not exceed the two spreads below.
+/// mean |omega| and mean |f| must not exceed the two spreads below. The defaults let a rocking
+/// but parked carrier align (the PSINS vehicle record spreads 101 deg/h and 0.002 m/s^2 over
+/// its first 300 s; a still FOG tool well under 1 deg/h) and refuse a tool that turns (a
+/// rotary table at 60 rpm spreads about 6e5 deg/h) or is carried.
 struct AlignmentConfig {
   double static_s = 0.0;                       ///< "static_s" (s), required, > 0
-  double max_gyro_spread_deg_h = 50.0;         ///< "max_gyro_spread_deg_h", > 0
-  double max_accel_spread_m_s2 = 0.02;         ///< "max_accel_spread_m_s2", > 0
+  double max_gyro_spread_deg_h = 360.0;        ///< "max_gyro_spread_deg_h" (0.1 deg/s), > 0
+  double max_accel_spread_m_s2 = 0.05;         ///< "max_accel_spread_m_s2", > 0
   double zero_velocity_sigma_m_s = 0.01;       ///< "zero_velocity_sigma_m_s": ZUPT noise, > 0
   double position_sigma_m = 0.1;               ///< "position_sigma_m": known-position noise, > 0
   /// "attitude_sigma_deg": 1-sigma of the coarse attitude about E, N, U (deg), > 0. Default:
