@@ -150,12 +150,11 @@ ExperimentConfig parse_experiment(const nlohmann::json& document, const fs::path
         v.run_config[key] = document[key];
       }
     }
-    // Validate as the run config it becomes; the experiment file stands in for the data (and
-    // for its truth: every compare run is scored against truth).
+    // Validate as the run config it becomes; the experiment file stands in for the data.
     try {
-      const std::string stand_in = fs::absolute(file).string();
-      const auto run = plugin::parse_run_config(
-          variant_run_document(v, {{"imu", stand_in}, {"truth", stand_in}}), config.config_dir);
+      const auto run =
+          plugin::parse_run_config(variant_run_document(v, {{"imu", fs::absolute(file).string()}}),
+                                   config.config_dir);
       v.gyro_plugin = run.noise.gyro.type;
     } catch (const ConfigError& error) {
       throw ConfigError(variant_pointer(error.what(), i, variant));
