@@ -223,7 +223,16 @@ TEST_F(RunConfigTest, EveryErrorNamesItsPointer) {
             "/initial_error/attitude: unknown key; ");
   nlohmann::json no_start = minimal();
   no_start.erase("initial_state");
-  EXPECT_EQ(error_of(no_start).rfind("/initial_state: missing, and the data has no truth", 0), 0u);
+  const RunConfig without_start = parse_run_config(no_start, dir_.path());
+  try {
+    check_run_start(without_start);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("/initial_state: missing, and the data has no truth",
+                                              0),
+              0u);
+  }
+  EXPECT_NO_THROW(check_run_start(parse_run_config(minimal(), dir_.path())));
   EXPECT_EQ(with("/output/decimation", 0), "/output/decimation: found 0; expected an integer >= 1");
   EXPECT_NE(
       with("/filter/initial_sigma/attitude_deg", -1).find("/filter/initial_sigma/attitude_deg"),

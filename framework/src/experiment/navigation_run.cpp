@@ -125,6 +125,7 @@ nlohmann::json NavigationRunResult::metrics_json() const {
 NavigationRunResult run_navigation(const plugin::RunConfig& config,
                                    const NavigationRunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
+  plugin::check_run_start(config);
   FilterOptions filter = config.filter.options;
   ImuFileReader imu(config.data.imu.string());
 

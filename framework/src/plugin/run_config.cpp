@@ -309,6 +309,8 @@ DataConfig data_from_folder(const fs::path& dir) {
   }
   if (fs::is_regular_file(dir / kScenarioTruthFile, error)) data.truth = dir / kScenarioTruthFile;
   if (fs::is_regular_file(dir / kScenarioAidsFile, error)) data.aids = dir / kScenarioAidsFile;
+  // A `simulate scenario` folder: its scenario.json serves plugins that read it (oracle).
+  if (fs::is_regular_file(dir / "scenario.json", error)) data.scenario_dir = dir;
   return data;
 }
 
@@ -408,13 +410,16 @@ RunConfig parse_run_config(const nlohmann::json& document, const fs::path& confi
     reader.finish();
   }
   root.finish();
+  return config;
+}
+
+void check_run_start(const RunConfig& config) {
   if (!config.data.truth && !config.initial_state) {
     throw ConfigError(
         "/initial_state: missing, and the data has no truth to start from; add "
         "\"initial_state\": {\"tie_on\": {\"latitude_deg\", \"longitude_deg\", "
         "\"height_m\"}, \"alignment\": {\"static_s\": S}} (or \"attitude\": {...})");
   }
-  return config;
 }
 
 RunConfig read_run_config(const fs::path& file, const std::optional<DataConfig>& data) {

@@ -19,7 +19,10 @@
 //                     | null without truth, "aids": [{"type", "dof", "attempts",
 //                     "rejected_share", "nis_mean"}] (experiment/run_consistency.hpp),
 //                     "filter_health": {...}, "epochs", "duration_s", "noise_models":
-//                     {"gyro", "accel"}, "survey_stations", "initial": {...}}
+//                     {"gyro", "accel"}, "survey_stations", "initial": {"t_s", position
+//                     and MWD angles of the start (after any alignment, before the deliberate
+//                     initial error), the initial bias estimates and 1-sigmas the navigator
+//                     started with}}
 //   errors.png       errors with their 3-sigma bounds over time (with truth, gnuplot installed)
 //   survey.csv, survey_errors.csv (with truth), well_path.csv, survey.png
 //                    survey stations at the connections (experiment/survey.hpp)

@@ -193,8 +193,6 @@ struct RunConfig {
 /// files exist (ConfigError naming the pointer otherwise); plugin types and params are checked
 /// when the plugins are built (runtime.hpp), still before anything runs. With `data`, the
 /// document's "data" section is ignored (may be absent) and `data` is used instead.
-/// Without truth (no truth file) and without "initial_state", throws ConfigError naming
-/// "/initial_state": a run must start somewhere.
 RunConfig parse_run_config(const nlohmann::json& document, const std::filesystem::path& config_dir,
                            const std::optional<DataConfig>& data = std::nullopt);
 
@@ -203,8 +201,14 @@ RunConfig parse_run_config(const nlohmann::json& document, const std::filesystem
 RunConfig read_run_config(const std::filesystem::path& file,
                           const std::optional<DataConfig>& data = std::nullopt);
 
+/// Throws ConfigError naming "/initial_state" when the config has neither truth (a truth file)
+/// nor "initial_state": a navigation run must start somewhere. run_navigation calls it first;
+/// a config that is only inspected (`stochnav plugins show`) needs no start.
+void check_run_start(const RunConfig& config);
+
 /// The data of a recording folder (`stochnav run --data DIR`): DIR/imu.csv required,
-/// DIR/aids.csv and DIR/truth.csv used when present. Throws ConfigError
+/// DIR/aids.csv and DIR/truth.csv used when present; scenario_dir = DIR when it holds a
+/// scenario.json (a `simulate scenario` folder). Throws ConfigError
 /// "--data DIR: no imu.csv; ..." when DIR or its imu.csv is missing.
 DataConfig data_from_folder(const std::filesystem::path& dir);
 
