@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <fstream>
 #include <random>
 
@@ -30,11 +31,15 @@ class RunConfigTest : public ::testing::Test {
     dir_.write("aids.csv", "t,zupt\n0,1\n1,0\n");
   }
 
+  // No truth: the run starts from "initial_state".
   nlohmann::json minimal() const {
     return {{"data", {{"imu", "imu.csv"}}},
             {"noise",
              {{"gyro", {{"plugin", "white"}, {"params", {{"N", 0.05}}}}},
-              {"accel", {{"plugin", "gauss_markov"}, {"params", {{"sigma", 1}, {"tau_c", 10}}}}}}}};
+              {"accel", {{"plugin", "gauss_markov"}, {"params", {{"sigma", 1}, {"tau_c", 10}}}}}}},
+            {"initial_state",
+             {{"tie_on", {{"latitude_deg", 40}, {"longitude_deg", 116}, {"height_m", 50}}},
+              {"attitude", {{"inclination_deg", 60}, {"azimuth_deg", 100}, {"toolface_deg", 30}}}}}};
   }
 
   std::string error_of(const nlohmann::json& document) const {
@@ -57,9 +62,100 @@ TEST_F(RunConfigTest, MinimalConfigGetsTheDocumentedDefaults) {
   EXPECT_EQ(config.noise.gyro.params_pointer(), "/noise/gyro/params");
   EXPECT_EQ(config.noise.accel.type_pointer(), "/noise/accel/plugin");
   EXPECT_TRUE(config.aids.empty());
-  EXPECT_EQ(config.filter.feedback, FeedbackMode::kClosedLoop);
-  EXPECT_EQ(config.filter.initial_sigma.attitude_deg[2], 0.5);
   EXPECT_EQ(config.output.decimation, 100u);
+  ASSERT_TRUE(config.initial_state);
+  EXPECT_EQ(config.initial_state->tie_on.latitude_deg, 40.0);
+  EXPECT_FALSE(config.initial_state->tie_on.measured_depth_m);
+  ASSERT_TRUE(config.initial_state->attitude);
+  EXPECT_EQ(config.initial_state->attitude->toolface_deg, 30.0);
+  EXPECT_FALSE(config.initial_state->alignment);
+  EXPECT_FALSE(config.initial_error);
+}
+
+// One set of defaults: a config without "filter", and one with every key at its documented
+// default value, both give FilterOptions{} exactly (up to the deg / ppm round trip).
+void expect_same_options(const FilterOptions& a, const FilterOptions& b, double tolerance) {
+  EXPECT_EQ(a.covariance_interval_s, b.covariance_interval_s);
+  EXPECT_EQ(a.max_consecutive_rejections, b.max_consecutive_rejections);
+  EXPECT_TRUE(a.position_sigma_m.isApprox(b.position_sigma_m, tolerance));
+  EXPECT_TRUE(a.velocity_sigma_mps.isApprox(b.velocity_sigma_mps, tolerance));
+  EXPECT_TRUE(a.attitude_sigma_rad.isApprox(b.attitude_sigma_rad, tolerance));
+  EXPECT_TRUE(a.accel_bias_sigma_mps2.isApprox(b.accel_bias_sigma_mps2, tolerance));
+  EXPECT_TRUE(a.gyro_bias_sigma_radps.isApprox(b.gyro_bias_sigma_radps, tolerance));
+  EXPECT_TRUE((a.gyro_scale_factor_sigma - b.gyro_scale_factor_sigma).norm() <= tolerance);
+  EXPECT_TRUE((a.accel_scale_factor_sigma - b.accel_scale_factor_sigma).norm() <= tolerance);
+  EXPECT_TRUE(a.initial_gyro_bias_radps.isZero());
+  EXPECT_TRUE(a.initial_accel_bias_mps2.isZero());
+}
+
+TEST_F(RunConfigTest, FilterDefaultsAreFilterOptionsDefaults) {
+  const FilterOptions defaults;
+  expect_same_options(parse_run_config(minimal(), dir_.path()).filter.options, defaults, 0.0);
+  expect_same_options(parse_filter_section(nlohmann::json::object(), "/filter").options, defaults,
+                      0.0);
+  // The numbers the run_config.hpp comment states, in the config's units.
+  const nlohmann::json stated = nlohmann::json::parse(R"({
+      "initial_sigma": {"position_m": 0.1, "velocity_m_s": 0.01,
+                        "attitude_deg": [0.0572958, 0.0572958, 0.572958],
+                        "accel_bias_m_s2": 0.001, "gyro_bias_deg_h": 1.031324},
+      "covariance_interval_s": 0.1, "max_consecutive_rejections": 10,
+      "scale_factor_sigma_ppm": {"gyro": 0, "accel": 0}, "feedback": "closed_loop"})");
+  expect_same_options(parse_filter_section(stated, "/filter").options, defaults, 1e-6);
+}
+
+TEST_F(RunConfigTest, FilterSectionIsReadInSiUnits) {
+  const nlohmann::json filter = nlohmann::json::parse(R"({
+      "initial_sigma": {"attitude_deg": [1, 2, 3], "gyro_bias_deg_h": 3600},
+      "covariance_interval_s": 0, "max_consecutive_rejections": 0,
+      "scale_factor_sigma_ppm": {"gyro": [10, 20, 30], "accel": 50}})");
+  const FilterOptions options = parse_filter_section(filter, "/filter").options;
+  EXPECT_NEAR(options.attitude_sigma_rad.y(), 2.0 * std::numbers::pi / 180.0, 1e-15);
+  EXPECT_NEAR(options.gyro_bias_sigma_radps.x(), std::numbers::pi / 180.0, 1e-15);
+  EXPECT_EQ(options.covariance_interval_s, 0.0);
+  EXPECT_EQ(options.max_consecutive_rejections, 0);
+  EXPECT_NEAR(options.gyro_scale_factor_sigma.z(), 30e-6, 1e-18);
+  EXPECT_NEAR(options.accel_scale_factor_sigma.x(), 50e-6, 1e-18);
+  EXPECT_EQ(options.position_sigma_m, FilterOptions{}.position_sigma_m);
+}
+
+TEST_F(RunConfigTest, InitialStateAndErrorSections) {
+  nlohmann::json document = minimal();
+  document["initial_state"].erase("attitude");
+  document["initial_state"]["alignment"] = {{"static_s", 30}, {"attitude_sigma_deg", 2}};
+  document["initial_state"]["tie_on"]["measured_depth_m"] = 450;
+  document["initial_error"] = {
+      {"position_m", {1, -2, 3}}, {"attitude_deg", 0.5}, {"gyro_bias_deg_h", -1}, {"draw_seed", 7}};
+  const RunConfig config = parse_run_config(document, dir_.path());
+  ASSERT_TRUE(config.initial_state->alignment);
+  EXPECT_EQ(config.initial_state->alignment->static_s, 30.0);
+  EXPECT_EQ(config.initial_state->alignment->max_accel_spread_m_s2,
+            AlignmentConfig{}.max_accel_spread_m_s2);
+  EXPECT_EQ((*config.initial_state->alignment->attitude_sigma_deg)[2], 2.0);
+  EXPECT_EQ(*config.initial_state->tie_on.measured_depth_m, 450.0);
+  ASSERT_TRUE(config.initial_error);
+  EXPECT_EQ(config.initial_error->position_m[1], -2.0);
+  EXPECT_EQ(config.initial_error->attitude_deg[2], 0.5);
+  EXPECT_EQ(config.initial_error->gyro_bias_deg_h[0], -1.0);
+  EXPECT_EQ(config.initial_error->velocity_m_s[0], 0.0);
+  EXPECT_EQ(*config.initial_error->draw_seed, 7u);
+}
+
+TEST_F(RunConfigTest, DataFolderReplacesTheDataSection) {
+  nlohmann::json document = minimal();
+  document.erase("data");
+  EXPECT_EQ(error_of(document), "/data: missing; expected an object");
+  const RunConfig config = parse_run_config(document, dir_.path(), data_from_folder(dir_.path()));
+  EXPECT_EQ(config.data.imu, dir_.path() / "imu.csv");
+  EXPECT_EQ(config.data.aids, dir_.path() / "aids.csv");
+  EXPECT_FALSE(config.data.truth);
+  try {
+    data_from_folder(dir_.path() / "nowhere");
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("--data " + (dir_.path() / "nowhere").string(), 0),
+              0u)
+        << error.what();
+  }
 }
 
 TEST_F(RunConfigTest, FullConfigIsRead) {
@@ -67,7 +163,8 @@ TEST_F(RunConfigTest, FullConfigIsRead) {
   document["data"]["aids"] = "aids.csv";
   document["noise"]["gyro"]["fit"] = {{"start_s", 10}, {"end_s", 50}};
   document["aids"] = {{{"plugin", "zupt"}, {"params", {{"sigma_m_s", 0.01}}}}};
-  document["filter"] = {{"initial_sigma", {{"position_m", {1, 2, 3}}}}, {"feedback", "open_loop"}};
+  document["filter"] = {{"initial_sigma", {{"position_m", {1, 2, 3}}}},
+                        {"feedback", "closed_loop"}};
   document["output"] = {{"decimation", 10}, {"nees", false}};
   const RunConfig config = parse_run_config(document, dir_.path());
   ASSERT_TRUE(config.noise.gyro.fit);
@@ -77,8 +174,7 @@ TEST_F(RunConfigTest, FullConfigIsRead) {
   ASSERT_EQ(config.aids.size(), 1u);
   EXPECT_EQ(config.aids[0].type, "zupt");
   EXPECT_EQ(config.aids[0].params_pointer(), "/aids/0/params");
-  EXPECT_EQ(config.filter.initial_sigma.position_m[1], 2.0);
-  EXPECT_EQ(config.filter.feedback, FeedbackMode::kOpenLoop);
+  EXPECT_EQ(config.filter.options.position_sigma_m.y(), 2.0);
   EXPECT_EQ(config.output.decimation, 10u);
   EXPECT_FALSE(config.output.nees);
 }
@@ -89,16 +185,54 @@ TEST_F(RunConfigTest, EveryErrorNamesItsPointer) {
     document[nlohmann::json::json_pointer(pointer)] = value;
     return error_of(document);
   };
-  EXPECT_EQ(with("/extra", 1),
-            "/extra: unknown key; expected only aids, data, filter, noise, output");
+  EXPECT_EQ(with("/extra", 1).substr(0, 35), "/extra: unknown key; expected only ");
+  EXPECT_NE(with("/extra", 1).find("initial_state"), std::string::npos);
   EXPECT_EQ(with("/noise/gyro/plugn", "x").substr(0, 30), "/noise/gyro/plugn: unknown key");
   EXPECT_EQ(with("/noise/gyro/params", 3),
             "/noise/gyro/params: not an object; expected the plugin's parameters as an object");
   EXPECT_EQ(with("/data/imu", "nope.csv").substr(0, 31),
             "/data/imu: file not found: " + dir_.path().string().substr(0, 4));
-  EXPECT_NE(
-      with("/filter/feedback", "loop").find("/filter/feedback: found \"loop\"; expected one of"),
-      std::string::npos);
+  EXPECT_EQ(with("/filter/feedback", "loop"),
+            "/filter/feedback: found \"loop\"; expected \"closed_loop\"");
+  EXPECT_EQ(with("/filter/feedback", "open_loop").rfind("/filter/feedback: \"open_loop\" is not "
+                                                       "implemented",
+                                                       0),
+            0u);
+  EXPECT_EQ(with("/filter/covariance_interval_s", -0.1).rfind("/filter/covariance_interval_s:", 0),
+            0u);
+  EXPECT_EQ(with("/filter/max_consecutive_rejections", 2.5),
+            "/filter/max_consecutive_rejections: found 2.5; expected an integer >= 0");
+  EXPECT_EQ(with("/filter/max_consecutive_rejections", -1),
+            "/filter/max_consecutive_rejections: found -1; expected an integer >= 0");
+  EXPECT_EQ(with("/filter/lockout", 3).substr(0, 31), "/filter/lockout: unknown key; e");
+  EXPECT_EQ(with("/filter/scale_factor_sigma_ppm/gyro", -1)
+                .rfind("/filter/scale_factor_sigma_ppm/gyro", 0),
+            0u);
+  EXPECT_EQ(with("/initial_state/tie_on/latitude_deg", 91)
+                .rfind("/initial_state/tie_on/latitude_deg: 91", 0),
+            0u);
+  EXPECT_EQ(with("/initial_state/alignment", {{"static_s", 10}})
+                .rfind("/initial_state: both \"attitude\" and \"alignment\" given", 0),
+            0u);
+  EXPECT_EQ(with("/initial_state/tie_on", {{"latitude_deg", 1}})
+                .rfind("/initial_state/tie_on/longitude_deg: missing", 0),
+            0u);
+  EXPECT_EQ(with("/initial_error/draw_seed", -3),
+            "/initial_error/draw_seed: found -3; expected an integer >= 0");
+  EXPECT_EQ(with("/initial_error/attitude", 1).substr(0, 38),
+            "/initial_error/attitude: unknown key; ");
+  nlohmann::json no_start = minimal();
+  no_start.erase("initial_state");
+  const RunConfig without_start = parse_run_config(no_start, dir_.path());
+  try {
+    check_run_start(without_start);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("/initial_state: missing, and the data has no truth",
+                                              0),
+              0u);
+  }
+  EXPECT_NO_THROW(check_run_start(parse_run_config(minimal(), dir_.path())));
   EXPECT_EQ(with("/output/decimation", 0), "/output/decimation: found 0; expected an integer >= 1");
   EXPECT_NE(
       with("/filter/initial_sigma/attitude_deg", -1).find("/filter/initial_sigma/attitude_deg"),

@@ -1,11 +1,12 @@
-// stochnav run CONFIG.json --out DIR: one navigation run (experiment/navigation_run.hpp).
-
-#include <unistd.h>
+// stochnav run CONFIG.json --out DIR [--data DIR]: one navigation run
+// (experiment/navigation_run.hpp).
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
 #include "stochnav/experiment/navigation_run.hpp"
@@ -17,6 +18,7 @@ namespace {
 struct RunArguments {
   std::string config;
   std::string out;
+  std::string data;
   bool no_plot = false;
 };
 
@@ -24,13 +26,22 @@ void print_summary(const NavigationRunResult& result, const std::string& out) {
   std::cout << fmt::format("{} epochs ({:.0f} s of data) in {:.2f} s; filter health: {}\n",
                            result.epochs, result.duration_s, result.wall_seconds,
                            result.health.ok() ? "ok" : "TROUBLE (see metrics.json)");
-  std::cout << fmt::format("{:<22} {:>14} {:>14}\n", "error", "max |error|", "rms");
-  for (std::size_t i = 0; i < kErrorMetricCount; ++i) {
-    std::cout << fmt::format("{:<22} {:>14.6g} {:>14.6g}\n", kErrorMetricNames[i],
-                             result.statistics.max_abs(i), result.statistics.rms(i));
+  if (result.has_truth) {
+    std::cout << fmt::format("{:<22} {:>14} {:>14}\n", "error", "max |error|", "rms");
+    for (std::size_t i = 0; i < kErrorMetricCount; ++i) {
+      std::cout << fmt::format("{:<22} {:>14.6g} {:>14.6g}\n", kErrorMetricNames[i],
+                               result.statistics.max_abs(i), result.statistics.rms(i));
+    }
+    if (!result.consistency_line.empty()) std::cout << result.consistency_line << '\n';
+  } else {
+    std::cout << "no truth: errors not scored; aid statistics in metrics.json\n";
   }
-  std::cout << "wrote " << out << "/{nav,biases,covariance,innovations,errors}.csv, metrics.json"
-            << (result.error_series.size() > 1 ? ", errors.png" : "") << '\n';
+  for (const std::string& warning : result.warnings) std::cout << warning << '\n';
+  std::cout << fmt::format("{} survey station(s)\n", result.survey_stations);
+  std::cout << "wrote " << out << "/{nav,biases,"
+            << "covariance,innovations" << (result.has_truth ? ",errors" : "")
+            << ",survey}.csv, metrics.json" << (result.error_series.size() > 1 ? ", errors.png" : "")
+            << '\n';
 }
 
 }  // namespace
@@ -41,12 +52,17 @@ void add_run_command(CLI::App& app) {
       app.add_subcommand("run", "Run the MWD navigation filter on a record or simulated scenario");
   command->add_option("config", arguments->config, "Run config (JSON)")->required();
   command->add_option("--out", arguments->out, "Output folder")->required();
+  command->add_option("--data", arguments->data,
+                      "Recording folder replacing the config's \"data\": imu.csv, optional "
+                      "aids.csv and truth.csv");
   command->add_flag("--no-plot", arguments->no_plot, "Do not draw errors.png");
   command->callback([arguments] {
-    const plugin::RunConfig config = plugin::read_run_config(arguments->config);
+    std::optional<plugin::DataConfig> data;
+    if (!arguments->data.empty()) data = plugin::data_from_folder(arguments->data);
+    const plugin::RunConfig config = plugin::read_run_config(arguments->config, data);
     NavigationRunOptions options;
     options.out_dir = arguments->out;
-    options.progress = ::isatty(STDERR_FILENO) != 0;
+    options.progress = true;
     options.plot = !arguments->no_plot;
     print_summary(run_navigation(config, options), arguments->out);
   });

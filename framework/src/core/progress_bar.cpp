@@ -10,12 +10,13 @@ namespace stochnav {
 ProgressBar::ProgressBar(std::string label, std::uint64_t total, bool enabled)
     : label_(std::move(label)),
       total_(total),
-      active_(enabled && ::isatty(STDERR_FILENO) != 0),
+      active_(enabled),
+      terminal_(::isatty(STDERR_FILENO) != 0),
       start_(std::chrono::steady_clock::now()),
       last_draw_(start_) {}
 
 ProgressBar::~ProgressBar() {
-  if (active_ && !finished_) std::fputc('\n', stderr);
+  if (active_ && terminal_ && !finished_) std::fputc('\n', stderr);
 }
 
 void ProgressBar::finish(std::uint64_t done) {
@@ -26,9 +27,27 @@ void ProgressBar::finish(std::uint64_t done) {
 
 void ProgressBar::draw(std::uint64_t done, bool last) {
   const auto now = std::chrono::steady_clock::now();
-  if (!last && now - last_draw_ < std::chrono::milliseconds(100)) return;
+  const auto interval =
+      terminal_ ? std::chrono::milliseconds(100) : std::chrono::milliseconds(30'000);
+  if (!last && now - last_draw_ < interval) return;
   last_draw_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
+  if (!terminal_) {
+    if (last && !printed_) return;
+    printed_ = true;
+    if (total_ > 0) {
+      const double fraction =
+          std::min(1.0, static_cast<double>(done) / static_cast<double>(total_));
+      const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+      std::fprintf(stderr, "%s: %.1f %%, %.0f s elapsed, ETA %.0f s%s\n", label_.c_str(),
+                   100.0 * fraction, elapsed, eta, last ? " (done)" : "");
+    } else {
+      std::fprintf(stderr, "%s: %llu done, %.0f s elapsed%s\n", label_.c_str(),
+                   static_cast<unsigned long long>(done), elapsed, last ? " (done)" : "");
+    }
+    std::fflush(stderr);
+    return;
+  }
   if (total_ > 0) {
     const double fraction = std::min(1.0, static_cast<double>(done) / static_cast<double>(total_));
     constexpr int kWidth = 30;

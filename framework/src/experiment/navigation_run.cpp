@@ -9,38 +9,24 @@
 #include <numbers>
 #include <optional>
 
+#include "initial_state.hpp"
 #include "run_files.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/progress_bar.hpp"
 #include "stochnav/experiment/navigation_files.hpp"
+#include "stochnav/experiment/run_consistency.hpp"
+#include "stochnav/experiment/survey.hpp"
 #include "stochnav/filter/mwd_navigator.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
+#include "stochnav/plugin/aid_schedule.hpp"
 #include "stochnav/plugin/runtime.hpp"
 
 namespace stochnav {
 namespace {
 
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
-constexpr double kRadPerDegPerHour = std::numbers::pi / 180.0 / 3600.0;
-constexpr double kTimeMatch_s = 1e-6;
-
-Eigen::Vector3d vector_of(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
-
-FilterOptions filter_options(const plugin::FilterConfig& config) {
-  if (config.feedback != plugin::FeedbackMode::kClosedLoop) {
-    throw ConfigError(
-        "/filter/feedback: open_loop is not implemented by the MWD navigator; use closed_loop");
-  }
-  const plugin::InitialSigma& s = config.initial_sigma;
-  FilterOptions options;
-  options.position_sigma_m = vector_of(s.position_m);
-  options.velocity_sigma_mps = vector_of(s.velocity_m_s);
-  options.attitude_sigma_rad = vector_of(s.attitude_deg) / kDegPerRad;
-  options.accel_bias_sigma_mps2 = vector_of(s.accel_bias_m_s2);
-  options.gyro_bias_sigma_radps = vector_of(s.gyro_bias_deg_h) * kRadPerDegPerHour;
-  return options;
-}
+constexpr double kTimeMatch_s = plugin::kEpochMatchTolerance_s;
+constexpr std::string_view kMeasuredDepthColumn = "measured_depth_m";
 
 // Position, velocity and attitude error of the estimate as the first nine core states.
 Eigen::Matrix<double, 9, 1> navigation_error_state(const NavState& estimate,
@@ -112,59 +98,152 @@ nlohmann::json NavigationRunResult::metrics_json() const {
   out["duration_s"] = duration_s;
   out["wall_seconds"] = wall_seconds;
   out["noise_models"] = noise_models;
+  out["consistency"] = consistency;
+  out["aids"] = aids;
+  out["survey_stations"] = survey_stations;
+  const MwdAttitude attitude = mwd_from_quaternion(start.q_nb);
+  const auto degrees = [](const Eigen::Vector3d& v, double scale) {
+    return std::vector<double>{v.x() * scale, v.y() * scale, v.z() * scale};
+  };
+  constexpr double kDeg = 180.0 / std::numbers::pi;
+  out["initial"] = {
+      {"t_s", start.t_s},
+      {"latitude_deg", start.latitude_rad * kDeg},
+      {"longitude_deg", start.longitude_rad * kDeg},
+      {"height_m", start.height_m},
+      {"inclination_deg", attitude.inclination_rad * kDeg},
+      {"azimuth_deg", attitude.azimuth_rad * kDeg},
+      {"toolface_deg", attitude.toolface_rad * kDeg},
+      {"attitude_sigma_deg", degrees(filter_options.attitude_sigma_rad, kDeg)},
+      {"gyro_bias_deg_h", degrees(filter_options.initial_gyro_bias_radps, kDeg * 3600.0)},
+      {"gyro_bias_sigma_deg_h", degrees(filter_options.gyro_bias_sigma_radps, kDeg * 3600.0)},
+      {"accel_bias_m_s2", degrees(filter_options.initial_accel_bias_mps2, 1.0)},
+      {"accel_bias_sigma_m_s2", degrees(filter_options.accel_bias_sigma_mps2, 1.0)}};
   return out;
 }
 
 NavigationRunResult run_navigation(const plugin::RunConfig& config,
                                    const NavigationRunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
-  const FilterOptions filter = filter_options(config.filter);
+  plugin::check_run_start(config);
+  FilterOptions filter = config.filter.options;
   ImuFileReader imu(config.data.imu.string());
-  if (!config.data.truth) {
-    throw ConfigError("/data: no truth file; stochnav run takes its initial state from truth "
-                      "(a simulated scenario or \"truth\": FILE)");
-  }
-  TruthFileReader truth_reader(config.data.truth->string());
+
+  std::optional<TruthFileReader> truth_reader;
   NavState truth;
-  if (!truth_reader.next(truth) || std::abs(truth.t_s - imu.start_time_s()) > kTimeMatch_s) {
-    throw InputError(config.data.truth->string() +
-                     ": the first truth row must be at the start of the IMU record (t = " +
-                     fmt::format("{}", imu.start_time_s()) + " s); write truth from the start");
+  bool truth_pending = false;
+  if (config.data.truth) {
+    truth_reader.emplace(config.data.truth->string());
+    truth_pending = truth_reader->next(truth);
   }
-  const NavState initial = truth;
-  bool truth_pending = truth_reader.next(truth);
+
+  // The start: the initial_state section (aligned or given), else truth's first row.
+  NavState initial;
+  std::vector<ImuIncrement> alignment_span;
+  ImuIncrement increment;
+  if (config.initial_state) {
+    initial = state_from_initial_config(*config.initial_state, imu.start_time_s());
+    if (const auto& alignment = config.initial_state->alignment) {
+      const double end_s = imu.start_time_s() + alignment->static_s + kTimeMatch_s;
+      while (imu.next(increment)) {
+        alignment_span.push_back(increment);
+        if (increment.t_s >= end_s - 2 * kTimeMatch_s) break;
+      }
+      check_static_span(alignment_span, *alignment, imu.start_time_s());
+      initial.t_s = alignment_span.back().t_s;
+    }
+  } else {
+    if (!truth_pending || std::abs(truth.t_s - imu.start_time_s()) > kTimeMatch_s) {
+      throw InputError(config.data.truth->string() +
+                       ": the first truth row must be at the start of the IMU record (t = " +
+                       fmt::format("{}", imu.start_time_s()) +
+                       " s); write truth from the start, or give \"initial_state\"");
+    }
+    initial = truth;
+  }
 
   const plugin::AidData aid_data =
       config.data.aids ? plugin::read_aid_data(*config.data.aids) : plugin::AidData();
   const plugin::PluginRegistry registry(plugin::default_search_path(config.config_dir));
   plugin::RunPlugins plugins =
       plugin::build_run_plugins(config, registry, aid_data, initial, imu.rate_hz());
+  const NavState tie_on_state = initial;  // before alignment and the deliberate error
+  if (config.initial_state && config.initial_state->alignment) {
+    const AlignedStart aligned =
+        align_at_rest(alignment_span, initial, *config.initial_state->alignment, filter,
+                      *plugins.gyro, *plugins.accel);
+    initial = aligned.state;
+    filter = aligned.options;
+  }
+  NavigationRunResult result;
+  result.start = initial;
+  if (config.initial_error) apply_initial_error(*config.initial_error, initial, filter);
+  result.filter_options = filter;
+
   std::vector<plugin::AidPlugin*> aids;
-  for (const auto& aid : plugins.aids) aids.push_back(aid.get());
+  std::vector<std::string> aid_types;
+  std::vector<int> aid_dofs;
+  for (const auto& aid : plugins.aids) {
+    aids.push_back(aid.get());
+    aid_types.emplace_back(aid->type());
+    aid_dofs.push_back(aid->measurement_size());
+  }
   MwdNavigator navigator(initial, *plugins.gyro, *plugins.accel, aids, filter);
 
-  NavigationRunResult result;
-  result.has_truth = true;
+  // The survey: tie-on at the start position, MD from the config, else the aid data's first
+  // measured depth, else 0.
+  const std::span<const double> aid_times = aid_data.time_s();
+  const bool has_md = aid_data.has(kMeasuredDepthColumn);
+  const std::span<const double> aid_md =
+      has_md ? aid_data.column(kMeasuredDepthColumn, "/data/aids") : std::span<const double>();
+  const plugin::AidSchedule aid_rows = plugin::AidSchedule::at_rows(aid_times);
+  SurveyTieOn tie_on{tie_on_state.latitude_rad, tie_on_state.longitude_rad, tie_on_state.height_m,
+                     has_md && !aid_md.empty() ? aid_md.front() : 0.0};
+  if (config.initial_state && config.initial_state->tie_on.measured_depth_m) {
+    tie_on.measured_depth_m = *config.initial_state->tie_on.measured_depth_m;
+  }
+  SurveyRecorder survey(tie_on);
+  std::vector<bool> is_zupt;
+  for (const auto& type : aid_types) is_zupt.push_back(type == "zupt");
+
+  result.has_truth = truth_reader.has_value();
   result.noise_models = {{"gyro", plugins.gyro->describe()}, {"accel", plugins.accel->describe()}};
+  RunConsistency consistency(aid_types, aid_dofs);
   std::optional<RunFiles> files;
-  if (!options.out_dir.empty()) files.emplace(options.out_dir, config.output, plugins.aids);
+  if (!options.out_dir.empty()) {
+    files.emplace(options.out_dir, config.output, plugins.aids, result.has_truth);
+  }
   ThinnedSeries series(options.series_points);
   ProgressBar progress("run", estimated_rows(config.data.imu), options.progress);
 
-  ImuIncrement increment;
   while (imu.next(increment)) {
     navigator.step(increment);
     ++result.epochs;
     progress.update(result.epochs);
     const bool output_epoch = result.epochs % config.output.decimation == 0;
+    const auto innovations = navigator.innovations();
     if (files) {
-      files->write_innovations(navigator.innovations());
+      files->write_innovations(innovations);
       if (output_epoch) files->write_state(navigator);
     }
     while (truth_pending && truth.t_s < increment.t_s - kTimeMatch_s) {
-      truth_pending = truth_reader.next(truth);
+      truth_pending = truth_reader->next(truth);
     }
-    if (truth_pending && std::abs(truth.t_s - increment.t_s) <= kTimeMatch_s) {
+    const bool truth_now = truth_pending && std::abs(truth.t_s - increment.t_s) <= kTimeMatch_s;
+    if (!innovations.empty()) {
+      consistency.add_innovations(innovations);
+      bool stationary = false;
+      for (const InnovationRecord& record : innovations) {
+        stationary |= record.accepted && is_zupt[static_cast<std::size_t>(record.aid_index)];
+      }
+      std::optional<double> md;
+      if (has_md) {
+        if (const auto row = aid_rows.row_at(increment.t_s)) md = aid_md[*row];
+      }
+      survey.observe(navigator.state(), navigator.covariance().topLeftCorner<9, 9>(), stationary,
+                     md, truth_now ? &truth : nullptr);
+    }
+    if (truth_now) {
       const auto errors = navigation_errors(navigator.state(), truth);
       result.statistics.add(errors);
       if (output_epoch) {
@@ -172,20 +251,26 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
         const ErrorSample sample{increment.t_s, errors,
                                  navigation_error_sigmas(navigator.state(), p)};
         series.add(sample);
-        if (files) {
-          const auto dx = navigation_error_state(navigator.state(), truth);
-          files->write_errors(sample, dx.dot(p.ldlt().solve(dx)));
-        }
+        const auto dx = navigation_error_state(navigator.state(), truth);
+        const double nees = dx.dot(p.ldlt().solve(dx));
+        consistency.add_epoch(sample.errors, sample.sigma, nees);
+        if (files) files->write_errors(sample, nees);
       }
     }
   }
   progress.finish(result.epochs);
+  survey.finish();
   result.health = navigator.health();
   result.duration_s = increment.t_s - imu.start_time_s();
   result.error_series = series.take();
+  result.consistency = consistency.consistency_json();
+  result.aids = consistency.aids_json();
+  result.consistency_line = consistency.consistency_line();
+  result.warnings = consistency.aid_warnings();
+  result.survey_stations = survey.stations().size();
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  if (files) files->commit(result, options.plot);
+  if (files) files->commit(result, options.plot, survey, tie_on);
   return result;
 }
 

@@ -56,7 +56,7 @@ void CsvOutput::commit() {
 }
 
 RunFiles::RunFiles(const std::filesystem::path& out_dir, const plugin::OutputConfig& config,
-                   const std::vector<std::shared_ptr<plugin::AidPlugin>>& aids)
+                   const std::vector<std::shared_ptr<plugin::AidPlugin>>& aids, bool with_truth)
     : out_dir_(prepared(out_dir)),
       config_(config),
       nav_(out_dir / "nav.csv", "t,lat,lon,h,ve,vn,vu,inclination,toolface,azimuth"),
@@ -65,8 +65,8 @@ RunFiles::RunFiles(const std::filesystem::path& out_dir, const plugin::OutputCon
               "gyro_bias_z_deg_h"),
       innovations_(out_dir / "innovations.csv",
                    "t,aid,type,accepted,nis,z0,z1,z2,z3,z4,z5,sigma0,sigma1,sigma2,sigma3,"
-                   "sigma4,sigma5"),
-      errors_(out_dir / "errors.csv", error_header()) {
+                   "sigma4,sigma5") {
+  if (with_truth) errors_ = std::make_unique<CsvOutput>(out_dir / "errors.csv", error_header());
   for (const auto& aid : aids) aid_types_.emplace_back(aid->type());
   if (config.covariance) {
     covariance_ = std::make_unique<CsvOutput>(
@@ -131,19 +131,21 @@ void RunFiles::write_innovations(std::span<const InnovationRecord> records) {
 }
 
 void RunFiles::write_errors(const ErrorSample& sample, double nees) {
-  auto out = std::back_inserter(errors_.buffer());
+  if (!errors_) return;
+  auto out = std::back_inserter(errors_->buffer());
   fmt::format_to(out, "{:.3f}", sample.t_s);
   for (double e : sample.errors) fmt::format_to(out, ",{:.6g}", e);
   for (double e : sample.sigma) fmt::format_to(out, ",{:.6g}", e);
   if (config_.nees) {
     fmt::format_to(out, ",{:.6g}\n", nees);
   } else {
-    errors_.buffer() += ",\n";
+    errors_->buffer() += ",\n";
   }
-  errors_.flush_if_full();
+  errors_->flush_if_full();
 }
 
-void RunFiles::commit(const NavigationRunResult& result, bool plot) {
+void RunFiles::commit(const NavigationRunResult& result, bool plot, const SurveyRecorder& survey,
+                      const SurveyTieOn& tie_on) {
   const std::filesystem::path plot_path = out_dir_ / "errors.png";
   if (plot && result.has_truth && result.error_series.size() > 1) {
     try {
@@ -154,14 +156,16 @@ void RunFiles::commit(const NavigationRunResult& result, bool plot) {
       // gnuplot missing: the run's numbers are still complete; the plot is optional.
     }
   }
-  nlohmann::json metrics = result.metrics_json();
-  metrics["aids"] = aid_types_;
-  write_file_atomically(out_dir_ / "metrics.json", metrics.dump(2) + "\n");
+  std::vector<std::unique_ptr<PendingFile>> survey_files =
+      write_survey_files(survey, tie_on, out_dir_, plot);
+  // metrics.json last: its presence says the run completed.
   nav_.commit();
   biases_.commit();
   innovations_.commit();
-  errors_.commit();
+  if (errors_) errors_->commit();
   if (covariance_) covariance_->commit();
+  for (auto& file : survey_files) file->commit();
+  write_file_atomically(out_dir_ / "metrics.json", result.metrics_json().dump(2) + "\n");
 }
 
 }  // namespace stochnav

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "stochnav/experiment/navigation_run.hpp"
+#include "stochnav/experiment/survey.hpp"
 #include "stochnav/filter/mwd_navigator.hpp"
 #include "stochnav/io/atomic_file.hpp"
 
@@ -35,22 +36,25 @@ class CsvOutput final {
 
 class RunFiles final {
  public:
+  /// errors.csv only `with_truth`.
   RunFiles(const std::filesystem::path& out_dir, const plugin::OutputConfig& config,
-           const std::vector<std::shared_ptr<plugin::AidPlugin>>& aids);
+           const std::vector<std::shared_ptr<plugin::AidPlugin>>& aids, bool with_truth);
 
   void write_state(const MwdNavigator& navigator);
   void write_innovations(std::span<const InnovationRecord> records);
   void write_errors(const ErrorSample& sample, double nees);
 
-  /// metrics.json, errors.png (when `plot` and gnuplot is present), then every file renamed
-  /// into place.
-  void commit(const NavigationRunResult& result, bool plot);
+  /// metrics.json, errors.png (when `plot` and gnuplot is present), the survey files
+  /// (experiment/survey.hpp), then every file renamed into place.
+  void commit(const NavigationRunResult& result, bool plot, const SurveyRecorder& survey,
+              const SurveyTieOn& tie_on);
 
  private:
   std::filesystem::path out_dir_;
   plugin::OutputConfig config_;
   std::vector<std::string> aid_types_;
-  CsvOutput nav_, biases_, innovations_, errors_;
+  CsvOutput nav_, biases_, innovations_;
+  std::unique_ptr<CsvOutput> errors_;
   std::unique_ptr<CsvOutput> covariance_;
 };
 

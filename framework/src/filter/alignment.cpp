@@ -1,6 +1,7 @@
 #include "stochnav/filter/alignment.hpp"
 
 #include <cmath>
+#include <vector>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/filter/mwd_navigator.hpp"
@@ -35,6 +36,34 @@ StaticMeans static_means(std::span<const ImuIncrement> increments) {
   return means;
 }
 
+StaticSpread static_spread(std::span<const ImuIncrement> increments, double block_s) {
+  std::vector<double> gyro, accel;
+  Eigen::Vector3d theta = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero();
+  double duration = 0.0;
+  for (const ImuIncrement& increment : increments) {
+    theta += increment.delta_theta_b;
+    v += increment.delta_v_b;
+    duration += increment.dt_s;
+    if (duration >= block_s * (1.0 - 1e-9)) {
+      gyro.push_back(theta.norm() / duration);
+      accel.push_back(v.norm() / duration);
+      theta.setZero();
+      v.setZero();
+      duration = 0.0;
+    }
+  }
+  const auto deviation = [](const std::vector<double>& x) {
+    if (x.size() < 2) return 0.0;
+    double mean = 0.0;
+    for (double value : x) mean += value;
+    mean /= static_cast<double>(x.size());
+    double sum = 0.0;
+    for (double value : x) sum += (value - mean) * (value - mean);
+    return std::sqrt(sum / static_cast<double>(x.size() - 1));
+  };
+  return {deviation(gyro), deviation(accel), static_cast<int>(gyro.size())};
+}
+
 Eigen::Quaterniond coarse_alignment(const StaticMeans& means, double latitude_rad) {
   const Eigen::Vector3d f_n(0.0, 0.0, 1.0);  // direction of the specific force at rest: up
   const Eigen::Vector3d omega_n = earth_rate_n(latitude_rad);
@@ -61,7 +90,12 @@ FineAlignmentResult fine_alignment(const NavState& initial,
   result.state = navigator.state();
   result.gyro_bias_b = navigator.gyro_bias_b();
   result.accel_bias_b = navigator.accel_bias_b();
-  result.attitude_sigma_rad = navigator.covariance().diagonal().segment<3>(6).cwiseSqrt();
+  const Eigen::VectorXd sigma = navigator.covariance().diagonal().head<15>().cwiseSqrt();
+  result.position_sigma_m = sigma.segment<3>(0);
+  result.velocity_sigma_mps = sigma.segment<3>(3);
+  result.attitude_sigma_rad = sigma.segment<3>(6);
+  result.accel_bias_sigma_mps2 = sigma.segment<3>(9);
+  result.gyro_bias_sigma_radps = sigma.segment<3>(12);
   return result;
 }
 

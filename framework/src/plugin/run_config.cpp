@@ -1,7 +1,9 @@
 #include "stochnav/plugin/run_config.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <numbers>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/plugin/params.hpp"
@@ -124,9 +126,128 @@ FitConfig parse_fit(const nlohmann::json& json, const std::string& pointer, Sens
   return fit;
 }
 
-std::array<double, 3> axes_or(ParamReader& reader, std::string_view key,
-                              const std::array<double, 3>& fallback, std::string_view unit) {
-  return reader.axes_or(key, fallback, Bound::kNonNegative, unit);
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+constexpr double kDegPerHourPerRadPerSecond = kDegPerRad * 3600.0;
+constexpr double kPpm = 1e-6;
+
+using Vector3 = Eigen::Vector3d;
+std::array<double, 3> array_of(const Vector3& v) { return {v.x(), v.y(), v.z()}; }
+Vector3 vector_of(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+// A three-axis value in config units read into an SI vector: `scale` converts SI -> config.
+Vector3 axes_or(ParamReader& reader, std::string_view key, const Vector3& fallback_si,
+                double scale, std::string_view unit) {
+  return vector_of(reader.axes_or(key, array_of(fallback_si * scale), Bound::kNonNegative,
+                                  unit)) /
+         scale;
+}
+
+std::array<double, 3> signed_axes_or_zero(ParamReader& reader, std::string_view key,
+                                          std::string_view unit) {
+  return reader.axes_or(key, {0.0, 0.0, 0.0}, Bound::kAny, unit);
+}
+
+double number_in(ParamReader& reader, std::string_view key, double low, double high,
+                 std::string_view unit) {
+  const double value = reader.number(key, Bound::kAny, unit);
+  if (!(value >= low && value <= high)) {
+    throw ConfigError(reader.pointer(key) + ": " + std::to_string(value) + " " +
+                      std::string(unit) + " is out of range; expected a value in [" +
+                      std::to_string(low) + ", " + std::to_string(high) + "]");
+  }
+  return value;
+}
+
+std::uint64_t non_negative_integer(ParamReader& reader, std::string_view key) {
+  const nlohmann::json& value = reader.raw(key);
+  if (!value.is_number_integer() ||
+      (!value.is_number_unsigned() && value.get<long long>() < 0)) {
+    throw ConfigError(reader.pointer(key) + ": found " + value.dump() +
+                      "; expected an integer >= 0");
+  }
+  return value.get<std::uint64_t>();
+}
+
+TieOnConfig parse_tie_on(const nlohmann::json& json, const std::string& pointer) {
+  ParamReader reader(json, pointer);
+  TieOnConfig tie_on;
+  tie_on.latitude_deg = number_in(reader, "latitude_deg", -90.0, 90.0, "deg");
+  tie_on.longitude_deg = number_in(reader, "longitude_deg", -360.0, 360.0, "deg");
+  tie_on.height_m = reader.number("height_m", Bound::kAny, "m");
+  if (reader.has("measured_depth_m")) {
+    tie_on.measured_depth_m = reader.number("measured_depth_m", Bound::kAny, "m");
+  }
+  reader.finish();
+  return tie_on;
+}
+
+AlignmentConfig parse_alignment(const nlohmann::json& json, const std::string& pointer) {
+  ParamReader reader(json, pointer);
+  AlignmentConfig alignment;
+  alignment.static_s = reader.number("static_s", Bound::kPositive, "s");
+  alignment.max_gyro_spread_deg_h = reader.number_or(
+      "max_gyro_spread_deg_h", alignment.max_gyro_spread_deg_h, Bound::kPositive, "deg/h");
+  alignment.max_accel_spread_m_s2 = reader.number_or(
+      "max_accel_spread_m_s2", alignment.max_accel_spread_m_s2, Bound::kPositive, "m/s^2");
+  alignment.zero_velocity_sigma_m_s =
+      reader.number_or("zero_velocity_sigma_m_s", alignment.zero_velocity_sigma_m_s,
+                       Bound::kPositive, "m/s");
+  alignment.position_sigma_m = reader.number_or("position_sigma_m", alignment.position_sigma_m,
+                                                Bound::kPositive, "m");
+  if (reader.has("attitude_sigma_deg")) {
+    alignment.attitude_sigma_deg = reader.axes("attitude_sigma_deg", Bound::kPositive, "deg");
+  }
+  reader.finish();
+  return alignment;
+}
+
+InitialStateConfig parse_initial_state(const nlohmann::json& json, const std::string& pointer) {
+  ParamReader reader(json, pointer);
+  InitialStateConfig state;
+  state.tie_on = parse_tie_on(object_at(reader, "tie_on", true), reader.pointer("tie_on"));
+  const bool attitude = reader.has("attitude");
+  const bool alignment = reader.has("alignment");
+  if (attitude == alignment) {
+    throw ConfigError(pointer + ": " +
+                      (attitude ? std::string("both \"attitude\" and \"alignment\" given")
+                                : std::string("no initial attitude")) +
+                      "; expected either \"attitude\": {\"inclination_deg\", "
+                      "\"azimuth_deg\", \"toolface_deg\"} or \"alignment\": "
+                      "{\"static_s\": S}");
+  }
+  if (attitude) {
+    ParamReader a(object_at(reader, "attitude", true), reader.pointer("attitude"));
+    AttitudeConfig config;
+    config.inclination_deg = number_in(a, "inclination_deg", 0.0, 180.0, "deg");
+    config.azimuth_deg = a.number("azimuth_deg", Bound::kAny, "deg");
+    config.toolface_deg = a.number("toolface_deg", Bound::kAny, "deg");
+    a.finish();
+    state.attitude = config;
+  } else {
+    state.alignment =
+        parse_alignment(object_at(reader, "alignment", true), reader.pointer("alignment"));
+  }
+  state.velocity_m_s = signed_axes_or_zero(reader, "velocity_m_s", "m/s");
+  if (state.alignment && vector_of(state.velocity_m_s).squaredNorm() > 0.0) {
+    throw ConfigError(reader.pointer("velocity_m_s") +
+                      ": a non-zero velocity with \"alignment\"; the alignment span is "
+                      "static, so leave velocity_m_s out (zero)");
+  }
+  reader.finish();
+  return state;
+}
+
+InitialErrorConfig parse_initial_error(const nlohmann::json& json, const std::string& pointer) {
+  ParamReader reader(json, pointer);
+  InitialErrorConfig error;
+  error.position_m = signed_axes_or_zero(reader, "position_m", "m");
+  error.velocity_m_s = signed_axes_or_zero(reader, "velocity_m_s", "m/s");
+  error.attitude_deg = signed_axes_or_zero(reader, "attitude_deg", "deg");
+  error.gyro_bias_deg_h = signed_axes_or_zero(reader, "gyro_bias_deg_h", "deg/h");
+  error.accel_bias_m_s2 = signed_axes_or_zero(reader, "accel_bias_m_s2", "m/s^2");
+  if (reader.has("draw_seed")) error.draw_seed = non_negative_integer(reader, "draw_seed");
+  reader.finish();
+  return error;
 }
 
 }  // namespace
@@ -172,7 +293,78 @@ std::vector<PluginConfig> parse_aids_section(const nlohmann::json& json,
   return aids;
 }
 
-RunConfig parse_run_config(const nlohmann::json& document, const fs::path& config_dir) {
+DataConfig data_from_folder(const fs::path& dir) {
+  std::error_code error;
+  const std::string where = "--data " + dir.string();
+  if (!fs::is_directory(dir, error)) {
+    throw ConfigError(where + ": not a folder; give a recording folder holding imu.csv "
+                              "(aids.csv and truth.csv optional)");
+  }
+  DataConfig data;
+  data.imu = dir / kScenarioImuFile;
+  if (!fs::is_regular_file(data.imu, error)) {
+    throw ConfigError(where + ": no " + std::string(kScenarioImuFile) +
+                      "; give a recording folder holding imu.csv (aids.csv and truth.csv "
+                      "optional)");
+  }
+  if (fs::is_regular_file(dir / kScenarioTruthFile, error)) data.truth = dir / kScenarioTruthFile;
+  if (fs::is_regular_file(dir / kScenarioAidsFile, error)) data.aids = dir / kScenarioAidsFile;
+  // A `simulate scenario` folder: its scenario.json serves plugins that read it (oracle).
+  if (fs::is_regular_file(dir / "scenario.json", error)) data.scenario_dir = dir;
+  return data;
+}
+
+FilterConfig parse_filter_section(const nlohmann::json& json, const std::string& pointer) {
+  ParamReader reader(json, pointer);
+  FilterConfig config;
+  FilterOptions& out = config.options;
+  if (const auto& sigma = object_at(reader, "initial_sigma", false); !sigma.is_null()) {
+    ParamReader s(sigma, reader.pointer("initial_sigma"));
+    out.position_sigma_m = axes_or(s, "position_m", out.position_sigma_m, 1.0, "m");
+    out.velocity_sigma_mps = axes_or(s, "velocity_m_s", out.velocity_sigma_mps, 1.0, "m/s");
+    out.attitude_sigma_rad = axes_or(s, "attitude_deg", out.attitude_sigma_rad, kDegPerRad, "deg");
+    out.accel_bias_sigma_mps2 =
+        axes_or(s, "accel_bias_m_s2", out.accel_bias_sigma_mps2, 1.0, "m/s^2");
+    out.gyro_bias_sigma_radps = axes_or(s, "gyro_bias_deg_h", out.gyro_bias_sigma_radps,
+                                        kDegPerHourPerRadPerSecond, "deg/h");
+    s.finish();
+  }
+  out.covariance_interval_s = reader.number_or("covariance_interval_s", out.covariance_interval_s,
+                                               Bound::kNonNegative, "s");
+  if (reader.has("max_consecutive_rejections")) {
+    const std::uint64_t count = non_negative_integer(reader, "max_consecutive_rejections");
+    if (count > 1'000'000'000u) {
+      throw ConfigError(reader.pointer("max_consecutive_rejections") + ": " +
+                        std::to_string(count) + " is too large; expected an integer >= 0 "
+                        "(0 keeps the gate strict)");
+    }
+    out.max_consecutive_rejections = static_cast<int>(count);
+  }
+  if (const auto& scale = object_at(reader, "scale_factor_sigma_ppm", false); !scale.is_null()) {
+    ParamReader s(scale, reader.pointer("scale_factor_sigma_ppm"));
+    out.gyro_scale_factor_sigma = axes_or(s, "gyro", out.gyro_scale_factor_sigma, 1.0 / kPpm, "ppm");
+    out.accel_scale_factor_sigma =
+        axes_or(s, "accel", out.accel_scale_factor_sigma, 1.0 / kPpm, "ppm");
+    s.finish();
+  }
+  if (reader.has("feedback")) {
+    const nlohmann::json& feedback = reader.raw("feedback");
+    if (feedback == "open_loop") {
+      throw ConfigError(reader.pointer("feedback") +
+                        ": \"open_loop\" is not implemented (the MWD navigator feeds every "
+                        "update back into the INS); use \"closed_loop\" or leave it out");
+    }
+    if (feedback != "closed_loop") {
+      throw ConfigError(reader.pointer("feedback") + ": found " + feedback.dump() +
+                        "; expected \"closed_loop\"");
+    }
+  }
+  reader.finish();
+  return config;
+}
+
+RunConfig parse_run_config(const nlohmann::json& document, const fs::path& config_dir,
+                           const std::optional<DataConfig>& data) {
   if (!document.is_object()) {
     throw ConfigError(
         "/: the run config is not a JSON object; expected {\"data\": ..., "
@@ -181,29 +373,27 @@ RunConfig parse_run_config(const nlohmann::json& document, const fs::path& confi
   ParamReader root(document, "");
   RunConfig config;
   config.config_dir = config_dir;
-  config.data = parse_data(object_at(root, "data", true), root.pointer("data"), config_dir);
+  root.raw("description");  // free text for readers, ignored
+  root.raw("comments");
+  if (data) {
+    root.raw("data");  // replaced by --data: neither read nor an unknown key
+    config.data = *data;
+  } else {
+    config.data = parse_data(object_at(root, "data", true), root.pointer("data"), config_dir);
+  }
   config.noise = parse_noise_section(object_at(root, "noise", true), root.pointer("noise"),
                                      config_dir, config.data.imu);
   if (const auto& aids = root.raw("aids"); !aids.is_null()) {
     config.aids = parse_aids_section(aids, root.pointer("aids"));
   }
   if (const auto& filter = object_at(root, "filter", false); !filter.is_null()) {
-    ParamReader reader(filter, root.pointer("filter"));
-    if (const auto& sigma = object_at(reader, "initial_sigma", false); !sigma.is_null()) {
-      ParamReader s(sigma, reader.pointer("initial_sigma"));
-      auto& out = config.filter.initial_sigma;
-      out.position_m = axes_or(s, "position_m", out.position_m, "m");
-      out.velocity_m_s = axes_or(s, "velocity_m_s", out.velocity_m_s, "m/s");
-      out.attitude_deg = axes_or(s, "attitude_deg", out.attitude_deg, "deg");
-      out.accel_bias_m_s2 = axes_or(s, "accel_bias_m_s2", out.accel_bias_m_s2, "m/s^2");
-      out.gyro_bias_deg_h = axes_or(s, "gyro_bias_deg_h", out.gyro_bias_deg_h, "deg/h");
-      s.finish();
-    }
-    constexpr std::string_view kModes[] = {"closed_loop", "open_loop"};
-    config.filter.feedback = reader.choice_or("feedback", "closed_loop", kModes) == "open_loop"
-                                 ? FeedbackMode::kOpenLoop
-                                 : FeedbackMode::kClosedLoop;
-    reader.finish();
+    config.filter = parse_filter_section(filter, root.pointer("filter"));
+  }
+  if (const auto& state = object_at(root, "initial_state", false); !state.is_null()) {
+    config.initial_state = parse_initial_state(state, root.pointer("initial_state"));
+  }
+  if (const auto& error = object_at(root, "initial_error", false); !error.is_null()) {
+    config.initial_error = parse_initial_error(error, root.pointer("initial_error"));
   }
   if (const auto& output = object_at(root, "output", false); !output.is_null()) {
     ParamReader reader(output, root.pointer("output"));
@@ -223,7 +413,16 @@ RunConfig parse_run_config(const nlohmann::json& document, const fs::path& confi
   return config;
 }
 
-RunConfig read_run_config(const fs::path& file) {
+void check_run_start(const RunConfig& config) {
+  if (!config.data.truth && !config.initial_state) {
+    throw ConfigError(
+        "/initial_state: missing, and the data has no truth to start from; add "
+        "\"initial_state\": {\"tie_on\": {\"latitude_deg\", \"longitude_deg\", "
+        "\"height_m\"}, \"alignment\": {\"static_s\": S}} (or \"attitude\": {...})");
+  }
+}
+
+RunConfig read_run_config(const fs::path& file, const std::optional<DataConfig>& data) {
   std::ifstream stream(file);
   if (!stream) {
     throw InputError(file.string() + ": cannot read the run config; check the path");
@@ -234,7 +433,7 @@ RunConfig read_run_config(const fs::path& file) {
   } catch (const nlohmann::json::parse_error& error) {
     throw InputError(file.string() + ": not valid JSON (" + error.what() + "); fix the syntax");
   }
-  return parse_run_config(document, fs::absolute(file).parent_path());
+  return parse_run_config(document, fs::absolute(file).parent_path(), data);
 }
 
 }  // namespace stochnav::plugin

@@ -1,6 +1,9 @@
 #pragma once
-// A progress bar on standard error for long runs, drawn only when standard error is a terminal
-// and at most ten times a second, so that it costs nothing in the hot loop.
+// Progress of long runs on standard error. On a terminal: a bar redrawn in place at most ten
+// times a second. Otherwise (a log file, a batch job): a plain line "label: 42.0 %, 95 s
+// elapsed, ETA 131 s" at most every 30 s, and a last one at finish when any was printed before
+// (a run shorter than 30 s prints nothing). Either way update() costs a counter increment
+// between checks of the clock, so it costs nothing in the hot loop.
 
 #include <chrono>
 #include <cstdint>
@@ -10,8 +13,8 @@ namespace stochnav {
 
 class ProgressBar final {
  public:
-  /// `total`: units of work (0 when unknown: the bar shows a count instead). Draws nothing
-  /// when `enabled` is false or standard error is not a terminal.
+  /// `total`: units of work (0 when unknown: a count is shown instead, no ETA). Prints nothing
+  /// when `enabled` is false.
   ProgressBar(std::string label, std::uint64_t total, bool enabled = true);
   ~ProgressBar();
   ProgressBar(const ProgressBar&) = delete;
@@ -21,7 +24,8 @@ class ProgressBar final {
   void update(std::uint64_t done) {
     if (active_ && (++calls_ & 0x3FF) == 0) draw(done, false);
   }
-  /// Redraws now if the last draw is older than 0.1 s (for a thread that only draws).
+  /// Draws now if the last draw is old enough (0.1 s on a terminal, 30 s otherwise; for a
+  /// thread that only draws).
   void show(std::uint64_t done) {
     if (active_) draw(done, false);
   }
@@ -34,7 +38,9 @@ class ProgressBar final {
   std::string label_;
   std::uint64_t total_;
   bool active_;
+  bool terminal_;
   bool finished_ = false;
+  bool printed_ = false;  // a plain line was printed (not a terminal)
   std::uint64_t calls_ = 0;
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_draw_;

@@ -10,32 +10,49 @@
 //   biases.csv       t, accel bias x y z (m/s^2), gyro bias x y z (deg/h)      same epochs
 //   covariance.csv   t, 1-sigma of the 15 core states (m, m/s, deg, m/s^2, deg/h) (output.covariance)
 //   innovations.csv  t, aid, type, accepted, nis, z_i and sigma_i (aid units), every update
-//   errors.csv       t, the nine errors of experiment/navigation_errors.hpp, the filter's 1-sigma
+//   errors.csv       (only with truth) t, the nine errors of experiment/navigation_errors.hpp, the filter's 1-sigma
 //                    of each (<metric>_sigma; the MWD angles' by linearising them about the
 //                    estimate), and the NEES of position, velocity and attitude (9 states;
 //                    output.nees)                                   with truth, every `decimation`
-//   metrics.json     {"metrics": {name: {"max_abs", "rms", "samples"}}, "filter_health": {...},
-//                     "epochs", "duration_s", "noise_models": {"gyro", "accel"}, "aids": [...]}
-//   errors.png       errors with their 3-sigma bounds over time (when gnuplot is installed)
+//   metrics.json     {"metrics": {name: {"max_abs", "rms", "samples"}} | null without truth,
+//                     "consistency": {"inside_3sigma": {name: share}, "nees_mean", "nees_dof"}
+//                     | null without truth, "aids": [{"type", "dof", "attempts",
+//                     "rejected_share", "nis_mean"}] (experiment/run_consistency.hpp),
+//                     "filter_health": {...}, "epochs", "duration_s", "noise_models":
+//                     {"gyro", "accel"}, "survey_stations", "initial": {"t_s", position
+//                     and MWD angles of the start (after any alignment, before the deliberate
+//                     initial error), the initial bias estimates and 1-sigmas the navigator
+//                     started with}}
+//   errors.png       errors with their 3-sigma bounds over time (with truth, gnuplot installed)
+//   survey.csv, survey_errors.csv (with truth), well_path.csv, survey.png
+//                    survey stations at the connections (experiment/survey.hpp)
 //
-// The initial state is the truth at the start of the IMU record: every variant starts equal,
-// so comparisons measure the noise models, not the initialisation.
+// The start (plugin/run_config.hpp): with "initial_state", the tie-on with the given attitude
+// at the start of the IMU record, or the static alignment over its first static_s seconds
+// (navigation, and every output file, then starts at the end of that span); without it, the
+// truth's first row (every compare variant starts equal, so comparisons measure the noise
+// models, not the initialisation). Truth, when present, only scores. "initial_error" then
+// offsets the estimate from that start. The survey's tie-on is the start position (before the
+// deliberate error) with the configured MD, else the aid data's first "measured_depth_m", else 0.
 
 #include <array>
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "stochnav/experiment/navigation_errors.hpp"
 #include "stochnav/filter/error_state_filter.hpp"
+#include "stochnav/filter/filter_options.hpp"
+#include "stochnav/ins/nav_state.hpp"
 #include "stochnav/plugin/run_config.hpp"
 
 namespace stochnav {
 
 struct NavigationRunOptions {
   std::filesystem::path out_dir;  ///< where the files go; empty: no files (compare's seeds)
-  bool progress = false;          ///< progress bar on standard error (terminal only)
+  bool progress = false;          ///< progress on standard error (core/progress_bar.hpp)
   bool plot = true;               ///< errors.png when out_dir is set and gnuplot exists
   std::size_t series_points = 2000;  ///< at most this many samples kept in error_series
 };
@@ -56,6 +73,13 @@ struct NavigationRunResult {
   double wall_seconds = 0.0;   ///< time the run took
   std::vector<ErrorSample> error_series;  ///< evenly thinned, first and last kept
   nlohmann::json noise_models;            ///< {"gyro": describe, "accel": describe}
+  nlohmann::json consistency;             ///< RunConsistency::consistency_json()
+  nlohmann::json aids;                    ///< RunConsistency::aids_json()
+  std::string consistency_line;           ///< "consistency: ok" / "... OPTIMISTIC ..." / ""
+  std::vector<std::string> warnings;      ///< aids rejected too often
+  std::size_t survey_stations = 0;        ///< stations in survey.csv
+  NavState start;                         ///< the start (after alignment, before the error)
+  FilterOptions filter_options;           ///< the options the navigator ran with
   nlohmann::json metrics_json() const;
 };
 

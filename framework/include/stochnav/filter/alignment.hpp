@@ -28,6 +28,17 @@ struct StaticMeans {
 /// span is empty or its intervals sum to zero.
 StaticMeans static_means(std::span<const ImuIncrement> increments);
 
+/// How still a span is: the standard deviation, over consecutive blocks of `block_s` seconds,
+/// of each block's mean |omega_ib_b| and mean |f_ib_b|. A static tool shows only sensor noise
+/// averaged over a block; a tool that turns or moves shows far more. Blocks shorter than
+/// block_s at the end are dropped; fewer than two whole blocks give zero spreads.
+struct StaticSpread {
+  double gyro_radps = 0.0;   ///< std of the block means of |omega| (rad/s)
+  double accel_mps2 = 0.0;   ///< std of the block means of |f| (m/s^2)
+  int blocks = 0;            ///< number of blocks used
+};
+StaticSpread static_spread(std::span<const ImuIncrement> increments, double block_s);
+
 /// Coarse alignment: the C_nb (as q_nb) that maps the measured mean specific force to
 /// (0, 0, g) and the measured mean rate to the Earth rate (0, W cos lat, W sin lat) in ENU,
 /// by TRIAD (gravity trusted first, the Earth rate fixing heading). Heading error is about
@@ -45,6 +56,12 @@ struct FineAlignmentResult {
   Eigen::Vector3d gyro_bias_b = Eigen::Vector3d::Zero();         ///< rad/s
   Eigen::Vector3d accel_bias_b = Eigen::Vector3d::Zero();        ///< m/s^2
   Eigen::Vector3d attitude_sigma_rad = Eigen::Vector3d::Zero();  ///< 1-sigma of phi, E N U
+  // The other core 1-sigmas at the end (diagonal of P: the correlations, notably of heading
+  // with the horizontal gyro biases, are not carried over).
+  Eigen::Vector3d position_sigma_m = Eigen::Vector3d::Zero();       ///< ENU (m)
+  Eigen::Vector3d velocity_sigma_mps = Eigen::Vector3d::Zero();     ///< ENU (m/s)
+  Eigen::Vector3d accel_bias_sigma_mps2 = Eigen::Vector3d::Zero();  ///< body (m/s^2)
+  Eigen::Vector3d gyro_bias_sigma_radps = Eigen::Vector3d::Zero();  ///< body (rad/s)
 };
 FineAlignmentResult fine_alignment(const NavState& initial,
                                    std::span<const ImuIncrement> increments,

@@ -1,6 +1,8 @@
 #pragma once
 // Options of the MWD navigation filter (filter/mwd_navigator.hpp), with units. The run config's
-// "filter" section fills this struct; the defaults here are the documented defaults.
+// "filter" section (plugin/run_config.hpp) parses into this struct: the member initialisers
+// below are THE defaults, of the library and of `stochnav run` / `compare` alike, and nowhere
+// else are they written.
 
 #include <Eigen/Core>
 
@@ -20,7 +22,18 @@ struct FilterOptions {
   /// which makes the next NIS larger still). 0 keeps the gate strict.
   int max_consecutive_rejections = 10;
 
-  // Initial 1-sigma uncertainties of the core error states.
+  // Initial 1-sigma uncertainties of the core error states. Chosen for a tool started from a
+  // surveyed tie-on after a static alignment, erring on the side of too large: a too-small
+  // initial sigma makes the filter optimistic from the first epoch (and its gate rejects the
+  // aids that would correct it), a too-large one only costs the first minutes of convergence.
+  //   position 0.1 m, velocity 0.01 m/s: a tie-on surveyed to decimetres, a tool at rest;
+  //   attitude 1 mrad (0.057 deg) tilt, 10 mrad (0.57 deg) heading: what a FOG tool's static
+  //     alignment delivers (tilt from the accelerometers, heading from gyrocompassing);
+  //   accel bias 1e-3 m/s^2 (0.1 mg): the turn-on bias of a navigation-grade accelerometer;
+  //   gyro bias 5e-6 rad/s (1.03 deg/h): covers the turn-on bias of the MWD FOG class
+  //     (0.01 to 1 deg/h), so an unknown tool is not over-trusted; ZUPTs and the alignment
+  //     shrink it within minutes. (The run config's former 0.05 deg/h was the in-run bias
+  //     stability of a good FOG, not the uncertainty of its bias at turn-on.)
   Eigen::Vector3d position_sigma_m{0.1, 0.1, 0.1};          ///< ENU (m)
   Eigen::Vector3d velocity_sigma_mps{0.01, 0.01, 0.01};     ///< ENU (m/s)
   Eigen::Vector3d attitude_sigma_rad{1e-3, 1e-3, 1e-2};     ///< phi about E, N, U (rad)
@@ -28,7 +41,8 @@ struct FilterOptions {
   Eigen::Vector3d gyro_bias_sigma_radps{5e-6, 5e-6, 5e-6};  ///< body axes (rad/s) (~1 deg/h)
 
   // Initial estimates of the sensor biases (the navigator starts from these, not from zero):
-  // a run started from an alignment hands over its bias estimates here.
+  // a run started from an alignment hands over its bias estimates here, and a run config's
+  // "initial_error" offsets them (the estimate's offset from where the filter would start).
   Eigen::Vector3d initial_accel_bias_mps2{0.0, 0.0, 0.0};  ///< body axes (m/s^2)
   Eigen::Vector3d initial_gyro_bias_radps{0.0, 0.0, 0.0};  ///< body axes (rad/s)
 

@@ -1,14 +1,14 @@
 #pragma once
-// The run config of `stochnav run` (and, per variant, the noise/aids sections of `compare`):
-// validated completely before anything runs, into plain structs. Every default lives in this
-// header, as the member initialisers below. Unknown keys are rejected; every error is one
-// ConfigError line "<JSON pointer>: <problem>; expected <form>". Relative paths are relative to
-// the config file's folder.
+// The run config of `stochnav run` (and, per variant, the noise/aids/filter sections of
+// `compare`): validated completely before anything runs, into plain structs. Unknown keys are
+// rejected; every error is one ConfigError line "<JSON pointer>: <problem>; expected <form>".
+// Relative paths are relative to the config file's folder.
 //
 //   {
+//     "description": "...", "comments": {...},                 // optional, ignored
 //     "data": {"scenario": "runs/vib1"}                        // a `simulate scenario` folder
 //          |  {"imu": "imu.csv", "truth": "truth.csv", "aids": "aids.csv"},   // truth, aids
-//          optional
+//          optional. Required unless `stochnav run --data DIR` replaces it (data_from_folder).
 //     "noise": {
 //       "gyro":  {"plugin": "gauss_markov", "params": {"sigma": 0.1, "tau_c": 100, "N": 0.05}},
 //       "accel": {"plugin": "white", "params": {"N": 0.02},
@@ -16,17 +16,34 @@
 //                         "columns": ["accel_x", "accel_y", "accel_z"]}}
 //     },
 //     "aids": [{"plugin": "zupt", "params": {...}}, ...],                         // default []
-//     "filter": {"initial_sigma": {"position_m": 0.1, "velocity_m_s": 0.01,
-//                                  "attitude_deg": [0.05, 0.05, 0.5],
-//                                  "accel_bias_m_s2": 0.001, "gyro_bias_deg_h": 0.05},
-//                "feedback": "closed_loop"},
+//     "filter": {                                       // every key optional; defaults below
+//       "initial_sigma": {"position_m": 0.1, "velocity_m_s": 0.01,
+//                         "attitude_deg": [0.0573, 0.0573, 0.573],
+//                         "accel_bias_m_s2": 0.001, "gyro_bias_deg_h": 1.03},
+//       "covariance_interval_s": 0.1,                   // >= 0 (0: every IMU epoch)
+//       "max_consecutive_rejections": 10,               // integer >= 0 (0: strict gate)
+//       "scale_factor_sigma_ppm": {"gyro": 0, "accel": 0},   // >= 0; > 0 adds the 3 states
+//       "feedback": "closed_loop"},                     // the only mode implemented
+//     "initial_state": {                                // optional with truth, required without
+//       "tie_on": {"latitude_deg": 40, "longitude_deg": 116, "height_m": 50,
+//                  "measured_depth_m": 0},              // MD optional (see InitialStateConfig)
+//       "attitude": {"inclination_deg": 0, "azimuth_deg": 0, "toolface_deg": 0}   // either
+//       | "alignment": {"static_s": 120, ...},          //   (AlignmentConfig: all keys)
+//       "velocity_m_s": [0, 0, 0]},                     // ENU, default 0 (not with alignment)
+//     "initial_error": {"position_m": [e, n, u], "velocity_m_s": [e, n, u],
+//                       "attitude_deg": [about E, N, U], "gyro_bias_deg_h": [x, y, z],
+//                       "accel_bias_m_s2": [x, y, z], "draw_seed": K},   // all optional
 //     "output": {"decimation": 100, "covariance": true, "nees": true}
 //   }
 // Three-axis values accept a number (all axes) or [x, y, z]. With "fit", the noise model is
 // fitted to the calibration record by the plugin's fitter (params then hold its fit options).
+//
+// The filter defaults are FilterOptions' member initialisers (filter/filter_options.hpp), the
+// one place they are written; the numbers above are those defaults in the config's units.
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -34,6 +51,7 @@
 #include <string_view>
 #include <vector>
 
+#include "stochnav/filter/filter_options.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
 
 namespace stochnav::plugin {
@@ -83,23 +101,75 @@ struct NoiseSection {
   }
 };
 
-enum class FeedbackMode {
-  kClosedLoop,  ///< "closed_loop": estimated errors are fed back into the INS after each update
-  kOpenLoop,    ///< "open_loop": the INS runs free; the filter only estimates its errors
-};
-
-/// Initial 1-sigma uncertainties of the core error states (per axis).
-struct InitialSigma {
-  std::array<double, 3> position_m = {0.1, 0.1, 0.1};          ///< "position_m", ENU, >= 0
-  std::array<double, 3> velocity_m_s = {0.01, 0.01, 0.01};     ///< "velocity_m_s", ENU, >= 0
-  std::array<double, 3> attitude_deg = {0.05, 0.05, 0.5};      ///< "attitude_deg", n, >= 0
-  std::array<double, 3> accel_bias_m_s2 = {1e-3, 1e-3, 1e-3};  ///< "accel_bias_m_s2", b, >= 0
-  std::array<double, 3> gyro_bias_deg_h = {0.05, 0.05, 0.05};  ///< "gyro_bias_deg_h", b, >= 0
-};
-
+/// "filter": the navigator's options, parsed into FilterOptions (whose member initialisers are
+/// the defaults) from the config's units: initial_sigma attitude in deg, gyro bias in deg/h,
+/// scale factors in ppm. "feedback" accepts only "closed_loop" (open-loop estimation is not
+/// implemented; "open_loop" is rejected here, at validation).
 struct FilterConfig {
-  InitialSigma initial_sigma;                         ///< "initial_sigma"
-  FeedbackMode feedback = FeedbackMode::kClosedLoop;  ///< "feedback"
+  FilterOptions options;
+};
+
+/// "initial_state/tie_on": the known position where the run starts (and the survey's tie-on).
+struct TieOnConfig {
+  double latitude_deg = 0.0;                ///< "latitude_deg", required, [-90, 90]
+  double longitude_deg = 0.0;               ///< "longitude_deg", required
+  double height_m = 0.0;                    ///< "height_m", ellipsoidal, required
+  std::optional<double> measured_depth_m;   ///< "measured_depth_m" (m), optional: absent, the
+                                            ///< aid data's first measured_depth_m, else 0
+};
+
+/// "initial_state/attitude": a known attitude (deg; ins/mwd_attitude.hpp conventions).
+struct AttitudeConfig {
+  double inclination_deg = 0.0;  ///< "inclination_deg", required, [0, 180]
+  double azimuth_deg = 0.0;      ///< "azimuth_deg", required, from true north
+  double toolface_deg = 0.0;     ///< "toolface_deg", required
+};
+
+/// "initial_state/alignment": static alignment over the first static_s seconds of the IMU
+/// record (coarse levelling + gyrocompassing, then fine alignment: the filter with
+/// zero-velocity and known-position updates at 1 Hz). Navigation starts at the end of the span.
+/// The span must be static: the standard deviation, over the span's 1-s blocks, of the blocks'
+/// mean |omega| and mean |f| must not exceed the two spreads below. The defaults let a rocking
+/// but parked carrier align (the PSINS vehicle record spreads 101 deg/h and 0.002 m/s^2 over
+/// its first 300 s; a still FOG tool well under 1 deg/h) and refuse a tool that turns (a
+/// rotary table at 60 rpm spreads about 6e5 deg/h) or is carried.
+struct AlignmentConfig {
+  double static_s = 0.0;                       ///< "static_s" (s), required, > 0
+  double max_gyro_spread_deg_h = 360.0;        ///< "max_gyro_spread_deg_h" (0.1 deg/s), > 0
+  double max_accel_spread_m_s2 = 0.05;         ///< "max_accel_spread_m_s2", > 0
+  double zero_velocity_sigma_m_s = 0.01;       ///< "zero_velocity_sigma_m_s": ZUPT noise, > 0
+  double position_sigma_m = 0.1;               ///< "position_sigma_m": known-position noise, > 0
+  /// "attitude_sigma_deg": 1-sigma of the coarse attitude about E, N, U (deg), > 0. Default:
+  /// tilt from the accel bias sigma over g, heading from the gyro bias sigma over the
+  /// horizontal Earth rate (the coarse-alignment error budget), floored at 0.1 / 1 deg, the
+  /// heading capped at 30 deg.
+  std::optional<std::array<double, 3>> attitude_sigma_deg;
+};
+
+struct InitialStateConfig {
+  TieOnConfig tie_on;                        ///< "tie_on", required
+  std::optional<AttitudeConfig> attitude;    ///< "attitude" XOR "alignment"
+  std::optional<AlignmentConfig> alignment;
+  std::array<double, 3> velocity_m_s{};      ///< "velocity_m_s", ENU, default 0
+};
+
+/// "initial_error": an error put into the initial estimate on purpose, so that convergence and
+/// consistency are tested from a start away from truth. Applied to whichever initial state the
+/// run uses (truth's first row, initial_state, or the alignment's result).
+///   position, velocity: estimate - truth, ENU; attitude: the rotation phi (about E, N, U) with
+///   C_nb_estimate = (I - [phi x]) C_nb_true, the filter's own attitude-error convention.
+///   Biases: the filter's initial bias ESTIMATE is offset by this much from where it would
+///   otherwise start (zero, or the alignment's estimate). The true bias is unknown to the filter,
+///   so this is an error relative to the filter's default start, not to the true bias.
+/// With "draw_seed", an error drawn from N(0, sigma^2) with the filter's initial sigmas (after
+/// alignment, its sigmas) is added to the given ones, per component (xoshiro256**, seeded).
+struct InitialErrorConfig {
+  std::array<double, 3> position_m{};       ///< "position_m" (m), ENU
+  std::array<double, 3> velocity_m_s{};     ///< "velocity_m_s" (m/s), ENU
+  std::array<double, 3> attitude_deg{};     ///< "attitude_deg" (deg), about E, N, U
+  std::array<double, 3> gyro_bias_deg_h{};  ///< "gyro_bias_deg_h" (deg/h), body axes
+  std::array<double, 3> accel_bias_m_s2{};  ///< "accel_bias_m_s2" (m/s^2), body axes
+  std::optional<std::uint64_t> draw_seed;   ///< "draw_seed", integer >= 0
 };
 
 struct OutputConfig {
@@ -110,21 +180,40 @@ struct OutputConfig {
 
 struct RunConfig {
   std::filesystem::path config_dir;  ///< folder of the config file (relative paths, plugins)
-  DataConfig data;                   ///< "data", required
+  DataConfig data;                   ///< "data", required (or --data)
   NoiseSection noise;                ///< "noise", required
   std::vector<PluginConfig> aids;    ///< "aids", default []
   FilterConfig filter;               ///< "filter", default {}
+  std::optional<InitialStateConfig> initial_state;  ///< "initial_state"
+  std::optional<InitialErrorConfig> initial_error;  ///< "initial_error"
   OutputConfig output;               ///< "output", default {}
 };
 
 /// Validates a whole run config. `config_dir` resolves relative paths. Checks that the data
 /// files exist (ConfigError naming the pointer otherwise); plugin types and params are checked
-/// when the plugins are built (runtime.hpp), still before anything runs.
-RunConfig parse_run_config(const nlohmann::json& document, const std::filesystem::path& config_dir);
+/// when the plugins are built (runtime.hpp), still before anything runs. With `data`, the
+/// document's "data" section is ignored (may be absent) and `data` is used instead.
+RunConfig parse_run_config(const nlohmann::json& document, const std::filesystem::path& config_dir,
+                           const std::optional<DataConfig>& data = std::nullopt);
 
 /// Reads and validates a run config file. Throws InputError when it cannot be read or is not
 /// JSON (naming file, line and column), ConfigError when invalid.
-RunConfig read_run_config(const std::filesystem::path& file);
+RunConfig read_run_config(const std::filesystem::path& file,
+                          const std::optional<DataConfig>& data = std::nullopt);
+
+/// Throws ConfigError naming "/initial_state" when the config has neither truth (a truth file)
+/// nor "initial_state": a navigation run must start somewhere. run_navigation calls it first;
+/// a config that is only inspected (`stochnav plugins show`) needs no start.
+void check_run_start(const RunConfig& config);
+
+/// The data of a recording folder (`stochnav run --data DIR`): DIR/imu.csv required,
+/// DIR/aids.csv and DIR/truth.csv used when present; scenario_dir = DIR when it holds a
+/// scenario.json (a `simulate scenario` folder). Throws ConfigError
+/// "--data DIR: no imu.csv; ..." when DIR or its imu.csv is missing.
+DataConfig data_from_folder(const std::filesystem::path& dir);
+
+/// The "filter" section at `pointer` into FilterOptions (FilterConfig above).
+FilterConfig parse_filter_section(const nlohmann::json& json, const std::string& pointer);
 
 /// The "noise" section at `pointer` (e.g. "/noise", "/variants/2/noise" for compare).
 /// `default_record` is the record a "fit" without "record" uses.

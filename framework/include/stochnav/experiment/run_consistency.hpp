@@ -1,0 +1,83 @@
+#pragma once
+// Every run checks itself against its own uncertainty.
+//
+// With truth, at each scored (output) epoch: the share of epochs at which each error metric
+// (experiment/navigation_errors.hpp) lies inside the filter's 3-sigma of it, and the mean NEES of
+// the nine position / velocity / attitude error states (chi-square with 9 dof: mean 9 when the
+// filter is consistent). A metric inside its 3-sigma on fewer than kConsistentShare of the
+// epochs makes the run OPTIMISTIC: its covariance claims more than it delivers.
+//
+// With or without truth, per aid: the number of update attempts, the share rejected by the NIS
+// gate (or with a singular S), and the mean NIS of the accepted updates against its degrees of
+// freedom (the measurement size: a consistent filter's mean NIS equals it). An aid rejected
+// more than kRejectionWarningShare of the time is flagged: either it or the filter's noise model
+// is wrong.
+//
+// Costs a few additions per epoch; used by `stochnav run` (metrics.json) and reusable by compare.
+
+#include <array>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "stochnav/experiment/navigation_errors.hpp"
+#include "stochnav/filter/mwd_navigator.hpp"
+
+namespace stochnav {
+
+inline constexpr double kConsistentShare = 0.95;        ///< inside 3-sigma at least this often
+inline constexpr double kRejectionWarningShare = 0.05;  ///< an aid rejected more often is flagged
+
+/// Update statistics of one aid.
+struct AidStatistics {
+  std::string type;            ///< the aid's plugin type
+  int dof = 0;                 ///< measurement size
+  std::uint64_t attempts = 0;  ///< update attempts
+  std::uint64_t rejected = 0;  ///< gate rejections and singular S
+  double nis_sum = 0.0;        ///< sum of the accepted updates' NIS
+  double rejected_share() const {
+    return attempts > 0 ? static_cast<double>(rejected) / static_cast<double>(attempts) : 0.0;
+  }
+  /// Mean NIS of the accepted updates (NaN when there is none).
+  double nis_mean() const;
+};
+
+class RunConsistency final {
+ public:
+  /// `aid_types` and `aid_dofs`: type and measurement size of each aid, in the run's order.
+  RunConsistency(const std::vector<std::string>& aid_types, const std::vector<int>& aid_dofs);
+
+  /// One scored epoch: the errors, the filter's 1-sigma of each (NaN entries are skipped), and
+  /// the NEES of the nine pos/vel/att error states (NaN skipped).
+  void add_epoch(const std::array<double, kErrorMetricCount>& errors,
+                 const std::array<double, kErrorMetricCount>& sigma, double nees);
+  /// The update attempts of one step (MwdNavigator::innovations()).
+  void add_innovations(std::span<const InnovationRecord> records);
+
+  bool has_truth() const { return nees_count_ > 0 || scored_[0] > 0; }
+  /// Share of scored epochs with |error| <= 3 sigma (NaN when never scored).
+  double inside_3sigma(std::size_t metric) const;
+  double nees_mean() const;  ///< NaN when never scored
+  const std::vector<AidStatistics>& aids() const { return aids_; }
+
+  /// {"inside_3sigma": {metric: share}, "nees_mean": x, "nees_dof": 9}, or null without truth.
+  nlohmann::json consistency_json() const;
+  /// [{"type", "dof", "attempts", "rejected_share", "nis_mean"}] per aid.
+  nlohmann::json aids_json() const;
+  /// "consistency: ok" or "consistency: OPTIMISTIC (lat_err_m inside 3-sigma only 41 % of
+  /// epochs)" (the worst metric); empty without truth.
+  std::string consistency_line() const;
+  /// One warning line per aid rejected more than kRejectionWarningShare of the time.
+  std::vector<std::string> aid_warnings() const;
+
+ private:
+  std::array<std::uint64_t, kErrorMetricCount> scored_{};
+  std::array<std::uint64_t, kErrorMetricCount> inside_{};
+  double nees_sum_ = 0.0;
+  std::uint64_t nees_count_ = 0;
+  std::vector<AidStatistics> aids_;
+};
+
+}  // namespace stochnav

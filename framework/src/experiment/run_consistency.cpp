@@ -1,0 +1,113 @@
+#include "stochnav/experiment/run_consistency.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+namespace stochnav {
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nullptr; }
+}  // namespace
+
+double AidStatistics::nis_mean() const {
+  const std::uint64_t accepted = attempts - rejected;
+  return accepted > 0 ? nis_sum / static_cast<double>(accepted) : kNaN;
+}
+
+RunConsistency::RunConsistency(const std::vector<std::string>& aid_types,
+                               const std::vector<int>& aid_dofs) {
+  for (std::size_t i = 0; i < aid_types.size(); ++i) {
+    aids_.push_back({.type = aid_types[i], .dof = i < aid_dofs.size() ? aid_dofs[i] : 0});
+  }
+}
+
+void RunConsistency::add_epoch(const std::array<double, kErrorMetricCount>& errors,
+                               const std::array<double, kErrorMetricCount>& sigma, double nees) {
+  for (std::size_t i = 0; i < kErrorMetricCount; ++i) {
+    if (!std::isfinite(errors[i]) || !std::isfinite(sigma[i])) continue;
+    ++scored_[i];
+    if (std::abs(errors[i]) <= 3.0 * sigma[i]) ++inside_[i];
+  }
+  if (std::isfinite(nees)) {
+    nees_sum_ += nees;
+    ++nees_count_;
+  }
+}
+
+void RunConsistency::add_innovations(std::span<const InnovationRecord> records) {
+  for (const InnovationRecord& record : records) {
+    const auto index = static_cast<std::size_t>(record.aid_index);
+    if (index >= aids_.size()) continue;
+    AidStatistics& aid = aids_[index];
+    ++aid.attempts;
+    if (record.accepted && std::isfinite(record.nis)) {
+      aid.nis_sum += record.nis;
+    } else {
+      ++aid.rejected;
+    }
+  }
+}
+
+double RunConsistency::inside_3sigma(std::size_t metric) const {
+  return scored_[metric] > 0
+             ? static_cast<double>(inside_[metric]) / static_cast<double>(scored_[metric])
+             : kNaN;
+}
+
+double RunConsistency::nees_mean() const {
+  return nees_count_ > 0 ? nees_sum_ / static_cast<double>(nees_count_) : kNaN;
+}
+
+nlohmann::json RunConsistency::consistency_json() const {
+  if (!has_truth()) return nullptr;
+  nlohmann::json inside = nlohmann::json::object();
+  for (std::size_t i = 0; i < kErrorMetricCount; ++i) {
+    inside[std::string(kErrorMetricNames[i])] = number_or_null(inside_3sigma(i));
+  }
+  return {{"inside_3sigma", inside}, {"nees_mean", number_or_null(nees_mean())}, {"nees_dof", 9}};
+}
+
+nlohmann::json RunConsistency::aids_json() const {
+  nlohmann::json out = nlohmann::json::array();
+  for (const AidStatistics& aid : aids_) {
+    out.push_back({{"type", aid.type},
+                   {"dof", aid.dof},
+                   {"attempts", aid.attempts},
+                   {"rejected_share", aid.rejected_share()},
+                   {"nis_mean", number_or_null(aid.nis_mean())}});
+  }
+  return out;
+}
+
+std::string RunConsistency::consistency_line() const {
+  if (!has_truth()) return {};
+  std::size_t worst = kErrorMetricCount;
+  for (std::size_t i = 0; i < kErrorMetricCount; ++i) {
+    const double share = inside_3sigma(i);
+    if (!std::isfinite(share) || share >= kConsistentShare) continue;
+    if (worst == kErrorMetricCount || share < inside_3sigma(worst)) worst = i;
+  }
+  if (worst == kErrorMetricCount) {
+    return fmt::format("consistency: ok (NEES mean {:.3g}, 9 expected)", nees_mean());
+  }
+  return fmt::format("consistency: OPTIMISTIC ({} inside 3-sigma only {:.0f} % of epochs)",
+                     kErrorMetricNames[worst], 100.0 * inside_3sigma(worst));
+}
+
+std::vector<std::string> RunConsistency::aid_warnings() const {
+  std::vector<std::string> warnings;
+  for (std::size_t i = 0; i < aids_.size(); ++i) {
+    const AidStatistics& aid = aids_[i];
+    if (aid.rejected_share() > kRejectionWarningShare) {
+      warnings.push_back(fmt::format(
+          "warning: aid {} ({}) rejected in {:.0f} % of {} updates (mean NIS {:.3g}, {} "
+          "expected): the aid or the noise model does not match the data",
+          i, aid.type, 100.0 * aid.rejected_share(), aid.attempts, aid.nis_mean(), aid.dof));
+    }
+  }
+  return warnings;
+}
+
+}  // namespace stochnav

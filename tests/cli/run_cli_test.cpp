@@ -1,0 +1,249 @@
+// End-to-end `stochnav run`: a recording without truth started from "initial_state" (static
+// alignment), --data, a deliberate initial error that the filter removes, the self-consistency
+// report, and every kind of bad run input: exit code 2, one line, no output folder.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run_cli.hpp"
+#include "temp_dir.hpp"
+
+namespace stochnav {
+namespace {
+
+using testing::run_cli;
+using testing::TempDir;
+namespace fs = std::filesystem;
+
+std::string read(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A short drilling scenario (shipped config, shortened): 60 s static, then 1-m stands drilled
+// with 20-s connections (ZUPT flags in aids.csv).
+nlohmann::json short_drilling() {
+  std::ifstream in(std::string(STOCHNAV_SOURCE_DIR) + "/configs/scenarios/drilling_build_hold.json");
+  nlohmann::json config = nlohmann::json::parse(in);
+  config["drilling"]["duration_s"] = 240;
+  config["drilling"]["initial_static_s"] = 60;
+  config["drilling"]["stand_length_m"] = 1.0;
+  config["drilling"]["connection_s"] = 20;
+  config["drilling"]["rop_mph"] = 60;
+  config["drilling"]["vibration_episodes"] = nlohmann::json::array();
+  return config;
+}
+
+// A vibration table holding the tool still at 60 deg inclination for 120 s.
+nlohmann::json static_table() {
+  std::ifstream in(std::string(STOCHNAV_SOURCE_DIR) +
+                   "/configs/scenarios/paper_fixed_frequency.json");
+  nlohmann::json config = nlohmann::json::parse(in);
+  config["vibration_table"]["attitude"] = {
+      {"inclination_deg", 60}, {"toolface_deg", 30}, {"azimuth_deg", 100}};
+  config["vibration_table"]["phases"] = {{{"name", "static"}, {"duration_s", 120}, {"motion", "static"}}};
+  return config;
+}
+
+const nlohmann::json kNoise = {{"gyro", {{"plugin", "white"}, {"params", {{"N", 0.005}}}}},
+                               {"accel", {{"plugin", "white"}, {"params", {{"N", 0.03}}}}}};
+
+class RunCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempDir();
+    for (const auto& [name, config] :
+         {std::pair{"drilling", short_drilling()}, std::pair{"table", static_table()}}) {
+      const std::string path = dir_->write(std::string(name) + ".json", config.dump());
+      const auto result = run_cli(
+          "simulate scenario '" + path + "' --out '" + dir_->file(name) + "'", dir_->path());
+      if (result.exit_code != 0) {
+        setup_error_ = "simulate scenario " + std::string(name) + ": " + result.err;
+        return;
+      }
+    }
+    // A recording: the drilling run's IMU and aids, no truth.
+    fs::create_directories(dir_->path() / "recording");
+    for (const char* file : {"imu.csv", "aids.csv"}) {
+      fs::copy_file(dir_->path() / "drilling" / file, dir_->path() / "recording" / file);
+    }
+  }
+  // A failure in SetUpTestSuite would only skip the tests: fail each of them instead.
+  void SetUp() override { ASSERT_TRUE(setup_error_.empty()) << setup_error_; }
+
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+
+  // The no-truth config: alignment over the static start, then ZUPTs from the aid data.
+  static nlohmann::json recording_config() {
+    return {{"noise", kNoise},
+            {"aids", {{{"plugin", "zupt"}}}},
+            {"initial_state",
+             {{"tie_on",
+               {{"latitude_deg", 46.58}, {"longitude_deg", 124.87}, {"height_m", -300},
+                {"measured_depth_m", 450}}},
+              {"alignment", {{"static_s", 50}}}}},
+            {"output", {{"decimation", 10}}}};
+  }
+
+  static std::string write_config(const std::string& name, const nlohmann::json& config) {
+    return dir_->write(name, config.dump());
+  }
+
+  static TempDir* dir_;
+  static std::string setup_error_;
+};
+TempDir* RunCli::dir_ = nullptr;
+std::string RunCli::setup_error_;
+
+TEST_F(RunCli, RecordingWithoutTruthStartsFromTheAlignment) {
+  const std::string config = write_config("recording.json", recording_config());
+  const fs::path out = dir_->path() / "out_recording";
+  const auto result = run_cli("run '" + config + "' --out '" + out.string() + "' --data '" +
+                                  (dir_->path() / "recording").string() + "'",
+                              dir_->path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(result.err.empty()) << "short runs print no progress lines: " << result.err;
+  for (const char* file : {"nav.csv", "biases.csv", "innovations.csv", "survey.csv",
+                           "metrics.json"}) {
+    EXPECT_TRUE(fs::exists(out / file)) << file;
+  }
+  EXPECT_FALSE(fs::exists(out / "errors.csv"));
+  EXPECT_FALSE(fs::exists(out / "errors.png"));
+  const std::string survey = read(out / "survey.csv");
+  EXPECT_EQ(survey.substr(0, survey.find('\n')),
+            "t_s,md_m,inclination_deg,azimuth_deg,toolface_deg,tvd_m,north_m,east_m,"
+            "inclination_sigma_deg,azimuth_sigma_deg,north_sigma_m,east_sigma_m,tvd_sigma_m");
+  const auto metrics = nlohmann::json::parse(read(out / "metrics.json"));
+  EXPECT_TRUE(metrics["metrics"].is_null());
+  EXPECT_TRUE(metrics["consistency"].is_null());
+  ASSERT_EQ(metrics["aids"].size(), 1u);
+  EXPECT_EQ(metrics["aids"][0]["type"], "zupt");
+  EXPECT_EQ(metrics["aids"][0]["dof"], 3);
+  EXPECT_GE(metrics["aids"][0]["attempts"].get<int>(), 40);
+  // Navigation starts at the end of the alignment span.
+  EXPECT_NEAR(metrics["initial"]["t_s"].get<double>(), 50.0, 1e-6);
+  const std::string nav = read(out / "nav.csv");
+  EXPECT_EQ(nav.substr(nav.find('\n') + 1, 7), "50.100,");
+  // The aligned tool heading (vertical tool: azimuth + gyro toolface) against the truth's 60 deg.
+  const double heading = std::fmod(metrics["initial"]["azimuth_deg"].get<double>() +
+                                       metrics["initial"]["toolface_deg"].get<double>(),
+                                   360.0);
+  EXPECT_NEAR(heading, 60.0, 3.0 * metrics["initial"]["attitude_sigma_deg"][2].get<double>() + 0.5);
+  EXPECT_NE(result.out.find("no truth"), std::string::npos) << result.out;
+}
+
+TEST_F(RunCli, InitialErrorIsRemovedAndTheRunChecksItself) {
+  nlohmann::json config = {
+      {"data", {{"scenario", dir_->file("table")}}},
+      {"noise", kNoise},
+      {"aids",
+       {{{"plugin", "static_position"},
+         {"params", {{"sigma_position_m", 0.01}, {"sigma_velocity_mps", 0.001}}}}}},
+      {"filter", {{"initial_sigma", {{"attitude_deg", {0.3, 0.3, 1.0}}, {"gyro_bias_deg_h", 1}}}}},
+      {"initial_error", {{"attitude_deg", {0.3, -0.3, 0.0}}}},
+      {"output", {{"decimation", 10}}}};
+  const fs::path out = dir_->path() / "out_error";
+  const auto result =
+      run_cli("run '" + write_config("error.json", config) + "' --out '" + out.string() + "'",
+              dir_->path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  // errors.csv: t, 9 errors, 9 sigmas, nees. Inclination error is column 4, its sigma 13.
+  std::ifstream errors(out / "errors.csv");
+  std::string line;
+  std::getline(errors, line);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(errors, line)) {
+    std::vector<double> row;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  ASSERT_GT(rows.size(), 100u);
+  constexpr int kInclination = 4, kInclinationSigma = 13;
+  EXPECT_GT(std::abs(rows.front()[kInclination]), 0.1) << "the run starts away from truth";
+  const auto& last = rows.back();
+  EXPECT_LT(std::abs(last[kInclination]), 3.0 * last[kInclinationSigma]);
+  EXPECT_LT(std::abs(last[kInclination]), 0.05 * std::abs(rows.front()[kInclination]));
+  const auto metrics = nlohmann::json::parse(read(out / "metrics.json"));
+  ASSERT_TRUE(metrics["consistency"].is_object());
+  EXPECT_GT(metrics["consistency"]["inside_3sigma"]["inclination_err_deg"].get<double>(), 0.9);
+  EXPECT_GT(metrics["consistency"]["nees_mean"].get<double>(), 0.0);
+  EXPECT_NE(result.out.find("consistency: "), std::string::npos) << result.out;
+
+  // draw_seed: the same seed draws the same start, another seed another.
+  config["initial_error"] = {{"draw_seed", 3}};
+  const auto nav_of = [&](const std::string& name) {
+    const auto run = run_cli("run '" + write_config(name + ".json", config) + "' --out '" +
+                                 dir_->file(name) + "' --no-plot",
+                             dir_->path());
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    return read(dir_->path() / name / "nav.csv");
+  };
+  const std::string a = nav_of("seed_a");
+  EXPECT_EQ(a, nav_of("seed_b"));
+  config["initial_error"]["draw_seed"] = 4;
+  EXPECT_NE(a, nav_of("seed_c"));
+}
+
+struct BadRunCase {
+  std::string name;
+  std::string config_patch;  // JSON merge-patched into the recording config
+  std::string data;          // --data folder under the test folder ("" for none)
+  std::string expected;      // must appear in the one-line message
+};
+void PrintTo(const BadRunCase& c, std::ostream* os) { *os << c.name; }
+
+class BadRun : public RunCli, public ::testing::WithParamInterface<BadRunCase> {};
+
+TEST_P(BadRun, ExitCodeTwoOneLineNoOutput) {
+  const BadRunCase& c = GetParam();
+  nlohmann::json config = recording_config();
+  config["data"] = {{"imu", dir_->file("recording/imu.csv")}};
+  config.merge_patch(nlohmann::json::parse(c.config_patch));
+  const std::string path = write_config("bad_" + c.name + ".json", config);
+  const fs::path out = dir_->path() / ("out_bad_" + c.name);
+  std::string arguments = "run '" + path + "' --out '" + out.string() + "'";
+  if (!c.data.empty()) {
+    fs::create_directories(dir_->path() / c.data);
+    arguments += " --data '" + dir_->file(c.data) + "'";
+  }
+  const auto result = run_cli(arguments, dir_->path());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  ASSERT_FALSE(result.err.empty());
+  EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << "one line: " << result.err;
+  EXPECT_NE(result.err.find(c.expected), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(out)) << "a failed run left " << out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BadRun,
+    ::testing::Values(
+        BadRunCase{"no_truth_no_initial_state", R"({"initial_state": null})", "",
+                   "/initial_state: missing"},
+        BadRunCase{"alignment_not_static", R"({"initial_state": {"alignment": {"static_s": 120}}})",
+                   "", "/initial_state/alignment/static_s: the first 120 s are not static"},
+        BadRunCase{"data_without_imu", "{}", "empty_recording", "no imu.csv"},
+        BadRunCase{"negative_interval", R"({"filter": {"covariance_interval_s": -1}})", "",
+                   "/filter/covariance_interval_s"},
+        BadRunCase{"fractional_lockout", R"({"filter": {"max_consecutive_rejections": 2.5}})", "",
+                   "/filter/max_consecutive_rejections: found 2.5; expected an integer >= 0"},
+        BadRunCase{"unknown_filter_key", R"({"filter": {"gate_lockout": 3}})", "",
+                   "/filter/gate_lockout: unknown key"},
+        BadRunCase{"open_loop", R"({"filter": {"feedback": "open_loop"}})", "",
+                   "/filter/feedback: \"open_loop\" is not implemented"}),
+    [](const ::testing::TestParamInfo<BadRunCase>& case_info) { return case_info.param.name; });
+
+}  // namespace
+}  // namespace stochnav
