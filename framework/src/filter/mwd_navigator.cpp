@@ -313,6 +313,16 @@ void MwdNavigator::feed_back(const Eigen::VectorXd& correction) {
   for (ScaleFactorBlock* block : {&gyro_scale_, &accel_scale_}) {
     if (block->offset >= 0) block->estimate -= correction.segment<3>(block->offset);
   }
+  // The open intervals of the aids hold the velocity history before this correction; what the
+  // correction says about that history is its image through each interval's mean-error map
+  // (plugin::InsInterval). Without this shift an aid measuring later at the same epoch (ROP after
+  // the pipe tally) would see the corrected error again and apply it twice, every epoch.
+  for (AidIntervalSums& sums : aid_intervals_) {
+    if (!(sums.duration_s > 0.0)) continue;
+    sums.v_n_dt -= sums.duration_s * correction.segment<3>(cs::kVelocity) -
+                   skew(sums.weighted_f_n_dt) * correction.segment<3>(cs::kAttitude) +
+                   sums.weighted_c_nb_dt * correction.segment<3>(cs::kAccelBias);
+  }
   for (AugmentedGroup* group : {&gyro_augmented_, &accel_augmented_}) {
     if (group->size > 0) group->estimate -= correction.segment(group->offset, group->size);
   }
