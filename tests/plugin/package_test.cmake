@@ -1,8 +1,8 @@
 # install -> relocate -> out-of-tree build -> load -> run, against the installed package only.
 #   cmake -DBUILD_DIR=<stochnav build> -DSOURCE_DIR=<stochnav source> -DWORK_DIR=<scratch>
-#         [-DGENERATOR=Ninja] -P package_test.cmake
+#         -DAPI_VERSION=<plugin API version> [-DGENERATOR=Ninja] -P package_test.cmake
 cmake_minimum_required(VERSION 3.25)
-foreach(var BUILD_DIR SOURCE_DIR WORK_DIR)
+foreach(var BUILD_DIR SOURCE_DIR WORK_DIR API_VERSION)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "package_test: -D${var}= missing")
   endif()
@@ -45,7 +45,7 @@ set(stochnav "${prefix}/bin/stochnav")
 set(clean_env "--unset=STOCHNAV_PLUGIN_PATH")
 
 run(COMMAND "${stochnav}" plugins list ENV ${clean_env} OUTPUT listing)
-expect_match("${listing}" "noise +white +1 +yes +${prefix}/lib[^ ]*/stochnav/plugins/stochnav_noise_white.so")
+expect_match("${listing}" "noise +white +${API_VERSION} +yes +${prefix}/lib[^ ]*/stochnav/plugins/stochnav_noise_white.so")
 expect_match("${listing}" "gauss_markov")
 
 foreach(example custom_noise_plugin embed_runtime)
@@ -56,7 +56,7 @@ endforeach()
 
 set(plugin "${WORK_DIR}/custom_noise_plugin/stochnav_second_order_gauss_markov.so")
 run(COMMAND "${stochnav}" plugins check "${plugin}" ENV ${clean_env} OUTPUT checked)
-expect_match("${checked}" "noise +second_order_gauss_markov +1 +no")
+expect_match("${checked}" "noise +second_order_gauss_markov +${API_VERSION} +no")
 
 # Found through STOCHNAV_PLUGIN_PATH, and through the config's folder.
 run(COMMAND "${stochnav}" plugins list ENV "STOCHNAV_PLUGIN_PATH=${WORK_DIR}/custom_noise_plugin"

@@ -15,6 +15,7 @@ void add_compare_command(CLI::App& app) {
     std::string experiment;
     std::string out;
     std::vector<std::uint64_t> seeds;
+    bool full_scenario = false;
   };
   auto arguments = std::make_shared<Arguments>();
   CLI::App* command = app.add_subcommand(
@@ -24,8 +25,12 @@ void add_compare_command(CLI::App& app) {
   command->add_option("--out", arguments->out, "Output folder")->required();
   command->add_option("--seeds", arguments->seeds,
                       "Override the experiment's seeds (simulated data only), e.g. --seeds 1 2 3");
+  command->add_flag("--full-scenario", arguments->full_scenario,
+                    "Simulate the scenario as its config says, ignoring the experiment's "
+                    "data/scenario_overrides (e.g. the whole 36 h drilling run)");
   command->callback([arguments] {
     ExperimentConfig config = read_experiment_config(arguments->experiment);
+    if (arguments->full_scenario) config.scenario_overrides = nlohmann::json::object();
     if (!arguments->seeds.empty()) {
       if (!config.scenario_config) {
         throw ConfigError("--seeds: the experiment's data is not simulated; drop --seeds");

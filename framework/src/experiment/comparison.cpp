@@ -107,6 +107,20 @@ const VariantResults& baseline_of(const ComparisonResult& result) {
   return result.variants.front();
 }
 
+// Sets each value of `overrides` (JSON pointer -> value) in the scenario document; a pointer
+// must name an existing value, so that a typo cannot silently add an ignored key.
+void apply_scenario_overrides(const nlohmann::json& overrides, const fs::path& scenario_file,
+                              nlohmann::json& scenario) {
+  for (const auto& [text, value] : overrides.items()) {
+    const nlohmann::json::json_pointer pointer(text);
+    if (!scenario.contains(pointer)) {
+      throw ConfigError("/data/scenario_overrides: " + scenario_file.string() + " has no value at " +
+                        text + "; give the pointer of an existing key of the scenario config");
+    }
+    scenario[pointer] = value;
+  }
+}
+
 }  // namespace
 
 ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& out_dir,
@@ -132,6 +146,7 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
       throw InputError(config.scenario_config->string() + ": not valid JSON (" + error.what() +
                        ")");
     }
+    apply_scenario_overrides(config.scenario_overrides, *config.scenario_config, scenario_json);
     ScenarioConfig scenario;
     try {
       scenario = scenario_config_from_json(scenario_json, config.scenario_config->string());

@@ -102,7 +102,7 @@ ExperimentConfig parse_experiment(const nlohmann::json& document, const fs::path
   const auto& data = member(document, "", "data", nlohmann::json::value_t::object,
                             "an object: {\"scenario_config\", \"seeds\"} or a run config's data");
   if (data.contains("scenario_config")) {
-    reject_unknown_keys(data, "/data", {"scenario_config", "seeds"});
+    reject_unknown_keys(data, "/data", {"scenario_config", "seeds", "scenario_overrides"});
     const fs::path path =
         config.config_dir / member(data, "/data", "scenario_config",
                                    nlohmann::json::value_t::string, "a scenario config file")
@@ -117,6 +117,18 @@ ExperimentConfig parse_experiment(const nlohmann::json& document, const fs::path
       throw ConfigError("/data/seeds: missing; expected a count >= 1 or an array of seeds");
     }
     config.seeds = parse_seeds(data.at("seeds"));
+    if (data.contains("scenario_overrides")) {
+      config.scenario_overrides = data.at("scenario_overrides");
+      if (!config.scenario_overrides.is_object()) {
+        throw ConfigError("/data/scenario_overrides: expected an object {JSON pointer: value}");
+      }
+      for (const auto& [pointer, value] : config.scenario_overrides.items()) {
+        if (pointer.empty() || pointer.front() != '/') {
+          throw ConfigError("/data/scenario_overrides: key '" + pointer +
+                            "' is not a JSON pointer; expected e.g. \"/drilling/duration_s\"");
+        }
+      }
+    }
   } else {
     config.fixed_data = data;
     config.seeds = {0};

@@ -1,6 +1,7 @@
 #include "stochnav/filter/mwd_navigator.hpp"
 
 #include <cmath>
+#include <string_view>
 #include <utility>
 
 #include "stochnav/ins/earth.hpp"
@@ -19,6 +20,12 @@ Eigen::MatrixXd initial_covariance(const plugin::StateLayout& layout, const Filt
   p.diagonal().segment<3>(cs::kAttitude) = o.attitude_sigma_rad.array().square().matrix();
   p.diagonal().segment<3>(cs::kAccelBias) = o.accel_bias_sigma_mps2.array().square().matrix();
   p.diagonal().segment<3>(cs::kGyroBias) = o.gyro_bias_sigma_radps.array().square().matrix();
+  for (auto [name, sigma] : {std::pair{"gyro_scale_factor", &o.gyro_scale_factor_sigma},
+                             std::pair{"accel_scale_factor", &o.accel_scale_factor_sigma}}) {
+    if (const plugin::StateBlock* block = layout.find(name)) {
+      p.diagonal().segment<3>(block->offset) = sigma->array().square().matrix();
+    }
+  }
   for (plugin::NoiseModelPlugin* model : {&gyro, &accel}) {
     const int size = model->augmented_size();
     if (size == 0) continue;
@@ -26,6 +33,29 @@ Eigen::MatrixXd initial_covariance(const plugin::StateLayout& layout, const Filt
     model->augmented_initial_covariance(p.block(offset, offset, size, size));
   }
   return p;
+}
+
+plugin::SensorErrorStates sensor_error_states(const FilterOptions& options) {
+  return {.gyro_scale_factor = (options.gyro_scale_factor_sigma.array() > 0.0).any(),
+          .accel_scale_factor = (options.accel_scale_factor_sigma.array() > 0.0).any()};
+}
+
+int block_offset(const plugin::StateLayout& layout, std::string_view name) {
+  const plugin::StateBlock* block = layout.find(name);
+  return block == nullptr ? -1 : block->offset;
+}
+
+// The increment corrected for the estimated bias and scale factor: the sensor reads
+// (1 + s) truth + b, so truth = (reading - b) / (1 + s) per axis.
+Eigen::Vector3d compensated_increment(const Eigen::Vector3d& raw, const Eigen::Vector3d& bias,
+                                      const Eigen::Vector3d& scale_factor, double dt_s) {
+  return ((raw - bias * dt_s).array() / (1.0 + scale_factor.array())).matrix();
+}
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
 }
 
 }  // namespace
@@ -37,7 +67,7 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
       accel_noise_(accel_noise),
       aids_(std::move(aids)),
       options_(options),
-      layout_(plugin::assign_state_layout(gyro_noise, accel_noise)),
+      layout_(plugin::assign_state_layout(gyro_noise, accel_noise, sensor_error_states(options))),
       ins_(initial),
       filter_(initial_covariance(layout_, options, gyro_noise, accel_noise)),
       interval_start_s_(initial.t_s),
@@ -53,6 +83,13 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
     group->q_d = Eigen::MatrixXd::Zero(group->size, group->size);
     if (group->size > 0) model->augmented_sensor_map(group->sensor_map);
   }
+  gyro_bias_b_ = options.initial_gyro_bias_radps;
+  accel_bias_b_ = options.initial_accel_bias_mps2;
+  gyro_scale_.offset = block_offset(layout_, "gyro_scale_factor");
+  accel_scale_.offset = block_offset(layout_, "accel_scale_factor");
+  head_size_ = cs::kSize + (gyro_scale_.offset >= 0 ? 3 : 0) + (accel_scale_.offset >= 0 ? 3 : 0);
+  head_f_ = Eigen::MatrixXd::Zero(head_size_, head_size_);
+  aid_intervals_.assign(aids_.size(), AidIntervalSums{});
   const int n = layout_.size();
   phi_ = Eigen::MatrixXd::Identity(n, n);
   q_d_ = Eigen::MatrixXd::Zero(n, n);
@@ -88,8 +125,13 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   const double dt = raw.dt_s;
   const double t_start = raw.t_s - dt;
   ImuIncrement compensated = raw;
-  compensated.delta_theta_b -= (gyro_bias_b_ + sensor_correction(gyro_augmented_)) * dt;
-  compensated.delta_v_b -= (accel_bias_b_ + sensor_correction(accel_augmented_)) * dt;
+  compensated.delta_theta_b =
+      compensated_increment(raw.delta_theta_b, gyro_bias_b_ + sensor_correction(gyro_augmented_),
+                            gyro_scale_.estimate, dt);
+  compensated.delta_v_b =
+      compensated_increment(raw.delta_v_b, accel_bias_b_ + sensor_correction(accel_augmented_),
+                            accel_scale_.estimate, dt);
+  const Eigen::Vector3d v_start = ins_.state().v_n;
   ins_.update(compensated);
 
   const Eigen::Matrix3d c_end = ins_.state().q_nb.toRotationMatrix();
@@ -98,10 +140,17 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   fast_.interval_s += dt;
   fast_.c_nb_dt += c_mid * dt;
   fast_.f_n_dt += c_mid * compensated.delta_v_b;
+  if (gyro_scale_.offset >= 0) fast_.gyro_scale_dt += c_mid * compensated.delta_theta_b.asDiagonal();
+  if (accel_scale_.offset >= 0) fast_.accel_scale_dt += c_mid * compensated.delta_v_b.asDiagonal();
   accumulate_noise(gyro_noise_, t_start, dt, c_mid, gyro_white_cache_, gyro_cached_dt_,
                    attitude_noise_);
+  const Eigen::Matrix3d velocity_noise_before = velocity_noise_;
   accumulate_noise(accel_noise_, t_start, dt, c_mid, accel_white_cache_, accel_cached_dt_,
                    velocity_noise_);
+  if (!aids_.empty()) {
+    accumulate_aid_intervals(v_start, c_mid, c_mid * compensated.delta_v_b,
+                             velocity_noise_ - velocity_noise_before, dt);
+  }
 
   bool measurement_due = false;
   for (const plugin::AidPlugin* aid : aids_) measurement_due |= aid->has_measurement(raw.t_s);
@@ -115,12 +164,54 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   }
 }
 
+void MwdNavigator::accumulate_aid_intervals(const Eigen::Vector3d& v_start,
+                                            const Eigen::Matrix3d& c_mid,
+                                            const Eigen::Vector3d& f_n_dt,
+                                            const Eigen::Matrix3d& noise_dt, double dt_s) {
+  const Eigen::Vector3d v_dt = 0.5 * dt_s * (v_start + ins_.state().v_n);
+  for (AidIntervalSums& sums : aid_intervals_) {
+    const double weight = sums.duration_s + 0.5 * dt_s;  // s - t_prev at the epoch's midpoint
+    sums.duration_s += dt_s;
+    sums.v_n_dt += v_dt;
+    sums.weighted_f_n_dt += weight * f_n_dt;
+    sums.weighted_c_nb_dt += (weight * dt_s) * c_mid;
+    sums.weighted_noise += (weight * weight) * noise_dt;
+  }
+}
+
+plugin::InsInterval MwdNavigator::interval_of(const AidIntervalSums& sums) {
+  plugin::InsInterval interval;
+  if (!(sums.duration_s > 0.0)) return interval;
+  const double t = sums.duration_s;
+  interval.duration_s = t;
+  interval.mean_v_n = sums.v_n_dt / t;
+  auto& map = interval.mean_velocity_error_map;
+  map.block<3, 3>(0, cs::kVelocity).setIdentity();
+  map.block<3, 3>(0, cs::kAttitude) = -skew(sums.weighted_f_n_dt / t);
+  map.block<3, 3>(0, cs::kAccelBias) = sums.weighted_c_nb_dt / t;
+  interval.mean_velocity_noise_covariance = sums.weighted_noise / (t * t);
+  return interval;
+}
+
 void MwdNavigator::propagate_covariance() {
   const double interval = fast_.interval_s;
   if (interval <= 0.0) return;
   const CoreMatrix f_t = integrated_core_dynamics(ins_.state(), fast_);
   phi_.setIdentity();
-  phi_.topLeftCorner<15, 15>() += f_t + 0.5 * f_t * f_t;
+  if (head_size_ == cs::kSize) {
+    phi_.topLeftCorner<15, 15>() += f_t + 0.5 * f_t * f_t;
+  } else {
+    // The scale-factor columns couple into attitude (gyro) and velocity (accel) like the biases.
+    head_f_.setZero();
+    head_f_.topLeftCorner<15, 15>() = f_t;
+    if (gyro_scale_.offset >= 0) {
+      head_f_.block<3, 3>(cs::kAttitude, gyro_scale_.offset) = fast_.gyro_scale_dt;
+    }
+    if (accel_scale_.offset >= 0) {
+      head_f_.block<3, 3>(cs::kVelocity, accel_scale_.offset) = -fast_.accel_scale_dt;
+    }
+    phi_.topLeftCorner(head_size_, head_size_) += head_f_ + 0.5 * head_f_ * head_f_;
+  }
   q_d_.setZero();
   q_d_.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_;
   q_d_.block<3, 3>(cs::kVelocity, cs::kVelocity) = velocity_noise_;
@@ -150,11 +241,13 @@ void MwdNavigator::propagate_covariance() {
 
 void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
                               const Eigen::Vector3d& f_ib_b) {
-  const plugin::ImuSample imu{.t_s = t_s, .omega_ib_b = omega_ib_b, .f_ib_b = f_ib_b};
+  plugin::ImuSample imu{.t_s = t_s, .omega_ib_b = omega_ib_b, .f_ib_b = f_ib_b};
   const int n = layout_.size();
   for (std::size_t index = 0; index < aids_.size(); ++index) {
     plugin::AidPlugin& aid = *aids_[index];
     if (!aid.has_measurement(t_s)) continue;
+    imu.interval = interval_of(aid_intervals_[index]);
+    aid_intervals_[index] = AidIntervalSums{};
     const int m = aid.measurement_size();
     residual_.resize(m);
     h_core_.resize(m, cs::kSize);
@@ -217,6 +310,9 @@ void MwdNavigator::feed_back(const Eigen::VectorXd& correction) {
   c_nb_ = state.q_nb.toRotationMatrix();
   accel_bias_b_ -= correction.segment<3>(cs::kAccelBias);
   gyro_bias_b_ -= correction.segment<3>(cs::kGyroBias);
+  for (ScaleFactorBlock* block : {&gyro_scale_, &accel_scale_}) {
+    if (block->offset >= 0) block->estimate -= correction.segment<3>(block->offset);
+  }
   for (AugmentedGroup* group : {&gyro_augmented_, &accel_augmented_}) {
     if (group->size > 0) group->estimate -= correction.segment(group->offset, group->size);
   }

@@ -32,11 +32,14 @@ const StateBlock* StateLayout::find(std::string_view name) const {
   return nullptr;
 }
 
-StateLayout assign_state_layout(NoiseModelPlugin& gyro, NoiseModelPlugin& accel) {
+StateLayout assign_state_layout(NoiseModelPlugin& gyro, NoiseModelPlugin& accel,
+                                const SensorErrorStates& sensor_errors) {
   if (gyro.group() != SensorGroup::kGyro || accel.group() != SensorGroup::kAccel) {
     throw std::invalid_argument("assign_state_layout: models given for the wrong sensor groups");
   }
   StateLayout layout;
+  if (sensor_errors.gyro_scale_factor) layout.add_block("gyro_scale_factor", 3);
+  if (sensor_errors.accel_scale_factor) layout.add_block("accel_scale_factor", 3);
   const auto add = [&layout](NoiseModelPlugin& model) {
     const int n = model.augmented_size();
     const int offset = layout.add_block(

@@ -1,22 +1,33 @@
 // Aid plugin "pipe_length": the measured depth (MD) from the drill-pipe tally. Consecutive
-// tally readings give the distance travelled along the hole over [t_prev, t]; divided by the
-// interval it is a measurement of the mean velocity along the tool axis, compared with the
-// INS velocity projected on the tool axis u_n = C_nb (0, 0, 1):
-//   z = u_n^T v_n - (MD_k - MD_k-1) / (t_k - t_k-1)
-//   H: d z / d dv_n = u_n^T,  d z / d phi = -(u_n x v_n)^T ... = (v_n x u_n)^T
-//   R = ((sigma_scale dMD)^2 + 2 sigma_random^2) / dt^2
-// where the depth error model is MD_measured = (1 + s) MD + e, s ~ N(0, sigma_scale^2) per
-// stand, e ~ N(0, sigma_random^2) per reading. Successive differences share a reading, so their
-// errors are negatively correlated (-1/2); the filter treats them as independent, which
-// overstates the information of the tally by at most a factor of two over long spans.
-// The first row has no predecessor and gives no measurement.
+// tally readings k-1, k give the distance travelled along the hole over [t_k-1, t_k]; it is
+// compared with the INS's distance along the tool axis over the same interval: the mean ENU
+// velocity (plugin::InsInterval; the INS displacement over the interval divided by it) on the
+// tool axis u_n = C_nb z_b at the epoch. Not the instantaneous velocity: under axial vibration
+// that oscillates by up to A / (2 pi f), and aid epochs at whole seconds sample whole-hertz
+// vibration at the same phase every time.
+//   z = u_n . mean_v_n - (MD_k - MD_k-1) / T,            T = t_k - t_k-1
+//   H = u_n^T mean_velocity_error_map + [0, 0, (mean_v_n x u_n)^T, 0, 0]
+//       (InsInterval; C_nb_est = (I - [phi x]) C_nb)
+//   R = u_n^T mean_velocity_noise_covariance u_n
+//       + ((sigma_scale dMD)^2 + 2 sigma_random^2 + 2 sigma_displacement^2) / T^2
+// where the depth error model is MD_measured = (1 + s) MD + e, s ~ N(0, sigma_scale^2),
+// e ~ N(0, sigma_random^2) per reading, and sigma_displacement is the tool's axial displacement
+// against the surface reading (string stretch, axial oscillation). Successive differences share
+// a reading, so their errors are negatively correlated (-1/2); the filter treats them as
+// independent, which understates the tally's information over long spans (conservative).
+// A row gives a measurement only when the previous row was this aid's previous measurement
+// epoch (the interval means then cover exactly [t_k-1, t_k]); the first row gives none.
 //
 // params:
-//   "sigma_scale"     relative depth scale error, >= 0, default 1e-3
-//   "sigma_random_m"  random error per reading (m), > 0, default 0.02
+//   "sigma_scale"           relative depth scale error, >= 0, default 1e-3
+//   "sigma_random_m"        random error per reading (m), > 0, default 0.05
+//   "sigma_displacement_m"  axial displacement of the tool against the surface (m), >= 0,
+//                           default 0
 //   gate keys: see plugin/aid_plugin.hpp (read_nis_gate)
 
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/aid_schedule.hpp"
@@ -30,7 +41,8 @@ using stochnav::plugin::Bound;
 
 struct PipeLengthParams {
   double sigma_scale = 1e-3;
-  double sigma_random_m = 0.02;
+  double sigma_random_m = 0.05;
+  double sigma_displacement_m = 0.0;
 };
 
 class PipeLengthAid final : public stochnav::plugin::AidPlugin {
@@ -46,33 +58,41 @@ class PipeLengthAid final : public stochnav::plugin::AidPlugin {
   std::string_view type() const override { return "pipe_length"; }
   int measurement_size() const override { return 1; }
 
-  bool has_measurement(double t_s) const override {
-    const auto row = schedule_.row_at(t_s);
-    return row && *row > 0;
-  }
+  // Every row is a measurement epoch (so that the interval of row k starts at row k-1), though
+  // the first gives no measurement.
+  bool has_measurement(double t_s) const override { return schedule_.due(t_s); }
 
-  bool measure(double t_s, const stochnav::NavState& state, const stochnav::plugin::ImuSample&,
+  bool measure(double t_s, const stochnav::NavState& state,
+               const stochnav::plugin::ImuSample& imu,
                Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
                Eigen::Ref<Eigen::MatrixXd> r) const override {
     const auto row = schedule_.row_at(t_s);
     if (!row || *row == 0) return false;
     const double dt = times_s_[*row] - times_s_[*row - 1];
-    if (!(dt > 0.0)) return false;
+    const stochnav::plugin::InsInterval& interval = imu.interval;
+    if (!(dt > 0.0) ||
+        std::abs(interval.duration_s - dt) > stochnav::plugin::kEpochMatchTolerance_s) {
+      return false;
+    }
     const double depth_change = depth_m_[*row] - depth_m_[*row - 1];
     const Eigen::Vector3d axis_n = state.q_nb * Eigen::Vector3d::UnitZ();
-    residual(0) = axis_n.dot(state.v_n) - depth_change / dt;
-    h.setZero();
-    h.block<1, 3>(0, cs::kVelocity) = axis_n.transpose();
-    h.block<1, 3>(0, cs::kAttitude) = state.v_n.cross(axis_n).transpose();
+    residual(0) = axis_n.dot(interval.mean_v_n) - depth_change / dt;
+    h = axis_n.transpose() * interval.mean_velocity_error_map;
+    h.block<1, 3>(0, cs::kAttitude) += interval.mean_v_n.cross(axis_n).transpose();
     const double scale_part = params_.sigma_scale * depth_change;
-    r(0, 0) = (scale_part * scale_part + 2.0 * params_.sigma_random_m * params_.sigma_random_m) /
+    r(0, 0) = axis_n.dot(interval.mean_velocity_noise_covariance * axis_n) +
+              (scale_part * scale_part +
+               2.0 * params_.sigma_random_m * params_.sigma_random_m +
+               2.0 * params_.sigma_displacement_m * params_.sigma_displacement_m) /
               (dt * dt);
     return true;
   }
 
   std::string describe() const override {
-    return fmt::format("pipe_length: depth tally, scale sigma {}, random sigma {} m",
-                       params_.sigma_scale, params_.sigma_random_m);
+    return fmt::format(
+        "pipe_length: depth tally against the mean tool-axis velocity, scale sigma {}, random "
+        "sigma {} m, axial displacement sigma {} m",
+        params_.sigma_scale, params_.sigma_random_m, params_.sigma_displacement_m);
   }
 
  private:
@@ -89,6 +109,9 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_pipe_length(
   params.sigma_scale = reader.number_or("sigma_scale", params.sigma_scale, Bound::kNonNegative, "");
   params.sigma_random_m =
       reader.number_or("sigma_random_m", params.sigma_random_m, Bound::kPositive, "m");
+  params.sigma_displacement_m = reader.number_or("sigma_displacement_m",
+                                                 params.sigma_displacement_m,
+                                                 Bound::kNonNegative, "m");
   const auto gate = stochnav::plugin::read_nis_gate(reader, 1);
   reader.finish();
   return std::make_unique<PipeLengthAid>(

@@ -1,16 +1,34 @@
-// Aid plugin "rop": rate of penetration as the velocity along the tool axis, with the lateral
-// constraint (the tool moves along its axis only: a non-holonomic constraint of the drill
-// string in the hole). At every row of the aid data (column "rop_mph", m/h):
-//   v_b = C_bn v_n (m/s, body axes);  z = v_b - (0, 0, rop / 3600)
-//   H: d z / d dv_n = C_bn,  d z / d phi = -C_bn [v_n x]   (C_nb_est = (I - [phi x]) C_nb)
-//   R = diag(sigma_lateral^2, sigma_lateral^2, sigma_rop^2)
+// Aid plugin "rop": rate of penetration as the mean velocity along the tool axis, with the
+// lateral constraint (the tool moves along its axis only: a non-holonomic constraint of the
+// drill string in the hole). The rig's ROP is a surface rate averaged over seconds, so it is
+// compared with the INS's MEAN velocity over the interval since the previous ROP epoch
+// (plugin::InsInterval), not with the instantaneous velocity: under axial vibration the
+// instantaneous velocity oscillates by up to A / (2 pi f) (0.6 m/s at 3 g, 8 Hz) and 1-Hz
+// epochs sample the same phase of whole-hertz vibration every time, which a filter fed
+// instantaneous velocities turns into a steady velocity error. The mean ENU velocity (free of
+// the oscillation) is projected on the body axes with the attitude at the epoch. At every row
+// k of the aid data (column "rop_mph", m/h) after the first epoch of the run:
+//   rop_k  = (ROP_k-1 + ROP_k) / 2 when row k-1 is at the interval's start (trapezoid of the
+//            rate over the interval), else ROP_k
+//   z      = C_bn mean_v_n - (0, 0, rop_k / 3600)           (m/s, body axes)
+//   H      = C_bn mean_velocity_error_map - [0, 0, C_bn [mean_v_n x], 0, 0]
+//            (InsInterval; C_nb_est = (I - [phi x]) C_nb)
+//   R      = C_bn mean_velocity_noise_covariance C_bn^T
+//            + diag(sigma_lateral^2, sigma_lateral^2, sigma_rop^2 + 2 sigma_displacement^2 / T^2)
+// sigma_displacement covers what moves the tool but not the surface reading over the interval
+// (axial oscillation of the string, stretch): its change over T adds to the mean rate.
 //
 // params:
-//   "sigma_rop_mps"      1-sigma of the ROP along the axis (m/s), > 0, default 1.4e-4 (0.5 m/h)
-//   "sigma_lateral_mps"  1-sigma of the lateral velocity (m/s), > 0, default 1e-4
+//   "sigma_rop_mps"           1-sigma of the ROP along the axis (m/s), > 0, default 2.78e-4
+//                             (1 m/h, the scatter of a rig's ROP channel)
+//   "sigma_lateral_mps"       1-sigma of the mean lateral velocity (m/s), > 0, default 1e-4
+//   "sigma_displacement_m"    1-sigma of the tool's axial displacement against the surface
+//                             (m), >= 0, default 0
 //   gate keys: see plugin/aid_plugin.hpp (read_nis_gate)
 
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/aid_schedule.hpp"
@@ -22,16 +40,17 @@ namespace {
 namespace cs = stochnav::plugin::core_state;
 using stochnav::plugin::Bound;
 
-struct RopParams {
-  double sigma_rop_mps = 0.5 / 3600.0;
-  double sigma_lateral_mps = 1e-4;
-};
-
 Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d m;
   m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
   return m;
 }
+
+struct RopParams {
+  double sigma_rop_mps = 1.0 / 3600.0;
+  double sigma_lateral_mps = 1e-4;
+  double sigma_displacement_m = 0.0;
+};
 
 class RopAid final : public stochnav::plugin::AidPlugin {
  public:
@@ -40,37 +59,50 @@ class RopAid final : public stochnav::plugin::AidPlugin {
       : AidPlugin(gate),
         params_(params),
         schedule_(stochnav::plugin::AidSchedule::at_rows(times_s)),
+        times_s_(times_s),
         rop_mph_(rop_mph) {}
 
   std::string_view type() const override { return "rop"; }
   int measurement_size() const override { return 3; }
   bool has_measurement(double t_s) const override { return schedule_.due(t_s); }
 
-  bool measure(double t_s, const stochnav::NavState& state, const stochnav::plugin::ImuSample&,
+  bool measure(double t_s, const stochnav::NavState& state,
+               const stochnav::plugin::ImuSample& imu,
                Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
                Eigen::Ref<Eigen::MatrixXd> r) const override {
     const auto row = schedule_.row_at(t_s);
-    if (!row) return false;
+    const stochnav::plugin::InsInterval& interval = imu.interval;
+    if (!row || !(interval.duration_s > 0.0)) return false;
+    double rop_mph = rop_mph_[*row];
+    if (*row > 0 && std::abs(times_s_[*row - 1] - (t_s - interval.duration_s)) <=
+                        stochnav::plugin::kEpochMatchTolerance_s) {
+      rop_mph = 0.5 * (rop_mph_[*row - 1] + rop_mph);
+    }
     const Eigen::Matrix3d c_bn = state.q_nb.toRotationMatrix().transpose();
-    residual = c_bn * state.v_n;
-    residual(2) -= rop_mph_[*row] / 3600.0;
-    h.setZero();
-    h.block<3, 3>(0, cs::kVelocity) = c_bn;
-    h.block<3, 3>(0, cs::kAttitude) = -c_bn * skew(state.v_n);
-    r.setZero();
-    r(0, 0) = r(1, 1) = params_.sigma_lateral_mps * params_.sigma_lateral_mps;
-    r(2, 2) = params_.sigma_rop_mps * params_.sigma_rop_mps;
+    residual = c_bn * interval.mean_v_n;
+    residual(2) -= rop_mph / 3600.0;
+    h = c_bn * interval.mean_velocity_error_map;
+    h.block<3, 3>(0, cs::kAttitude) -= c_bn * skew(interval.mean_v_n);
+    r = c_bn * interval.mean_velocity_noise_covariance * c_bn.transpose();
+    r(0, 0) += params_.sigma_lateral_mps * params_.sigma_lateral_mps;
+    r(1, 1) += params_.sigma_lateral_mps * params_.sigma_lateral_mps;
+    const double displacement_rate = params_.sigma_displacement_m / interval.duration_s;
+    r(2, 2) += params_.sigma_rop_mps * params_.sigma_rop_mps +
+               2.0 * displacement_rate * displacement_rate;
     return true;
   }
 
   std::string describe() const override {
-    return fmt::format("rop: tool-axis velocity from rop_mph, sigma {} m/s; lateral sigma {} m/s",
-                       params_.sigma_rop_mps, params_.sigma_lateral_mps);
+    return fmt::format(
+        "rop: mean tool-axis velocity from rop_mph, sigma {} m/s; lateral sigma {} m/s; "
+        "axial displacement sigma {} m",
+        params_.sigma_rop_mps, params_.sigma_lateral_mps, params_.sigma_displacement_m);
   }
 
  private:
   RopParams params_;
   stochnav::plugin::AidSchedule schedule_;
+  std::span<const double> times_s_;
   std::span<const double> rop_mph_;
 };
 
@@ -82,6 +114,9 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_rop(const nlohmann::json& json
       reader.number_or("sigma_rop_mps", params.sigma_rop_mps, Bound::kPositive, "m/s");
   params.sigma_lateral_mps =
       reader.number_or("sigma_lateral_mps", params.sigma_lateral_mps, Bound::kPositive, "m/s");
+  params.sigma_displacement_m = reader.number_or("sigma_displacement_m",
+                                                 params.sigma_displacement_m,
+                                                 Bound::kNonNegative, "m");
   const auto gate = stochnav::plugin::read_nis_gate(reader, 3);
   reader.finish();
   return std::make_unique<RopAid>(params, gate, context.data->time_s(),

@@ -8,7 +8,10 @@
 //     "description": "...",                                         // optional
 //     "comments": {...},                                 // optional, any JSON, for readers only
 //     "data": {"scenario_config": "../scenarios/paper_random_vibration.json",
-//              "seeds": 5}              // or [11, 12, ...]: Monte-Carlo seeds of the scenario
+//              "seeds": 5,              // or [11, 12, ...]: Monte-Carlo seeds of the scenario
+//              "scenario_overrides": {"/drilling/duration_s": 14400}}   // optional: values set
+//                       // at JSON pointers of the scenario config before simulating (a shorter
+//                       // run of a long scenario); `compare --full-scenario` ignores them
 //           | {"scenario": "runs/vib1"}                             // one simulated folder
 //           | {"imu": "imu.csv", "truth": "truth.csv", "aids": "aids.csv"},   // recorded + truth
 //     "baseline": "classic",                                        // a variant name
@@ -45,6 +48,9 @@ struct ExperimentConfig {
   /// Simulated data: the scenario config file and the seeds; else a fixed data section.
   std::optional<std::filesystem::path> scenario_config;
   std::vector<std::uint64_t> seeds;
+  /// "scenario_overrides": JSON pointer -> value, applied to the scenario config (an object;
+  /// empty when none). Each pointer must name an existing value of the scenario config.
+  nlohmann::json scenario_overrides = nlohmann::json::object();
   nlohmann::json fixed_data;  ///< "data" as a run config takes it (scenario folder or files)
   std::string baseline;
   std::vector<ExperimentVariant> variants;

@@ -18,6 +18,17 @@
 // A station is taken at the LAST stationary aid epoch of each connection (the filter has then
 // used every ZUPT of it); a record that ends while stationary yields a final station.
 //
+// Without measured depth in the data, md_m is the tie-on MD plus the length of the INS path
+// (the sum of the 3-D distances between the positions of successive observe() calls, starting
+// at the first one, which is taken to be at the tie-on); position jitter while stationary
+// lengthens it slightly.
+//
+// survey_errors.csv has the columns of survey.csv, read differently: the angle and position
+// columns are estimate - truth (angles wrapped to (-180, 180] deg; azimuth and toolface NaN,
+// written `nan`, where the true hole is within 1 deg of vertical, as navigation_errors), while
+// t_s and md_m are the station's (the key of the row, not errors) and the *_sigma_* columns are
+// the station's sigmas, so each error can be compared with its own sigma on the same row.
+//
 // Minimum curvature (the industry's standard well-path method): between consecutive stations
 // with (I1, A1) and (I2, A2) and a measured-depth step dMD, the dogleg angle
 //   beta = acos(cos(I2 - I1) - sin I1 sin I2 (1 - cos(A2 - A1)))
@@ -25,9 +36,12 @@
 //   dN = dMD / 2 (sin I1 cos A1 + sin I2 cos A2) RF
 //   dE = dMD / 2 (sin I1 sin A1 + sin I2 sin A2) RF
 //   dTVD = dMD / 2 (cos I1 + cos I2) RF,
-// starting at the tie-on (0, 0, 0) with the first station's attitude.
+// starting at the tie-on (0, 0, 0) with the first station's attitude. (beta is computed in the
+// equivalent form 2 atan2(|t2 - t1|, |t2 + t1|) of the unit hole directions t, exact for tiny
+// doglegs, and RF = 1 + beta^2 / 12 below beta = 1e-9.)
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -98,20 +112,36 @@ class SurveyRecorder final {
   void finish();
 
   const std::vector<SurveyStation>& stations() const { return stations_; }
-  /// Errors of each station (estimate - truth; sigmas left as the station's), parallel to
-  /// stations(); empty when the run had no truth at the stations.
+  /// Errors of the stations that had truth at their epoch (estimate - truth; t_s, md_m and the
+  /// sigmas left as the station's, see above), in station order: parallel to stations() when
+  /// the run has truth throughout, empty when no station had truth.
   const std::vector<SurveyStation>& station_errors() const { return errors_; }
   /// The INS path in the tie-on frame, thinned (for the plot and well_path.csv).
   const std::vector<WellPathPoint>& ins_path() const { return ins_path_; }
 
  private:
-  // Private members are the implementation's to choose.
+  /// (north, east, tvd) of a state in the tie-on frame (m).
+  Eigen::Vector3d tie_on_position_m(const NavState& state) const;
+  /// The station a state would give (md from the argument or the INS path length).
+  SurveyStation station_candidate(const NavState& state,
+                                  const Eigen::Matrix<double, 9, 9>& covariance,
+                                  const Eigen::Vector3d& position_m, double md_m) const;
+  SurveyStation station_error(const SurveyStation& station, const NavState& state,
+                              const NavState& truth) const;
+  void append_to_ins_path(const WellPathPoint& point);
+  void close_open_station();
+
   SurveyTieOn tie_on_;
+  double north_m_per_rad_ = 0.0;  ///< (R_M(lat0) + h0): latitude change to north metres
+  double east_m_per_rad_ = 0.0;   ///< (R_N(lat0) + h0) cos(lat0): longitude change to east metres
   std::vector<SurveyStation> stations_;
   std::vector<SurveyStation> errors_;
   std::vector<WellPathPoint> ins_path_;
   double ins_path_length_m_ = 0.0;
-  std::optional<NavState> previous_state_;
+  std::optional<Eigen::Vector3d> previous_position_m_;  ///< last observed (north, east, tvd)
+  std::size_t observed_count_ = 0;         ///< observe() calls so far (index of the next epoch)
+  std::size_t path_stride_ = 1;            ///< every path_stride_-th epoch is kept in ins_path_
+  bool last_path_point_is_extra_ = false;  ///< ins_path_.back() is the latest, off-stride epoch
   std::optional<SurveyStation> open_station_;
   std::optional<SurveyStation> open_error_;
 };
@@ -124,7 +154,11 @@ class SurveyRecorder final {
 ///   well_path.csv       md_m, north/east/tvd by minimum curvature at the stations, and the INS
 ///                       path's points (column "source": minimum_curvature | ins)
 ///   survey.png          plan view and vertical section, 2-sigma horizontal ellipses at the
-///                       stations (when `plot` and gnuplot is installed)
+///                       stations (when `plot` and gnuplot is installed; silently left out
+///                       otherwise). The ellipses, centred on the minimum-curvature points, and
+///                       the +/-2-sigma TVD bars are magnified by the factor in the title (1, 2
+///                       or 5 x 10^k) so that the largest ellipse spans about 3 % of the plan.
+/// Throws InputError when a file cannot be written or gnuplot fails.
 std::vector<std::unique_ptr<PendingFile>> write_survey_files(const SurveyRecorder& recorder,
                                                              const SurveyTieOn& tie_on,
                                                              const std::filesystem::path& out_dir,

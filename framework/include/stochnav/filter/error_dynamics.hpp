@@ -33,6 +33,12 @@ struct FastInputIntegrals {
   double interval_s = 0.0;                            ///< T (s)
   Eigen::Matrix3d c_nb_dt = Eigen::Matrix3d::Zero();  ///< integral of C_nb dt (s)
   Eigen::Vector3d f_n_dt = Eigen::Vector3d::Zero();   ///< integral of f_n dt (m/s)
+  /// Integral of C_nb diag(omega_ib_b) dt (rad): the attitude error per unit gyro scale-factor
+  /// error, d phi/dt = ... + C_nb diag(omega_ib_b) ds_g (the compensated rate errs by
+  /// -ds_g omega per axis, like -db_g).
+  Eigen::Matrix3d gyro_scale_dt = Eigen::Matrix3d::Zero();
+  /// Integral of C_nb diag(f_ib_b) dt (m/s): d dv/dt = ... - C_nb diag(f_ib_b) ds_a.
+  Eigen::Matrix3d accel_scale_dt = Eigen::Matrix3d::Zero();
 };
 
 /// The integral of the core error-dynamics matrix F over the interval, F_bar T (15 x 15,

@@ -4,12 +4,15 @@
 // augmented states of the gyro and accelerometer noise models (plugins). The noise models give
 // the system noise, possibly time-varying (DAVAR); the aiding plugins give the measurements.
 //
-// Per IMU epoch (step): the raw increments are compensated by the estimated biases and
-// augmented sensor errors, the INS advances, and the fast inputs of the error dynamics and the
+// Per IMU epoch (step): the raw increments are compensated by the estimated biases, augmented
+// sensor errors and scale factors (when FilterOptions asks for scale-factor states), the INS
+// advances, and the fast inputs of the error dynamics and the
 // white-noise covariances (mapped through C_nb) are accumulated. Once per covariance interval,
 // and before any measurement, P is propagated over the accumulated interval. Every aid with a
 // measurement at the epoch's time is then applied in turn; each accepted update is fed back at
-// once (position, velocity, attitude, biases, augmented states) and the error state reset.
+// once (position, velocity, attitude, biases, scale factors, augmented states) and the error
+// state reset. Aids get, besides the current state, the means of the INS velocity and attitude
+// over the interval since their previous measurement epoch (plugin::InsInterval).
 //
 // Lifetime: the navigator keeps references to the plugins; they must outlive it.
 
@@ -54,6 +57,9 @@ class MwdNavigator final {
   const NavState& state() const { return ins_.state(); }
   const Eigen::Vector3d& gyro_bias_b() const { return gyro_bias_b_; }    ///< rad/s
   const Eigen::Vector3d& accel_bias_b() const { return accel_bias_b_; }  ///< m/s^2
+  /// Scale-factor estimates per body axis (dimensionless; zero when not estimated).
+  const Eigen::Vector3d& gyro_scale_factor() const { return gyro_scale_.estimate; }
+  const Eigen::Vector3d& accel_scale_factor() const { return accel_scale_.estimate; }
   /// P of the error state (n x n), propagated up to the last covariance interval or update.
   const Eigen::MatrixXd& covariance() const { return filter_.covariance(); }
   const plugin::StateLayout& layout() const { return layout_; }
@@ -70,6 +76,24 @@ class MwdNavigator final {
     Eigen::VectorXd estimate;    // nominal augmented states
     Eigen::MatrixXd phi, q_d;    // scratch, size x size
   };
+
+  struct ScaleFactorBlock {
+    int offset = -1;  // first index in the error state; -1 when not estimated
+    Eigen::Vector3d estimate = Eigen::Vector3d::Zero();
+  };
+  // What an aid's InsInterval needs, accumulated since the aid's previous measurement epoch;
+  // s - t_prev is taken at each IMU epoch's midpoint.
+  struct AidIntervalSums {
+    double duration_s = 0.0;
+    Eigen::Vector3d v_n_dt = Eigen::Vector3d::Zero();           // int v_n ds (m)
+    Eigen::Vector3d weighted_f_n_dt = Eigen::Vector3d::Zero();  // int (s - t_prev) f_n ds (m)
+    Eigen::Matrix3d weighted_c_nb_dt = Eigen::Matrix3d::Zero();  // int (s - t_prev) C_nb ds (s^2)
+    Eigen::Matrix3d weighted_noise = Eigen::Matrix3d::Zero();  // int (s - t_prev)^2 dQ_v (m^2)
+  };
+  void accumulate_aid_intervals(const Eigen::Vector3d& v_start, const Eigen::Matrix3d& c_mid,
+                                const Eigen::Vector3d& f_n_dt, const Eigen::Matrix3d& noise_dt,
+                                double dt_s);
+  static plugin::InsInterval interval_of(const AidIntervalSums& sums);
 
   void accumulate_noise(plugin::NoiseModelPlugin& model, double t_s, double dt_s,
                         const Eigen::Matrix3d& c_nb, Eigen::Matrix3d& cache, double& cached_dt,
@@ -91,6 +115,11 @@ class MwdNavigator final {
   Eigen::Vector3d accel_bias_b_ = Eigen::Vector3d::Zero();
   AugmentedGroup gyro_augmented_;
   AugmentedGroup accel_augmented_;
+  ScaleFactorBlock gyro_scale_;
+  ScaleFactorBlock accel_scale_;
+  int head_size_ = 0;  // core + scale-factor states: the dense part of the transition
+  Eigen::MatrixXd head_f_;  // head_size_ x head_size_ scratch
+  std::vector<AidIntervalSums> aid_intervals_;  // per aid, since its previous measurement epoch
 
   // Accumulated over the current covariance interval.
   double interval_start_s_ = 0.0;

@@ -67,11 +67,41 @@ struct AidContext {
   std::filesystem::path config_dir;  ///< folder of the config file
 };
 
-/// The latest IMU sample at the time of a measurement.
+/// What the INS did over the interval [t_prev, t] from this aid's previous measurement epoch
+/// (the previous epoch at which has_measurement was true; the start of the run for the first)
+/// to the current one, for aids whose measurement is itself an interval quantity (a depth
+/// increment, a rate of penetration averaged by the rig). Under axial vibration the
+/// instantaneous velocity oscillates by up to A / (2 pi f) (0.6 m/s at 3 g, 8 Hz), and aid epochs
+/// at whole seconds sample whole-hertz vibration at the same phase every time: compared with an
+/// interval rate, the instantaneous velocity turns the vibration into a steady velocity error.
+///
+/// The mean ENU velocity removes the oscillation, which the accelerometers measure well over
+/// an interval. Its error is not the velocity error at the epoch: the velocity error drifts
+/// within the interval (d dv_n/dt = [f_n x] phi - C_nb db_a + C_nb w_a + ...), so that, to first
+/// order in the interval and with the core error state dx (core_state) at the epoch t,
+///   mean_v_n(estimate) - mean_v_n(true) = mean_velocity_error_map dx - e,
+///   mean_velocity_error_map = [0, I, -(1/T) int (s - t_prev) [f_n(s) x] ds,
+///                              (1/T) int (s - t_prev) C_nb(s) ds, 0]              (3 x 15)
+///   e ~ N(0, mean_velocity_noise_covariance),  (1/T^2) int (s - t_prev)^2 dQ_v(s)  (ENU, m^2/s^2)
+/// with dQ_v the accelerometer white noise integrated into the velocity (the Coriolis and
+/// transport terms, of order 1e-4 dv per s, are left out). At a tilt error of 1e-4 rad the drift
+/// term alone is g 1e-4 T / 2 = 5e-4 m/s over a 1-s interval: an aid that linearised the mean
+/// on dv at the epoch would be overconfident by far. Aids project the mean with the attitude at
+/// the epoch (the hole direction does not rotate with the toolface, whereas a mean of the
+/// rotating body axes would average the lateral information away).
+struct InsInterval {
+  double duration_s = 0.0;                             ///< T = t - t_prev (s); 0 at the start
+  Eigen::Vector3d mean_v_n = Eigen::Vector3d::Zero();  ///< (1/T) int v_n dt, ENU (m/s)
+  Eigen::Matrix<double, 3, 15> mean_velocity_error_map = Eigen::Matrix<double, 3, 15>::Zero();
+  Eigen::Matrix3d mean_velocity_noise_covariance = Eigen::Matrix3d::Zero();  ///< m^2/s^2
+};
+
+/// The IMU and INS at the time of a measurement.
 struct ImuSample {
   double t_s = 0.0;                                      ///< time (s)
   Eigen::Vector3d omega_ib_b = Eigen::Vector3d::Zero();  ///< angular rate, body (rad/s)
   Eigen::Vector3d f_ib_b = Eigen::Vector3d::Zero();      ///< specific force, body (m/s^2)
+  InsInterval interval;  ///< since this aid's previous measurement epoch
 };
 
 /// Innovation gate on NIS = z^T S^-1 z.

@@ -2,7 +2,9 @@
 // The filter's error state is owned by the runtime: plugins declare block sizes
 // (NoiseModelPlugin::augmented_size) and receive their offsets (NoiseModelPlugin::placement).
 //
-// Layout: the 15 core states, then the gyro model's augmented block, then the accel model's.
+// Layout: the 15 core states, then the optional scale-factor blocks ("gyro_scale_factor",
+// "accel_scale_factor", 3 states each, dimensionless: the sensor reads (1 + s) times the truth,
+// per body axis), then the gyro model's augmented block, then the accel model's.
 
 #include <span>
 #include <string>
@@ -48,8 +50,15 @@ class StateLayout {
   int size_ = 0;
 };
 
-/// Lays out the error state for a filter using these models (gyro then accel augmented blocks)
-/// and gives each model its StatePlacement.
-StateLayout assign_state_layout(NoiseModelPlugin& gyro, NoiseModelPlugin& accel);
+/// Which optional sensor-error blocks follow the core states.
+struct SensorErrorStates {
+  bool gyro_scale_factor = false;   ///< block "gyro_scale_factor", 3 states
+  bool accel_scale_factor = false;  ///< block "accel_scale_factor", 3 states
+};
+
+/// Lays out the error state for a filter using these models (core, the optional scale-factor
+/// blocks, then gyro and accel augmented blocks) and gives each model its StatePlacement.
+StateLayout assign_state_layout(NoiseModelPlugin& gyro, NoiseModelPlugin& accel,
+                                const SensorErrorStates& sensor_errors = {});
 
 }  // namespace stochnav::plugin

@@ -1,0 +1,186 @@
+#include "stochnav/experiment/survey.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "stochnav/experiment/navigation_errors.hpp"
+#include "stochnav/ins/earth.hpp"
+#include "stochnav/ins/mwd_attitude.hpp"
+
+namespace stochnav {
+namespace {
+
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+
+// Positions in kErrorMetricNames of the metrics a station uses.
+constexpr std::size_t kInclinationMetric = 3;
+constexpr std::size_t kToolfaceMetric = 4;
+constexpr std::size_t kAzimuthMetric = 5;
+static_assert(kErrorMetricNames[kInclinationMetric] == "inclination_err_deg");
+static_assert(kErrorMetricNames[kToolfaceMetric] == "toolface_err_deg");
+static_assert(kErrorMetricNames[kAzimuthMetric] == "azimuth_err_deg");
+
+/// The INS path keeps at most this many points; beyond it every other point is dropped.
+constexpr std::size_t kMaxInsPathPoints = 4000;
+
+/// Unit vector along the hole (towards the bit) in (north, east, down).
+Eigen::Vector3d hole_direction_ned(double inclination_deg, double azimuth_deg) {
+  const double inclination = inclination_deg * kRadPerDeg;
+  const double azimuth = azimuth_deg * kRadPerDeg;
+  return {std::sin(inclination) * std::cos(azimuth), std::sin(inclination) * std::sin(azimuth),
+          std::cos(inclination)};
+}
+
+/// The dogleg angle between two unit directions (rad). Equal to the header's acos form, but
+/// 2 atan2(|t2 - t1|, |t2 + t1|) keeps full precision for tiny doglegs, where acos of a number
+/// close to 1 loses half the digits, and never leaves acos' domain through rounding.
+double dogleg_rad(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+  return 2.0 * std::atan2((to - from).norm(), (to + from).norm());
+}
+
+/// RF = (2 / beta) tan(beta / 2): the ratio of the arc to the two straight tangent halves.
+double ratio_factor(double dogleg) {
+  // 0 / 0 at beta = 0; the series 1 + beta^2 / 12 is exact to rounding below 1e-9.
+  if (dogleg < 1e-9) return 1.0 + dogleg * dogleg / 12.0;
+  return 2.0 / dogleg * std::tan(dogleg / 2.0);
+}
+
+/// Keeps the points at even positions (those on a doubled stride). Returns whether the last
+/// point was dropped (it was at an odd position).
+bool keep_every_other_point(std::vector<WellPathPoint>& path) {
+  const bool last_dropped = path.size() % 2 == 0;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < path.size(); i += 2) path[kept++] = path[i];
+  path.resize(kept);
+  return last_dropped;
+}
+
+}  // namespace
+
+std::vector<WellPathPoint> minimum_curvature_path(const std::vector<SurveyStation>& stations,
+                                                  double tie_on_md_m) {
+  std::vector<WellPathPoint> path;
+  path.reserve(stations.size());
+  WellPathPoint point{tie_on_md_m, 0.0, 0.0, 0.0};
+  Eigen::Vector3d previous_direction;
+  for (std::size_t i = 0; i < stations.size(); ++i) {
+    const Eigen::Vector3d direction =
+        hole_direction_ned(stations[i].inclination_deg, stations[i].azimuth_deg);
+    // The tie-on has no attitude of its own: the first segment is straight along the first
+    // station's direction.
+    if (i == 0) previous_direction = direction;
+    const double md_step_m = stations[i].md_m - point.md_m;
+    const Eigen::Vector3d step_ned = md_step_m / 2.0 * (previous_direction + direction) *
+                                     ratio_factor(dogleg_rad(previous_direction, direction));
+    point = {stations[i].md_m, point.north_m + step_ned.x(), point.east_m + step_ned.y(),
+             point.tvd_m + step_ned.z()};
+    path.push_back(point);
+    previous_direction = direction;
+  }
+  return path;
+}
+
+SurveyRecorder::SurveyRecorder(const SurveyTieOn& tie_on) : tie_on_(tie_on) {
+  const EarthRadii radii = earth_radii(tie_on.latitude_rad);
+  north_m_per_rad_ = radii.meridian_m + tie_on.height_m;
+  east_m_per_rad_ = (radii.transverse_m + tie_on.height_m) * std::cos(tie_on.latitude_rad);
+}
+
+Eigen::Vector3d SurveyRecorder::tie_on_position_m(const NavState& state) const {
+  // The tie-on's local level frame, linearised at the tie-on: a well spans a few km, where the
+  // curvature of the Earth changes north/east by millimetres.
+  return {(state.latitude_rad - tie_on_.latitude_rad) * north_m_per_rad_,
+          std::remainder(state.longitude_rad - tie_on_.longitude_rad, 2.0 * std::numbers::pi) *
+              east_m_per_rad_,
+          tie_on_.height_m - state.height_m};
+}
+
+SurveyStation SurveyRecorder::station_candidate(const NavState& state,
+                                                const Eigen::Matrix<double, 9, 9>& covariance,
+                                                const Eigen::Vector3d& position_m,
+                                                double md_m) const {
+  const MwdAttitude attitude = mwd_from_quaternion(state.q_nb);
+  const auto sigmas = navigation_error_sigmas(state, covariance);
+  SurveyStation station;
+  station.t_s = state.t_s;
+  station.md_m = md_m;
+  station.inclination_deg = attitude.inclination_rad * kDegPerRad;
+  station.azimuth_deg = attitude.azimuth_rad * kDegPerRad;
+  station.toolface_deg = attitude.toolface_rad * kDegPerRad;
+  station.north_m = position_m.x();
+  station.east_m = position_m.y();
+  station.tvd_m = position_m.z();
+  station.inclination_sigma_deg = sigmas[kInclinationMetric];
+  station.azimuth_sigma_deg = sigmas[kAzimuthMetric];
+  // The covariance's position block is ENU: index 0 east, 1 north, 2 up (TVD is -up, same
+  // variance).
+  station.north_sigma_m = std::sqrt(covariance(1, 1));
+  station.east_sigma_m = std::sqrt(covariance(0, 0));
+  station.tvd_sigma_m = std::sqrt(covariance(2, 2));
+  station.horizontal_covariance_m2 << covariance(1, 1), covariance(1, 0), covariance(0, 1),
+      covariance(0, 0);
+  return station;
+}
+
+SurveyStation SurveyRecorder::station_error(const SurveyStation& station, const NavState& state,
+                                            const NavState& truth) const {
+  // Time, MD and sigmas stay the station's: the row is read as "error vs its sigma at MD".
+  SurveyStation error = station;
+  const auto angle_errors = navigation_errors(state, truth);
+  error.inclination_deg = angle_errors[kInclinationMetric];
+  error.azimuth_deg = angle_errors[kAzimuthMetric];
+  error.toolface_deg = angle_errors[kToolfaceMetric];
+  const Eigen::Vector3d true_position_m = tie_on_position_m(truth);
+  error.north_m = station.north_m - true_position_m.x();
+  error.east_m = station.east_m - true_position_m.y();
+  error.tvd_m = station.tvd_m - true_position_m.z();
+  return error;
+}
+
+void SurveyRecorder::observe(const NavState& state, const Eigen::Matrix<double, 9, 9>& covariance,
+                             bool stationary, std::optional<double> measured_depth_m,
+                             const NavState* truth) {
+  const Eigen::Vector3d position_m = tie_on_position_m(state);
+  if (previous_position_m_) ins_path_length_m_ += (position_m - *previous_position_m_).norm();
+  previous_position_m_ = position_m;
+  const double md_m = measured_depth_m.value_or(tie_on_.measured_depth_m + ins_path_length_m_);
+  append_to_ins_path({md_m, position_m.x(), position_m.y(), position_m.z()});
+
+  if (!stationary) {
+    close_open_station();
+    return;
+  }
+  // Still in the connection: this epoch replaces the previous candidate, so the station ends
+  // up at the connection's last stationary epoch, after all of its ZUPTs.
+  open_station_ = station_candidate(state, covariance, position_m, md_m);
+  open_error_.reset();
+  if (truth != nullptr) open_error_ = station_error(*open_station_, state, *truth);
+}
+
+void SurveyRecorder::finish() { close_open_station(); }
+
+void SurveyRecorder::close_open_station() {
+  if (!open_station_) return;
+  stations_.push_back(*open_station_);
+  if (open_error_) errors_.push_back(*open_error_);
+  open_station_.reset();
+  open_error_.reset();
+}
+
+void SurveyRecorder::append_to_ins_path(const WellPathPoint& point) {
+  // Memory stays flat over a 200-h record: the path keeps epochs 0, s, 2s, ... (s doubles
+  // whenever it is full) plus the latest epoch, so it always reaches the current position.
+  const std::size_t epoch = observed_count_++;
+  if (last_path_point_is_extra_) ins_path_.pop_back();
+  ins_path_.push_back(point);
+  last_path_point_is_extra_ = epoch % path_stride_ != 0;
+  if (last_path_point_is_extra_ || ins_path_.size() < kMaxInsPathPoints) return;
+  if (keep_every_other_point(ins_path_)) {
+    ins_path_.push_back(point);
+    last_path_point_is_extra_ = true;
+  }
+  path_stride_ *= 2;
+}
+
+}  // namespace stochnav

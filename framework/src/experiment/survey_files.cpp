@@ -1,0 +1,140 @@
+// write_survey_files of experiment/survey.hpp: survey.csv, survey_errors.csv, well_path.csv and
+// survey.png, each complete in a temporary file, committed by the caller.
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <string_view>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/experiment/survey.hpp"
+#include "stochnav/report/gnuplot.hpp"
+#include "survey_plot.hpp"
+
+namespace stochnav {
+namespace {
+
+/// DESIGN.md's survey.csv columns; survey_errors.csv uses the same.
+constexpr std::string_view kSurveyHeader =
+    "t_s,md_m,inclination_deg,azimuth_deg,toolface_deg,tvd_m,north_m,east_m,"
+    "inclination_sigma_deg,azimuth_sigma_deg,north_sigma_m,east_sigma_m,tvd_sigma_m";
+constexpr std::string_view kWellPathHeader = "source,md_m,north_m,east_m,tvd_m";
+
+/// A CSV number: 9 significant digits (0.01 mm at 1 km, 1 ms at 200 h); any NaN as "nan" (the
+/// sign bit of a NaN from sqrt of a rounding-negative variance would otherwise print "-nan").
+std::string csv_number(double value) {
+  if (std::isnan(value)) return "nan";
+  return fmt::format("{:.9g}", value);
+}
+
+std::string stations_csv(const std::vector<SurveyStation>& stations) {
+  std::string csv = std::string(kSurveyHeader) + '\n';
+  for (const SurveyStation& s : stations) {
+    const double columns[] = {s.t_s,
+                              s.md_m,
+                              s.inclination_deg,
+                              s.azimuth_deg,
+                              s.toolface_deg,
+                              s.tvd_m,
+                              s.north_m,
+                              s.east_m,
+                              s.inclination_sigma_deg,
+                              s.azimuth_sigma_deg,
+                              s.north_sigma_m,
+                              s.east_sigma_m,
+                              s.tvd_sigma_m};
+    for (std::size_t i = 0; i < std::size(columns); ++i) {
+      if (i > 0) csv += ',';
+      csv += csv_number(columns[i]);
+    }
+    csv += '\n';
+  }
+  return csv;
+}
+
+void append_well_path_rows(std::string& csv, std::string_view source,
+                           const std::vector<WellPathPoint>& points) {
+  for (const WellPathPoint& p : points) {
+    csv += fmt::format("{},{},{},{},{}\n", source, csv_number(p.md_m), csv_number(p.north_m),
+                       csv_number(p.east_m), csv_number(p.tvd_m));
+  }
+}
+
+std::string well_path_csv(const std::vector<WellPathPoint>& minimum_curvature_stations,
+                          const std::vector<WellPathPoint>& ins_path, double tie_on_md_m) {
+  std::string csv = std::string(kWellPathHeader) + '\n';
+  append_well_path_rows(csv, "minimum_curvature", {{tie_on_md_m, 0.0, 0.0, 0.0}});
+  append_well_path_rows(csv, "minimum_curvature", minimum_curvature_stations);
+  append_well_path_rows(csv, "ins", ins_path);
+  return csv;
+}
+
+std::unique_ptr<PendingFile> pending_text_file(const std::filesystem::path& path,
+                                               std::string_view content) {
+  auto pending = std::make_unique<PendingFile>(path);
+  std::ofstream out(pending->temporary_path(), std::ios::binary);
+  out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  out.close();
+  if (!out) {
+    throw InputError(path.string() + ": cannot write (folder missing or not writable, or disk " +
+                     "full); check the output folder");
+  }
+  return pending;
+}
+
+/// survey.png rendered into a PendingFile, or null when gnuplot is not installed (the plot is
+/// optional; the numbers are complete without it).
+std::unique_ptr<PendingFile> pending_survey_plot(
+    const SurveyRecorder& recorder, const std::vector<WellPathPoint>& minimum_curvature_stations,
+    const std::filesystem::path& path) {
+  if (recorder.ins_path().empty()) return nullptr;
+  try {
+    check_plot_request(path);
+  } catch (const ConfigError&) {
+    return nullptr;
+  }
+  auto pending = std::make_unique<PendingFile>(path);
+  // render_gnuplot picks the terminal from the extension and renames its picture into place,
+  // so it draws to "<temporary>.png", which is then moved onto the pending temporary path.
+  std::filesystem::path rendered = pending->temporary_path();
+  rendered += path.extension();
+  plot_survey(recorder, minimum_curvature_stations, rendered);
+  std::error_code error;
+  std::filesystem::rename(rendered, pending->temporary_path(), error);
+  if (error) {
+    std::filesystem::remove(rendered, error);
+    throw InputError(path.string() + ": cannot write the plot; check the output folder");
+  }
+  return pending;
+}
+
+}  // namespace
+
+std::vector<std::unique_ptr<PendingFile>> write_survey_files(const SurveyRecorder& recorder,
+                                                             const SurveyTieOn& tie_on,
+                                                             const std::filesystem::path& out_dir,
+                                                             bool plot) {
+  const std::vector<WellPathPoint> minimum_curvature_stations =
+      minimum_curvature_path(recorder.stations(), tie_on.measured_depth_m);
+  std::vector<std::unique_ptr<PendingFile>> files;
+  files.push_back(pending_text_file(out_dir / "survey.csv", stations_csv(recorder.stations())));
+  if (!recorder.station_errors().empty()) {
+    files.push_back(
+        pending_text_file(out_dir / "survey_errors.csv", stations_csv(recorder.station_errors())));
+  }
+  files.push_back(pending_text_file(
+      out_dir / "well_path.csv",
+      well_path_csv(minimum_curvature_stations, recorder.ins_path(), tie_on.measured_depth_m)));
+  if (plot) {
+    if (auto picture =
+            pending_survey_plot(recorder, minimum_curvature_stations, out_dir / "survey.png")) {
+      files.push_back(std::move(picture));
+    }
+  }
+  return files;
+}
+
+}  // namespace stochnav

@@ -1,0 +1,502 @@
+#include "stochnav/experiment/survey.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "stochnav/ins/earth.hpp"
+#include "stochnav/ins/mwd_attitude.hpp"
+#include "survey_plot.hpp"
+#include "temp_dir.hpp"
+
+namespace stochnav {
+namespace {
+
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+
+SurveyStation station_at(double md_m, double inclination_deg, double azimuth_deg) {
+  SurveyStation station;
+  station.md_m = md_m;
+  station.inclination_deg = inclination_deg;
+  station.azimuth_deg = azimuth_deg;
+  return station;
+}
+
+/// Unit direction of the hole in (north, east, down).
+Eigen::Vector3d direction_ned(double inclination_deg, double azimuth_deg) {
+  const double i = inclination_deg * kRadPerDeg;
+  const double a = azimuth_deg * kRadPerDeg;
+  return {std::sin(i) * std::cos(a), std::sin(i) * std::sin(a), std::cos(i)};
+}
+
+/// (inclination, azimuth) in degrees of a unit (north, east, down) direction.
+std::pair<double, double> angles_deg(const Eigen::Vector3d& direction_ned) {
+  const double inclination = std::acos(std::clamp(direction_ned.z(), -1.0, 1.0));
+  double azimuth = std::atan2(direction_ned.y(), direction_ned.x());
+  if (azimuth < 0.0) azimuth += 2.0 * std::numbers::pi;
+  return {inclination * kDegPerRad, azimuth * kDegPerRad};
+}
+
+// ---------------------------------------------------------------- minimum curvature
+
+TEST(MinimumCurvature, VerticalHoleDescendsByTheMeasuredDepth) {
+  const std::vector<SurveyStation> stations = {
+      station_at(150.0, 0.0, 0.0), station_at(250.0, 0.0, 0.0), station_at(400.0, 0.0, 0.0)};
+  const auto path = minimum_curvature_path(stations, 50.0);
+  ASSERT_EQ(path.size(), stations.size());
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    EXPECT_DOUBLE_EQ(path[i].md_m, stations[i].md_m);
+    EXPECT_NEAR(path[i].tvd_m, stations[i].md_m - 50.0, 1e-12);
+    EXPECT_EQ(path[i].north_m, 0.0);
+    EXPECT_EQ(path[i].east_m, 0.0);
+  }
+}
+
+TEST(MinimumCurvature, StraightHoldFollowsTheClosedForm) {
+  // The tie-on takes the first station's attitude, so the whole path is one straight line.
+  const double inclination = 30.0 * kRadPerDeg;
+  const double azimuth = 60.0 * kRadPerDeg;
+  const double tie_on_md_m = 1200.0;
+  std::vector<SurveyStation> stations;
+  for (double md : {1230.0, 1275.5, 1301.0, 1500.0, 2017.25}) {
+    stations.push_back(station_at(md, 30.0, 60.0));
+  }
+  const auto path = minimum_curvature_path(stations, tie_on_md_m);
+  ASSERT_EQ(path.size(), stations.size());
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const double along_m = stations[i].md_m - tie_on_md_m;
+    EXPECT_NEAR(path[i].north_m, along_m * std::sin(inclination) * std::cos(azimuth), 1e-9);
+    EXPECT_NEAR(path[i].east_m, along_m * std::sin(inclination) * std::sin(azimuth), 1e-9);
+    EXPECT_NEAR(path[i].tvd_m, along_m * std::cos(inclination), 1e-9);
+  }
+}
+
+TEST(MinimumCurvature, CircularBuildIsExact) {
+  // A build of 3 deg / 30 m from vertical to horizontal at azimuth 45 deg, below a vertical
+  // section of 100 m: minimum curvature assumes circular arcs, so it is exact here.
+  const double radius_m = 30.0 / (3.0 * kRadPerDeg);
+  const double kickoff_md_m = 1000.0;
+  std::vector<SurveyStation> stations;
+  for (double inclination_deg = 0.0; inclination_deg <= 90.0; inclination_deg += 2.5) {
+    stations.push_back(
+        station_at(kickoff_md_m + radius_m * inclination_deg * kRadPerDeg, inclination_deg, 45.0));
+  }
+  const auto path = minimum_curvature_path(stations, kickoff_md_m - 100.0);
+  ASSERT_EQ(path.size(), stations.size());
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const double inclination = stations[i].inclination_deg * kRadPerDeg;
+    const double horizontal_m = radius_m * (1.0 - std::cos(inclination));
+    const double tvd_m = 100.0 + radius_m * std::sin(inclination);
+    const double tolerance_m = 1e-9 * (radius_m + 100.0);
+    EXPECT_NEAR(path[i].north_m, horizontal_m * std::cos(45.0 * kRadPerDeg), tolerance_m) << i;
+    EXPECT_NEAR(path[i].east_m, horizontal_m * std::sin(45.0 * kRadPerDeg), tolerance_m) << i;
+    EXPECT_NEAR(path[i].tvd_m, tvd_m, tolerance_m) << i;
+  }
+  EXPECT_NEAR(path.back().tvd_m, 100.0 + radius_m, 1e-9 * radius_m);
+}
+
+TEST(MinimumCurvature, ThreeDimensionalArcMatchesIntegratedSlerp) {
+  // A constant-curvature arc turning both inclination and azimuth: its direction is the slerp
+  // of the end directions. Integrate the direction numerically (Simpson) and compare.
+  const Eigen::Vector3d start = direction_ned(20.0, 30.0);
+  const Eigen::Vector3d end = direction_ned(75.0, 140.0);
+  const double dogleg = std::acos(start.dot(end));
+  const double arc_length_m = 400.0;
+  const auto direction_at = [&](double fraction) -> Eigen::Vector3d {
+    return (std::sin((1.0 - fraction) * dogleg) * start + std::sin(fraction * dogleg) * end) /
+           std::sin(dogleg);
+  };
+  const auto integrated_position = [&](double fraction) -> Eigen::Vector3d {
+    constexpr int kIntervals = 2000;  // even, for Simpson's rule
+    const double h = fraction / kIntervals;
+    Eigen::Vector3d sum = direction_at(0.0) + direction_at(fraction);
+    for (int k = 1; k < kIntervals; ++k) sum += (k % 2 == 1 ? 4.0 : 2.0) * direction_at(k * h);
+    return sum * h / 3.0 * arc_length_m;
+  };
+
+  const double tie_on_md_m = 500.0;
+  std::vector<SurveyStation> stations;
+  std::vector<double> fractions;
+  for (double fraction : {0.0, 0.1, 0.35, 0.5, 0.8, 1.0}) {
+    const auto [inclination_deg, azimuth_deg] = angles_deg(direction_at(fraction));
+    stations.push_back(
+        station_at(tie_on_md_m + fraction * arc_length_m, inclination_deg, azimuth_deg));
+    fractions.push_back(fraction);
+  }
+  const auto path = minimum_curvature_path(stations, tie_on_md_m);
+  ASSERT_EQ(path.size(), stations.size());
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const Eigen::Vector3d expected = integrated_position(fractions[i]);
+    EXPECT_NEAR(path[i].north_m, expected.x(), 1e-6) << i;
+    EXPECT_NEAR(path[i].east_m, expected.y(), 1e-6) << i;
+    EXPECT_NEAR(path[i].tvd_m, expected.z(), 1e-6) << i;
+  }
+}
+
+TEST(MinimumCurvature, TinyDoglegStaysFiniteAndStraight) {
+  const std::vector<SurveyStation> stations = {station_at(10.0, 45.0, 90.0),
+                                               station_at(110.0, 45.0 + 1e-11, 90.0)};
+  const auto path = minimum_curvature_path(stations, 0.0);
+  ASSERT_EQ(path.size(), 2u);
+  EXPECT_NEAR(path[1].east_m, 110.0 * std::sin(45.0 * kRadPerDeg), 1e-9);
+  EXPECT_NEAR(path[1].tvd_m, 110.0 * std::cos(45.0 * kRadPerDeg), 1e-9);
+  EXPECT_NEAR(path[1].north_m, 0.0, 1e-9);
+}
+
+TEST(MinimumCurvature, NoStationsGiveNoPoints) {
+  EXPECT_TRUE(minimum_curvature_path({}, 100.0).empty());
+}
+
+// ---------------------------------------------------------------- recorder
+
+const SurveyTieOn kTieOn{0.6, -1.7, 350.0, 1000.0};
+
+/// A state at (north, east, tvd) metres from kTieOn, in the tie-on frame's linearisation.
+NavState state_at(double t_s, double north_m, double east_m, double tvd_m,
+                  const MwdAttitude& attitude) {
+  const EarthRadii radii = earth_radii(kTieOn.latitude_rad);
+  NavState state;
+  state.t_s = t_s;
+  state.latitude_rad = kTieOn.latitude_rad + north_m / (radii.meridian_m + kTieOn.height_m);
+  state.longitude_rad = kTieOn.longitude_rad + east_m / ((radii.transverse_m + kTieOn.height_m) *
+                                                         std::cos(kTieOn.latitude_rad));
+  state.height_m = kTieOn.height_m - tvd_m;
+  state.q_nb = quaternion_from_mwd(attitude);
+  return state;
+}
+
+MwdAttitude attitude_deg(double inclination, double toolface, double azimuth) {
+  return {inclination * kRadPerDeg, toolface * kRadPerDeg, azimuth * kRadPerDeg};
+}
+
+/// Position variances E 4, N 9, U 16 m^2 with an E-N covariance of 1.5 m^2; attitude 1 mrad.
+Eigen::Matrix<double, 9, 9> known_covariance() {
+  Eigen::Matrix<double, 9, 9> p = Eigen::Matrix<double, 9, 9>::Identity() * 0.01;
+  p(0, 0) = 4.0;
+  p(1, 1) = 9.0;
+  p(2, 2) = 16.0;
+  p(0, 1) = p(1, 0) = 1.5;
+  p.block<3, 3>(6, 6) = Eigen::Matrix3d::Identity() * 1e-6;
+  return p;
+}
+
+/// One epoch of a synthetic run: where the tool is and whether it is stationary.
+struct Epoch {
+  double t_s;
+  double tvd_m;
+  bool stationary;
+};
+
+/// Connections at t = 0-2, 6-8 and 11-12 (the record ends stationary); between them the tool
+/// moves straight down by 5 m per epoch.
+std::vector<Epoch> three_connections() {
+  std::vector<Epoch> epochs;
+  double tvd_m = 0.0;
+  for (int t = 0; t <= 12; ++t) {
+    const bool stationary = t <= 2 || (t >= 6 && t <= 8) || t >= 11;
+    if (!stationary) tvd_m += 5.0;
+    epochs.push_back({static_cast<double>(t), tvd_m, stationary});
+  }
+  return epochs;
+}
+
+TEST(SurveyRecorder, StationsAtTheLastStationaryEpochWithGivenDepth) {
+  SurveyRecorder recorder(kTieOn);
+  const auto covariance = known_covariance();
+  for (const Epoch& e : three_connections()) {
+    recorder.observe(state_at(e.t_s, 0.0, 0.0, e.tvd_m, attitude_deg(2.0, 10.0, 50.0)), covariance,
+                     e.stationary, 1000.0 + 10.0 * e.t_s, nullptr);
+  }
+  ASSERT_EQ(recorder.stations().size(), 2u);  // the last connection is still open
+  recorder.finish();
+  const auto& stations = recorder.stations();
+  ASSERT_EQ(stations.size(), 3u);
+  const double expected_t[] = {2.0, 8.0, 12.0};
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(stations[i].t_s, expected_t[i]);
+    EXPECT_DOUBLE_EQ(stations[i].md_m, 1000.0 + 10.0 * expected_t[i]);
+  }
+  EXPECT_NEAR(stations[0].tvd_m, 0.0, 1e-6);
+  EXPECT_NEAR(stations[1].tvd_m, 15.0, 1e-6);
+  EXPECT_NEAR(stations[2].tvd_m, 25.0, 1e-6);
+  EXPECT_NEAR(stations[1].inclination_deg, 2.0, 1e-9);
+  EXPECT_NEAR(stations[1].azimuth_deg, 50.0, 1e-7);
+  EXPECT_NEAR(stations[1].toolface_deg, 10.0, 1e-7);
+  EXPECT_TRUE(recorder.station_errors().empty());
+}
+
+TEST(SurveyRecorder, DepthFromTheInsPathWhenNotGiven) {
+  SurveyRecorder recorder(kTieOn);
+  const auto covariance = known_covariance();
+  for (const Epoch& e : three_connections()) {
+    // Moving epochs also step 2 m north: each step is sqrt(5^2 + 2^2) m of path.
+    const double north_m = e.tvd_m * 0.4;
+    recorder.observe(state_at(e.t_s, north_m, 0.0, e.tvd_m, attitude_deg(20.0, 0.0, 0.0)),
+                     covariance, e.stationary, std::nullopt, nullptr);
+  }
+  recorder.finish();
+  const auto& stations = recorder.stations();
+  ASSERT_EQ(stations.size(), 3u);
+  const double step_m = std::hypot(5.0, 2.0);
+  EXPECT_NEAR(stations[0].md_m, kTieOn.measured_depth_m, 1e-6);
+  EXPECT_NEAR(stations[1].md_m, kTieOn.measured_depth_m + 3.0 * step_m, 1e-6);
+  EXPECT_NEAR(stations[2].md_m, kTieOn.measured_depth_m + 5.0 * step_m, 1e-6);
+  ASSERT_FALSE(recorder.ins_path().empty());
+  EXPECT_NEAR(recorder.ins_path().back().md_m, kTieOn.measured_depth_m + 5.0 * step_m, 1e-6);
+}
+
+TEST(SurveyRecorder, NoStationWithoutAConnection) {
+  SurveyRecorder recorder(kTieOn);
+  for (int t = 0; t < 5; ++t) {
+    recorder.observe(state_at(t, 0.0, 0.0, t, attitude_deg(0.0, 0.0, 0.0)), known_covariance(),
+                     false, std::nullopt, nullptr);
+  }
+  recorder.finish();
+  EXPECT_TRUE(recorder.stations().empty());
+  EXPECT_EQ(recorder.ins_path().size(), 5u);
+}
+
+TEST(SurveyRecorder, PositionSignsAndSigmas) {
+  SurveyRecorder recorder(kTieOn);
+  // 30 m north (higher latitude), 20 m west, 100 m below the tie-on.
+  recorder.observe(state_at(7.0, 30.0, -20.0, 100.0, attitude_deg(30.0, 45.0, 60.0)),
+                   known_covariance(), true, std::nullopt, nullptr);
+  recorder.finish();
+  ASSERT_EQ(recorder.stations().size(), 1u);
+  const SurveyStation& s = recorder.stations().front();
+  EXPECT_NEAR(s.north_m, 30.0, 1e-6);
+  EXPECT_NEAR(s.east_m, -20.0, 1e-6);
+  EXPECT_NEAR(s.tvd_m, 100.0, 1e-9);
+  EXPECT_DOUBLE_EQ(s.north_sigma_m, 3.0);
+  EXPECT_DOUBLE_EQ(s.east_sigma_m, 2.0);
+  EXPECT_DOUBLE_EQ(s.tvd_sigma_m, 4.0);
+  Eigen::Matrix2d expected_ne;
+  expected_ne << 9.0, 1.5, 1.5, 4.0;
+  EXPECT_EQ(s.horizontal_covariance_m2, expected_ne);
+  // Isotropic 1 mrad tilt: inclination moves 1:1 with a tilt across the hole; the azimuth
+  // moves with the vertical component and cot(I) times the along-azimuth tilt, so
+  // sigma_A = sigma / sin(I) = 2 mrad at I = 30 deg.
+  EXPECT_NEAR(s.inclination_sigma_deg, 1e-3 * kDegPerRad, 1e-6);
+  EXPECT_NEAR(s.azimuth_sigma_deg, 2e-3 * kDegPerRad, 1e-6);
+}
+
+TEST(SurveyRecorder, LongitudeDifferenceWrapsAcrossTheDateLine) {
+  const SurveyTieOn tie_on{0.0, std::numbers::pi - 1e-6, 0.0, 0.0};
+  SurveyRecorder recorder(tie_on);
+  NavState state;
+  state.latitude_rad = 0.0;
+  state.longitude_rad = -std::numbers::pi + 1e-6;  // 2e-6 rad east of the tie-on
+  recorder.observe(state, known_covariance(), true, 0.0, nullptr);
+  recorder.finish();
+  ASSERT_EQ(recorder.stations().size(), 1u);
+  EXPECT_NEAR(recorder.stations()[0].east_m, 2e-6 * earth_radii(0.0).transverse_m, 1e-6);
+}
+
+TEST(SurveyRecorder, ErrorsOnlyForStationsWithTruth) {
+  SurveyRecorder recorder(kTieOn);
+  const auto covariance = known_covariance();
+  for (const Epoch& e : three_connections()) {
+    const NavState estimate = state_at(e.t_s, 1.0, 2.0, e.tvd_m, attitude_deg(40.0, 100.0, 80.0));
+    // Truth: 0.5 m further north, 0.2 m shallower, 0.1 deg more inclined, 0.3 deg more azimuth.
+    const NavState truth =
+        state_at(e.t_s, 1.5, 2.0, e.tvd_m - 0.2, attitude_deg(40.1, 100.0, 80.3));
+    // Truth is known only up to t = 9: the last connection has none.
+    recorder.observe(estimate, covariance, e.stationary, std::nullopt,
+                     e.t_s <= 9.0 ? &truth : nullptr);
+  }
+  recorder.finish();
+  ASSERT_EQ(recorder.stations().size(), 3u);
+  const auto& errors = recorder.station_errors();
+  ASSERT_EQ(errors.size(), 2u);
+  for (std::size_t i = 0; i < errors.size(); ++i) {
+    const SurveyStation& station = recorder.stations()[i];
+    EXPECT_EQ(errors[i].t_s, station.t_s);
+    EXPECT_EQ(errors[i].md_m, station.md_m);
+    EXPECT_EQ(errors[i].north_sigma_m, station.north_sigma_m);
+    EXPECT_EQ(errors[i].azimuth_sigma_deg, station.azimuth_sigma_deg);
+    EXPECT_NEAR(errors[i].north_m, -0.5, 1e-6);
+    EXPECT_NEAR(errors[i].east_m, 0.0, 1e-6);
+    EXPECT_NEAR(errors[i].tvd_m, 0.2, 1e-6);
+    EXPECT_NEAR(errors[i].inclination_deg, -0.1, 1e-7);
+    EXPECT_NEAR(errors[i].azimuth_deg, -0.3, 1e-7);
+    EXPECT_FALSE(std::isnan(errors[i].toolface_deg));
+  }
+}
+
+TEST(SurveyRecorder, AzimuthUndefinedNearVertical) {
+  SurveyRecorder recorder(kTieOn);
+  const NavState estimate = state_at(0.0, 0.0, 0.0, 50.0, attitude_deg(0.4, 20.0, 100.0));
+  const NavState truth = state_at(0.0, 0.0, 0.0, 50.0, attitude_deg(0.5, 20.0, 110.0));
+  recorder.observe(estimate, known_covariance(), true, 1050.0, &truth);
+  recorder.finish();
+  ASSERT_EQ(recorder.station_errors().size(), 1u);
+  const SurveyStation& error = recorder.station_errors().front();
+  EXPECT_TRUE(std::isnan(error.azimuth_deg));
+  EXPECT_TRUE(std::isnan(error.toolface_deg));
+  EXPECT_NEAR(error.inclination_deg, -0.1, 1e-7);
+  EXPECT_TRUE(std::isnan(recorder.stations().front().azimuth_sigma_deg));
+  EXPECT_FALSE(std::isnan(recorder.stations().front().inclination_sigma_deg));
+}
+
+TEST(SurveyRecorder, InsPathIsThinnedEvenlyAndKeepsTheLatestPoint) {
+  SurveyRecorder recorder(kTieOn);
+  constexpr int kEpochs = 10003;  // the last epoch falls between strides
+  for (int k = 0; k < kEpochs; ++k) {
+    recorder.observe(state_at(k, 0.0, 0.0, k, attitude_deg(0.0, 0.0, 0.0)), known_covariance(),
+                     false, std::nullopt, nullptr);
+    ASSERT_LE(recorder.ins_path().size(), 4000u);
+    ASSERT_NEAR(recorder.ins_path().back().tvd_m, k, 1e-6);
+  }
+  const auto& path = recorder.ins_path();
+  EXPECT_GE(path.size(), 1000u);
+  EXPECT_NEAR(path.front().md_m, kTieOn.measured_depth_m, 1e-9);
+  EXPECT_NEAR(path.front().tvd_m, 0.0, 1e-9);
+  // Every point but the latest lies on one stride.
+  const double stride_m = path[1].tvd_m - path[0].tvd_m;
+  EXPECT_GT(stride_m, 1.0);
+  for (std::size_t i = 1; i + 1 < path.size(); ++i) {
+    EXPECT_NEAR(path[i].tvd_m - path[i - 1].tvd_m, stride_m, 1e-6) << i;
+  }
+  EXPECT_LE(path.back().tvd_m - path[path.size() - 2].tvd_m, stride_m + 1e-6);
+  EXPECT_NEAR(path.back().md_m, kTieOn.measured_depth_m + (kEpochs - 1), 1e-5);
+}
+
+// ---------------------------------------------------------------- files
+
+std::vector<std::string> read_lines(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::size_t files_in(const std::filesystem::path& dir) {
+  return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(dir),
+                                                std::filesystem::directory_iterator()));
+}
+
+/// Three stations, the first near vertical, with truth at all of them when `with_truth`.
+SurveyRecorder recorded_run(bool with_truth) {
+  SurveyRecorder recorder(kTieOn);
+  for (const Epoch& e : three_connections()) {
+    const double inclination = e.t_s < 3.0 ? 0.3 : 3.0 * e.t_s;
+    const NavState estimate = state_at(e.t_s, 0.1 * e.tvd_m, 0.05 * e.tvd_m, e.tvd_m,
+                                       attitude_deg(inclination, 0.0, 30.0));
+    recorder.observe(estimate, known_covariance(), e.stationary, std::nullopt,
+                     with_truth ? &estimate : nullptr);
+  }
+  recorder.finish();
+  return recorder;
+}
+
+constexpr const char* kSurveyHeader =
+    "t_s,md_m,inclination_deg,azimuth_deg,toolface_deg,tvd_m,north_m,east_m,"
+    "inclination_sigma_deg,azimuth_sigma_deg,north_sigma_m,east_sigma_m,tvd_sigma_m";
+
+TEST(SurveyFiles, AppearOnlyOnCommit) {
+  const testing::TempDir dir;
+  const SurveyRecorder recorder = recorded_run(true);
+  auto files = write_survey_files(recorder, kTieOn, dir.path(), false);
+  ASSERT_EQ(files.size(), 3u);
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "survey.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "survey_errors.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "well_path.csv"));
+  EXPECT_EQ(files_in(dir.path()), 3u);  // the temporaries
+  for (auto& file : files) file->commit();
+  files.clear();
+  EXPECT_EQ(files_in(dir.path()), 3u);
+
+  const auto survey = read_lines(dir.path() / "survey.csv");
+  ASSERT_EQ(survey.size(), 4u);
+  EXPECT_EQ(survey[0], kSurveyHeader);
+  // The near-vertical first station has no azimuth sigma.
+  EXPECT_NE(survey[1].find(",nan,"), std::string::npos) << survey[1];
+  EXPECT_EQ(survey[2].find("nan"), std::string::npos) << survey[2];
+  // 9 significant digits: the time and depth read back to 1e-8 relative.
+  std::istringstream row(survey[2]);
+  std::string t, md;
+  std::getline(row, t, ',');
+  std::getline(row, md, ',');
+  EXPECT_EQ(std::stod(t), recorder.stations()[1].t_s);
+  EXPECT_NEAR(std::stod(md), recorder.stations()[1].md_m, 1e-8 * recorder.stations()[1].md_m);
+
+  const auto errors = read_lines(dir.path() / "survey_errors.csv");
+  ASSERT_EQ(errors.size(), 4u);
+  EXPECT_EQ(errors[0], kSurveyHeader);
+
+  const auto well_path = read_lines(dir.path() / "well_path.csv");
+  EXPECT_EQ(well_path[0], "source,md_m,north_m,east_m,tvd_m");
+  std::size_t minimum_curvature_rows = 0, ins_rows = 0;
+  for (std::size_t i = 1; i < well_path.size(); ++i) {
+    if (well_path[i].starts_with("minimum_curvature,")) ++minimum_curvature_rows;
+    if (well_path[i].starts_with("ins,")) ++ins_rows;
+  }
+  EXPECT_EQ(minimum_curvature_rows, 1u + recorder.stations().size());  // tie-on + stations
+  EXPECT_EQ(ins_rows, recorder.ins_path().size());
+  EXPECT_EQ(well_path.size(), 1u + minimum_curvature_rows + ins_rows);
+  EXPECT_EQ(well_path[1], "minimum_curvature,1000,0,0,0");
+}
+
+TEST(SurveyFiles, UncommittedFilesLeaveNothing) {
+  const testing::TempDir dir;
+  {
+    auto files = write_survey_files(recorded_run(true), kTieOn, dir.path(), true);
+    EXPECT_GE(files.size(), 3u);
+    EXPECT_GT(files_in(dir.path()), 0u);
+  }
+  EXPECT_EQ(files_in(dir.path()), 0u);
+}
+
+TEST(SurveyFiles, NoErrorFileWithoutTruth) {
+  const testing::TempDir dir;
+  auto files = write_survey_files(recorded_run(false), kTieOn, dir.path(), false);
+  ASSERT_EQ(files.size(), 2u);
+  for (auto& file : files) file->commit();
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "survey.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "well_path.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "survey_errors.csv"));
+}
+
+TEST(SurveyPlot, EllipseMagnificationIsOneTwoOrFiveTimesAPowerOfTen) {
+  // A 4 m ellipse on a 2 km plan: 3 % is 60 m, 15x wanted, 10x drawn.
+  EXPECT_EQ(ellipse_magnification(4.0, 2000.0), 10.0);
+  EXPECT_EQ(ellipse_magnification(1.0, 2000.0), 50.0);     // 60x wanted
+  EXPECT_EQ(ellipse_magnification(0.02, 2000.0), 2000.0);  // 3000x wanted
+  EXPECT_EQ(ellipse_magnification(0.2, 10.0), 1.0);        // 1.5x wanted: not worth it
+  EXPECT_EQ(ellipse_magnification(100.0, 1000.0), 1.0);    // never shrunk
+  EXPECT_EQ(ellipse_magnification(0.0, 1000.0), 1.0);      // no uncertainty
+  EXPECT_EQ(ellipse_magnification(1.0, 0.0), 1.0);         // no extent
+  for (double axis_m : {0.013, 0.5, 3.7, 11.0}) {
+    const double factor = ellipse_magnification(axis_m, 5000.0);
+    EXPECT_LE(factor * axis_m, 0.03 * 5000.0 * (1 + 1e-12)) << axis_m;
+    EXPECT_GT(factor * axis_m, 0.03 * 5000.0 / 2.5) << axis_m;
+  }
+}
+
+TEST(SurveyFiles, PlotIsAPngAndLeavesNoTemporaries) {
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gnuplot";
+  const testing::TempDir dir;
+  auto files = write_survey_files(recorded_run(true), kTieOn, dir.path(), true);
+  ASSERT_EQ(files.size(), 4u);
+  EXPECT_EQ(files_in(dir.path()), 4u);  // only the four pending files, no script or data
+  for (auto& file : files) file->commit();
+  files.clear();
+  EXPECT_EQ(files_in(dir.path()), 4u);
+  std::ifstream png(dir.path() / "survey.png", std::ios::binary);
+  char magic[4] = {};
+  png.read(magic, 4);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+}
+
+}  // namespace
+}  // namespace stochnav
