@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "run_cli.hpp"
+#include "stochnav/ins/mwd_attitude.hpp"
+#include "stochnav/io/psins_imu.hpp"
 #include "temp_dir.hpp"
 
 namespace stochnav {
@@ -195,6 +197,68 @@ TEST_F(RunCli, InitialErrorIsRemovedAndTheRunChecksItself) {
   EXPECT_EQ(a, nav_of("seed_b"));
   config["initial_error"]["draw_seed"] = 4;
   EXPECT_NE(a, nav_of("seed_c"));
+}
+
+// The real ring-laser-gyro record (no truth) through the shipped configs: the alignment's
+// heading of the forward axis against the header's 90.6 deg ("maybe inaccurate"), and the
+// ZUPT-aided position staying put while the free INS drifts away.
+TEST(RunPsins, AlignmentThenZuptOnTheRealRecord) {
+  STOCHNAV_REQUIRE_SHARED_DATA(path, "psins/lasergyro.imu");
+  const TempDir dir;
+  {
+    const PsinsImuRecord record = read_psins_imu(path);
+    std::ofstream csv(dir.file("imu.csv"));
+    csv << "t,dtheta_x,dtheta_y,dtheta_z,dv_x,dv_y,dv_z\n";
+    char line[256];
+    for (std::size_t k = 0; k < record.increments.size(); ++k) {
+      const auto& r = record.increments[k];
+      std::snprintf(line, sizeof line, "%.2f,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                    static_cast<double>(k + 1) * record.interval_s, r[0], r[1], r[2], r[3], r[4],
+                    r[5]);
+      csv << line;
+    }
+  }
+  const auto run = [&](const std::string& name) {
+    const auto result = run_cli("run '" + std::string(STOCHNAV_SOURCE_DIR) + "/configs/runs/" +
+                                    name + ".json' --data '" + dir.path().string() + "' --out '" +
+                                    dir.file(name) + "' --no-plot",
+                                dir.path());
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    return nlohmann::json::parse(read(dir.path() / name / "metrics.json"));
+  };
+  // Horizontal distance (m) of nav.csv's last row from the start.
+  const auto drift_m = [&](const std::string& name, const nlohmann::json& metrics) {
+    const std::string nav = read(dir.path() / name / "nav.csv");
+    const std::string last = nav.substr(nav.rfind('\n', nav.size() - 2) + 1);
+    std::stringstream cells(last);
+    std::vector<double> row;
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+    constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0, kR = 6378137.0;
+    const double lat0 = metrics["initial"]["latitude_deg"].get<double>();
+    const double north = (row[1] - lat0) * kRadPerDeg * kR;
+    const double east = (row[2] - metrics["initial"]["longitude_deg"].get<double>()) *
+                        kRadPerDeg * kR * std::cos(lat0 * kRadPerDeg);
+    return std::hypot(north, east);
+  };
+  const nlohmann::json zupt = run("psins_zupt");
+  const nlohmann::json free = run("psins_free");
+  const auto& start = zupt["initial"];
+  constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
+  const Eigen::Quaterniond q = quaternion_from_mwd(
+      {.inclination_rad = start["inclination_deg"].get<double>() * kRadPerDeg,
+       .toolface_rad = start["toolface_deg"].get<double>() * kRadPerDeg,
+       .azimuth_rad = start["azimuth_deg"].get<double>() * kRadPerDeg});
+  const Eigen::Vector3d forward_n = q * Eigen::Vector3d::UnitY();  // body y = forward
+  const double heading = std::atan2(forward_n.x(), forward_n.y()) / kRadPerDeg;
+  const double heading_sigma = start["attitude_sigma_deg"][2].get<double>();
+  std::printf("PSINS: heading after the 300-s alignment %.2f deg (1-sigma %.2f); position drift "
+              "after 1547 s: %.2f m with ZUPT, %.0f m free\n",
+              heading, heading_sigma, drift_m("psins_zupt", zupt), drift_m("psins_free", free));
+  EXPECT_NEAR(heading, 90.6, 1.0);
+  EXPECT_LT(heading_sigma, 0.5);
+  EXPECT_LT(drift_m("psins_zupt", zupt), 1.0);
+  EXPECT_GT(drift_m("psins_free", free), 50.0);
+  EXPECT_EQ(zupt["aids"][0]["rejected_share"], 0.0);
 }
 
 struct BadRunCase {

@@ -26,6 +26,7 @@ namespace fs = std::filesystem;
 void run_parallel(std::size_t count, unsigned threads, ProgressBar& progress,
                   std::atomic<std::uint64_t>& done, const std::function<void(std::size_t)>& job) {
   std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> finished{0};
   std::atomic<bool> failed{false};
   std::exception_ptr first_failure;
   std::mutex failure_mutex;
@@ -39,14 +40,16 @@ void run_parallel(std::size_t count, unsigned threads, ProgressBar& progress,
         failed = true;
       }
       ++done;
+      ++finished;
     }
   };
   std::vector<std::thread> pool;
   const unsigned workers = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(count)));
   for (unsigned t = 1; t < workers; ++t) pool.emplace_back(worker);
-  // The calling thread works too, and draws the progress bar between its jobs.
+  // A drawer thread keeps the progress up to date until the last job has finished (the last
+  // jobs can run for a long time after the last one started).
   std::thread drawer([&] {
-    while (next < count && !failed) {
+    while (finished < count && !failed) {
       progress.show(done);
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
