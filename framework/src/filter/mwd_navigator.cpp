@@ -1,5 +1,6 @@
 #include "stochnav/filter/mwd_navigator.hpp"
 
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -52,6 +53,15 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
     group->phi = Eigen::MatrixXd::Identity(group->size, group->size);
     group->q_d = Eigen::MatrixXd::Zero(group->size, group->size);
     if (group->size > 0) model->augmented_sensor_map(group->sensor_map);
+    group->blocks = BlockDiagonalStructure(group->size);
+    group->coupling = Eigen::MatrixXd::Zero(3, group->size);
+    group->propagated = Eigen::VectorXd::Zero(group->size);
+  }
+  // The dense head ends where the first augmented block starts (layout: head, then the gyro's
+  // augmented block, then the accelerometer's).
+  head_size_ = layout_.size();
+  for (const AugmentedGroup* group : {&accel_augmented_, &gyro_augmented_}) {
+    if (group->size > 0) head_size_ = group->offset;
   }
   const int n = layout_.size();
   phi_ = Eigen::MatrixXd::Identity(n, n);
@@ -134,13 +144,27 @@ void MwdNavigator::propagate_covariance() {
   for (auto [group, rows, sign] : {std::tuple{&gyro_augmented_, cs::kAttitude, 1.0},
                                    std::tuple{&accel_augmented_, cs::kVelocity, -1.0}}) {
     if (group->size == 0) continue;
-    group->model->augmented_transition(interval_start_s_, interval, group->phi, group->q_d);
-    phi_.block(group->offset, group->offset, group->size, group->size) = group->phi;
-    q_d_.block(group->offset, group->offset, group->size, group->size) = group->q_d;
-    phi_.block(rows, group->offset, 3, group->size) = sign * fast_.c_nb_dt * group->sensor_map;
-    group->estimate = group->phi * group->estimate;
+    update_augmented_transition(*group, interval);
+    group->coupling.noalias() = sign * fast_.c_nb_dt * group->sensor_map;
+    multiply_block_diagonal(group->blocks, group->phi, group->estimate, group->propagated);
+    group->estimate.swap(group->propagated);
+    if (!options_.structured_covariance) {
+      phi_.block(group->offset, group->offset, group->size, group->size) = group->phi;
+      q_d_.block(group->offset, group->offset, group->size, group->size) = group->q_d;
+      phi_.block(rows, group->offset, 3, group->size) = group->coupling;
+    }
   }
-  filter_.propagate(phi_, q_d_);
+  if (options_.structured_covariance) {
+    const int d = head_size_;
+    const std::array<TailSegment, 2> tail{
+        TailSegment{gyro_augmented_.offset, gyro_augmented_.blocks, gyro_augmented_.phi,
+                    gyro_augmented_.q_d, cs::kAttitude, gyro_augmented_.coupling},
+        TailSegment{accel_augmented_.offset, accel_augmented_.blocks, accel_augmented_.phi,
+                    accel_augmented_.q_d, cs::kVelocity, accel_augmented_.coupling}};
+    filter_.propagate(BlockTransition{phi_.topLeftCorner(d, d), q_d_.topLeftCorner(d, d), tail});
+  } else {
+    filter_.propagate(phi_, q_d_);
+  }
 
   interval_start_s_ += interval;
   fast_ = FastInputIntegrals{};
@@ -148,10 +172,21 @@ void MwdNavigator::propagate_covariance() {
   velocity_noise_.setZero();
 }
 
+// Phi and Qd of a time-invariant model depend on the interval only: computed again only when
+// it changes (not the exp() of every state at every interval). A pattern outside the known
+// blocks (a new model phase, an entry that was zero at the first interval) coarsens them.
+void MwdNavigator::update_augmented_transition(AugmentedGroup& group, double interval_s) {
+  if (!group.model->time_varying() && interval_s == group.transition_interval_s) return;
+  group.model->augmented_transition(interval_start_s_, interval_s, group.phi, group.q_d);
+  group.transition_interval_s = group.model->time_varying() ? -1.0 : interval_s;
+  if (!group.blocks.covers(group.phi) || !group.blocks.covers(group.q_d)) {
+    group.blocks.cover(group.phi).cover(group.q_d);
+  }
+}
+
 void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
                               const Eigen::Vector3d& f_ib_b) {
   const plugin::ImuSample imu{.t_s = t_s, .omega_ib_b = omega_ib_b, .f_ib_b = f_ib_b};
-  const int n = layout_.size();
   for (std::size_t index = 0; index < aids_.size(); ++index) {
     plugin::AidPlugin& aid = *aids_[index];
     if (!aid.has_measurement(t_s)) continue;
@@ -160,8 +195,6 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
     h_core_.resize(m, cs::kSize);
     r_.resize(m, m);
     if (!aid.measure(t_s, ins_.state(), imu, residual_, h_core_, r_)) continue;
-    h_full_.setZero(m, n);
-    h_full_.leftCols<cs::kSize>() = h_core_;
 
     const bool adaptive = gyro_noise_.time_varying() || accel_noise_.time_varying();
     const Eigen::MatrixXd prior = adaptive ? filter_.covariance() : Eigen::MatrixXd();
@@ -171,7 +204,8 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
                             rejections >= options_.max_consecutive_rejections;
     const bool gated = aid.gate().enabled && !locked_out;
     const UpdateOutcome outcome = filter_.update(
-        residual_, h_full_, r_, gated ? aid.gate().threshold : INFINITY, correction_);
+        residual_, h_core_, r_, gated ? aid.gate().threshold : INFINITY, correction_,
+        options_.structured_covariance ? JosephForm::kExpanded : JosephForm::kProduct);
     rejections = outcome.accepted ? 0 : rejections + 1;
     InnovationRecord record{.t_s = t_s,
                             .aid_index = static_cast<int>(index),

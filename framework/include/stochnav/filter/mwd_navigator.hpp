@@ -17,6 +17,7 @@
 #include <span>
 #include <vector>
 
+#include "stochnav/filter/block_structure.hpp"
 #include "stochnav/filter/error_dynamics.hpp"
 #include "stochnav/filter/error_state_filter.hpp"
 #include "stochnav/filter/filter_options.hpp"
@@ -68,13 +69,19 @@ class MwdNavigator final {
     int size = 0;
     Eigen::MatrixXd sensor_map;  // 3 x size
     Eigen::VectorXd estimate;    // nominal augmented states
-    Eigen::MatrixXd phi, q_d;    // scratch, size x size
+    Eigen::MatrixXd phi, q_d;    // of the last interval, size x size
+    // Structured covariance (FilterOptions::structured_covariance):
+    BlockDiagonalStructure blocks;      // of phi and q_d, coarsened when a new pattern shows
+    double transition_interval_s = -1;  // phi, q_d are valid for it (time-invariant models)
+    Eigen::MatrixXd coupling;           // +-C_nb_dt M: the group's rows of Phi, 3 x size
+    Eigen::VectorXd propagated;         // scratch, size
   };
 
   void accumulate_noise(plugin::NoiseModelPlugin& model, double t_s, double dt_s,
                         const Eigen::Matrix3d& c_nb, Eigen::Matrix3d& cache, double& cached_dt,
                         Eigen::Matrix3d& sum);
   void propagate_covariance();
+  void update_augmented_transition(AugmentedGroup& group, double interval_s);
   void apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b, const Eigen::Vector3d& f_ib_b);
   void feed_back(const Eigen::VectorXd& correction);
   Eigen::Vector3d sensor_correction(const AugmentedGroup& group) const;
@@ -91,6 +98,7 @@ class MwdNavigator final {
   Eigen::Vector3d accel_bias_b_ = Eigen::Vector3d::Zero();
   AugmentedGroup gyro_augmented_;
   AugmentedGroup accel_augmented_;
+  int head_size_ = 0;  // D: the dense head before the augmented blocks
 
   // Accumulated over the current covariance interval.
   double interval_start_s_ = 0.0;
@@ -106,7 +114,7 @@ class MwdNavigator final {
   Eigen::Matrix3d bias_walk_;
   Eigen::VectorXd correction_;
   Eigen::VectorXd residual_;
-  Eigen::MatrixXd h_core_, h_full_, r_;
+  Eigen::MatrixXd h_core_, r_;
   std::vector<InnovationRecord> innovations_;
 };
 
