@@ -1,4 +1,4 @@
-// Block detection on known patterns, and the block-diagonal products against dense ones.
+// Block detection on known patterns: diagonal runs, 2 x 2 and companion blocks, the dense fallback.
 
 #include "stochnav/filter/block_structure.hpp"
 
@@ -84,29 +84,6 @@ TEST(BlockDiagonalStructure, EmptyStructure) {
   EXPECT_TRUE(structure.blocks().empty());
   EXPECT_EQ(structure.max_block_size(), 0);
   EXPECT_TRUE(structure.covers(Eigen::MatrixXd(0, 0)));
-}
-
-// Random block-diagonal B on a structure of mixed blocks; products equal the dense ones exactly
-// up to rounding (the dense product only adds exact zeros).
-TEST(BlockDiagonalStructure, ProductsEqualDenseProducts) {
-  std::mt19937_64 engine(11);
-  Eigen::MatrixXd pattern = Eigen::MatrixXd::Identity(12, 12);
-  pattern.block(3, 3, 3, 3).setOnes();  // dense 3 x 3
-  pattern.block(7, 7, 2, 2).setOnes();  // dense 2 x 2
-  const auto structure = BlockDiagonalStructure(12).cover(pattern);
-  ASSERT_EQ(structure.blocks().size(), 5u);
-  Eigen::MatrixXd b = random_matrix(12, 12, engine).cwiseProduct(pattern.unaryExpr([](double x) {
-    return x != 0.0 ? 1.0 : 0.0;
-  }));
-  const Eigen::MatrixXd src = random_matrix(12, 7, engine);
-  Eigen::MatrixXd left(12, 7), right(7, 12);
-  multiply_block_diagonal(structure, b, src, left);
-  multiply_by_block_diagonal_transpose(structure, b, src.transpose(), right);
-  EXPECT_LE((left - b * src).norm(), 1e-14 * (b * src).norm());
-  EXPECT_LE((right - src.transpose() * b.transpose()).norm(), 1e-14 * (b * src).norm());
-  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(12, 12);
-  add_block_diagonal(structure, b, sum);
-  EXPECT_EQ(sum, b);
 }
 
 }  // namespace

@@ -43,6 +43,7 @@ struct RandomSegment {
   int offset = 0;
   BlockDiagonalStructure blocks;
   Eigen::MatrixXd phi, q, coupling;
+  BlockDiagonalMatrix transition, noise;  // phi and q on blocks
   int coupling_row = 0;
 };
 
@@ -69,6 +70,8 @@ RandomSegment random_segment(int offset, int size, int head_size, std::mt19937_6
           random_spd(block.size, engine);
     }
   }
+  segment.transition.assign(segment.blocks, segment.phi);
+  segment.noise.assign(segment.blocks, segment.q);
   segment.coupling = random_matrix(3, size, engine);
   segment.coupling_row = std::uniform_int_distribution<int>(0, head_size - 3)(engine);
   return segment;
@@ -124,7 +127,7 @@ TEST_P(StructuredCovariance, PropagationEqualsTheDenseProducts) {
     const Eigen::MatrixXd p = random_spd(t.dense_phi.rows(), engine);
     std::vector<TailSegment> tail;
     for (const RandomSegment& s : t.segments) {
-      tail.push_back(TailSegment{s.offset, s.blocks, s.phi, s.q, s.coupling_row, s.coupling});
+      tail.push_back(TailSegment{s.offset, s.transition, s.noise, s.coupling_row, s.coupling});
     }
     ErrorStateFilter filter(p);
     filter.propagate(BlockTransition{t.head_phi, t.head_q, tail});
@@ -190,9 +193,9 @@ TEST_P(StructuredCovariance, ExpandedJosephUpdateEqualsTheTextbookJosephForm) {
 INSTANTIATE_TEST_SUITE_P(HeadSizes, StructuredCovariance,
                          ::testing::Values(Case{15, {}}, Case{15, {40, 30}}, Case{21, {50, 1}},
                                            Case{21, {0, 37}}, Case{15, {100}}),
-                         [](const ::testing::TestParamInfo<Case>& info) {
-                           std::string name = "head" + std::to_string(info.param.head_size);
-                           for (int size : info.param.segment_sizes) {
+                         [](const ::testing::TestParamInfo<Case>& param_info) {
+                           std::string name = "head" + std::to_string(param_info.param.head_size);
+                           for (int size : param_info.param.segment_sizes) {
                              name += "_tail" + std::to_string(size);
                            }
                            return name;

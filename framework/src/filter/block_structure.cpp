@@ -4,14 +4,6 @@
 #include <cassert>
 
 namespace stochnav {
-namespace {
-
-// Dense blocks up to this size are multiplied coefficient-wise (no packing); larger ones (the
-// dense fallback) through Eigen's blocked product, which is faster there.
-constexpr int kLazyProductMaxBlock = 8;
-
-}  // namespace
-
 BlockDiagonalStructure::BlockDiagonalStructure(int size) : size_(std::max(size, 0)) {
   if (size_ > 0) blocks_.push_back({.offset = 0, .size = size_, .diagonal = true});
 }
@@ -77,57 +69,6 @@ void BlockDiagonalStructure::rebuild(const std::vector<int>& reach) {
       blocks_.push_back({.offset = start, .size = size, .diagonal = size == 1});
     }
     start = end + 1;
-  }
-}
-
-void multiply_block_diagonal(const BlockDiagonalStructure& structure,
-                             const Eigen::Ref<const Eigen::MatrixXd>& b,
-                             const Eigen::Ref<const Eigen::MatrixXd>& src,
-                             Eigen::Ref<Eigen::MatrixXd> dst) {
-  assert(b.rows() == structure.size() && src.rows() == structure.size());
-  assert(dst.rows() == src.rows() && dst.cols() == src.cols());
-  for (const BlockDiagonalStructure::Block& block : structure.blocks()) {
-    const int o = block.offset, s = block.size;
-    if (block.diagonal) {
-      dst.middleRows(o, s) = b.diagonal().segment(o, s).asDiagonal() * src.middleRows(o, s);
-    } else if (s <= kLazyProductMaxBlock) {
-      dst.middleRows(o, s).noalias() = b.block(o, o, s, s).lazyProduct(src.middleRows(o, s));
-    } else {
-      dst.middleRows(o, s).noalias() = b.block(o, o, s, s) * src.middleRows(o, s);
-    }
-  }
-}
-
-void multiply_by_block_diagonal_transpose(const BlockDiagonalStructure& structure,
-                                          const Eigen::Ref<const Eigen::MatrixXd>& b,
-                                          const Eigen::Ref<const Eigen::MatrixXd>& src,
-                                          Eigen::Ref<Eigen::MatrixXd> dst) {
-  assert(b.rows() == structure.size() && src.cols() == structure.size());
-  assert(dst.rows() == src.rows() && dst.cols() == src.cols());
-  for (const BlockDiagonalStructure::Block& block : structure.blocks()) {
-    const int o = block.offset, s = block.size;
-    if (block.diagonal) {
-      dst.middleCols(o, s) = src.middleCols(o, s) * b.diagonal().segment(o, s).asDiagonal();
-    } else if (s <= kLazyProductMaxBlock) {
-      dst.middleCols(o, s).noalias() =
-          src.middleCols(o, s).lazyProduct(b.block(o, o, s, s).transpose());
-    } else {
-      dst.middleCols(o, s).noalias() = src.middleCols(o, s) * b.block(o, o, s, s).transpose();
-    }
-  }
-}
-
-void add_block_diagonal(const BlockDiagonalStructure& structure,
-                        const Eigen::Ref<const Eigen::MatrixXd>& b,
-                        Eigen::Ref<Eigen::MatrixXd> dst) {
-  assert(b.rows() == structure.size() && dst.rows() == structure.size());
-  for (const BlockDiagonalStructure::Block& block : structure.blocks()) {
-    const int o = block.offset, s = block.size;
-    if (block.diagonal) {
-      dst.diagonal().segment(o, s) += b.diagonal().segment(o, s);
-    } else {
-      dst.block(o, o, s, s) += b.block(o, o, s, s);
-    }
   }
 }
 

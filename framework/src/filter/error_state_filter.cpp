@@ -1,5 +1,6 @@
 #include "stochnav/filter/error_state_filter.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -56,9 +57,9 @@ void ErrorStateFilter::propagate(const BlockTransition& transition) {
   tail_head_.noalias() = p_th * phi_h.transpose();
   head_head_.noalias() = p_hh * phi_h.transpose();
   for (const TailSegment& segment : transition.tail) {
-    const Eigen::Index k = segment.blocks.size();
+    const Eigen::Index k = segment.transition.size();
     if (k == 0) continue;
-    assert(segment.offset >= d && segment.offset + k <= n);
+    assert(segment.offset >= d && segment.offset + k <= n && segment.noise.size() == k);
     const Eigen::Index local = segment.offset - d;
     const Eigen::Index c = segment.coupling.rows();
     if (c > 0) {
@@ -67,16 +68,15 @@ void ErrorStateFilter::propagate(const BlockTransition& transition) {
       head_head_.middleCols(segment.coupling_row, c).noalias() +=
           p_ht.middleCols(local, k) * segment.coupling.transpose();
     }
-    multiply_by_block_diagonal_transpose(segment.blocks, segment.transition,
-                                         p_tt.middleCols(local, k),
-                                         tail_tail_.middleCols(local, k));
+    segment.transition.multiply_transpose_from_right(p_tt.middleCols(local, k),
+                                                     tail_tail_.middleCols(local, k));
   }
 
   auto next_hh = scratch_.topLeftCorner(d, d);
   next_hh.noalias() = phi_h * head_head_;
   next_hh += transition.head_noise;
   for (const TailSegment& segment : transition.tail) {
-    const Eigen::Index k = segment.blocks.size();
+    const Eigen::Index k = segment.transition.size();
     if (k == 0) continue;
     const Eigen::Index local = segment.offset - d;
     const Eigen::Index c = segment.coupling.rows();
@@ -84,12 +84,11 @@ void ErrorStateFilter::propagate(const BlockTransition& transition) {
       next_hh.middleRows(segment.coupling_row, c).noalias() +=
           segment.coupling * tail_head_.middleRows(local, k);
     }
-    multiply_block_diagonal(segment.blocks, segment.transition, tail_head_.middleRows(local, k),
-                            scratch_.block(segment.offset, 0, k, d));
+    segment.transition.multiply(tail_head_.middleRows(local, k),
+                                scratch_.block(segment.offset, 0, k, d));
     auto next_tt = scratch_.block(segment.offset, d, k, n_a);
-    multiply_block_diagonal(segment.blocks, segment.transition, tail_tail_.middleRows(local, k),
-                            next_tt);
-    add_block_diagonal(segment.blocks, segment.noise, next_tt.middleCols(local, k));
+    segment.transition.multiply(tail_tail_.middleRows(local, k), next_tt);
+    segment.noise.add_to(next_tt.middleCols(local, k));
   }
   scratch_.topRightCorner(d, n_a) = scratch_.bottomLeftCorner(n_a, d).transpose();
   covariance_.swap(scratch_);
@@ -160,12 +159,22 @@ UpdateOutcome ErrorStateFilter::update(const Eigen::Ref<const Eigen::VectorXd>& 
 }
 
 void ErrorStateFilter::keep_healthy(Symmetrize how) {
-  for (Eigen::Index j = 0; j < covariance_.cols(); ++j) {
-    for (Eigen::Index i = j + 1; i < covariance_.rows(); ++i) {
-      const double value = how == Symmetrize::kAverage
-                               ? 0.5 * (covariance_(i, j) + covariance_(j, i))
-                               : covariance_(i, j);
-      covariance_(i, j) = covariance_(j, i) = value;
+  // In square tiles, so that the transposed accesses (j, i) reuse the cache lines they load
+  // instead of striding through the whole matrix.
+  constexpr Eigen::Index kTile = 16;
+  const Eigen::Index n = covariance_.rows();
+  for (Eigen::Index j0 = 0; j0 < n; j0 += kTile) {
+    const Eigen::Index j_end = std::min(j0 + kTile, n);
+    for (Eigen::Index i0 = j0; i0 < n; i0 += kTile) {
+      const Eigen::Index i_end = std::min(i0 + kTile, n);
+      for (Eigen::Index j = j0; j < j_end; ++j) {
+        for (Eigen::Index i = std::max(i0, j + 1); i < i_end; ++i) {
+          const double value = how == Symmetrize::kAverage
+                                   ? 0.5 * (covariance_(i, j) + covariance_(j, i))
+                                   : covariance_(i, j);
+          covariance_(i, j) = covariance_(j, i) = value;
+        }
+      }
     }
   }
   if (!covariance_.allFinite()) {

@@ -64,8 +64,9 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
     if (group->size > 0) head_size_ = group->offset;
   }
   const int n = layout_.size();
-  phi_ = Eigen::MatrixXd::Identity(n, n);
-  q_d_ = Eigen::MatrixXd::Zero(n, n);
+  const int phi_size = options_.structured_covariance ? head_size_ : n;
+  phi_ = Eigen::MatrixXd::Identity(phi_size, phi_size);
+  q_d_ = Eigen::MatrixXd::Zero(phi_size, phi_size);
   correction_ = Eigen::VectorXd::Zero(n);
   innovations_.reserve(aids_.size());
   consecutive_rejections_.assign(aids_.size(), 0);
@@ -146,7 +147,7 @@ void MwdNavigator::propagate_covariance() {
     if (group->size == 0) continue;
     update_augmented_transition(*group, interval);
     group->coupling.noalias() = sign * fast_.c_nb_dt * group->sensor_map;
-    multiply_block_diagonal(group->blocks, group->phi, group->estimate, group->propagated);
+    group->transition.multiply(group->estimate, group->propagated);
     group->estimate.swap(group->propagated);
     if (!options_.structured_covariance) {
       phi_.block(group->offset, group->offset, group->size, group->size) = group->phi;
@@ -155,13 +156,12 @@ void MwdNavigator::propagate_covariance() {
     }
   }
   if (options_.structured_covariance) {
-    const int d = head_size_;
     const std::array<TailSegment, 2> tail{
-        TailSegment{gyro_augmented_.offset, gyro_augmented_.blocks, gyro_augmented_.phi,
-                    gyro_augmented_.q_d, cs::kAttitude, gyro_augmented_.coupling},
-        TailSegment{accel_augmented_.offset, accel_augmented_.blocks, accel_augmented_.phi,
-                    accel_augmented_.q_d, cs::kVelocity, accel_augmented_.coupling}};
-    filter_.propagate(BlockTransition{phi_.topLeftCorner(d, d), q_d_.topLeftCorner(d, d), tail});
+        TailSegment{gyro_augmented_.offset, gyro_augmented_.transition, gyro_augmented_.noise,
+                    cs::kAttitude, gyro_augmented_.coupling},
+        TailSegment{accel_augmented_.offset, accel_augmented_.transition, accel_augmented_.noise,
+                    cs::kVelocity, accel_augmented_.coupling}};
+    filter_.propagate(BlockTransition{phi_, q_d_, tail});
   } else {
     filter_.propagate(phi_, q_d_);
   }
@@ -182,6 +182,8 @@ void MwdNavigator::update_augmented_transition(AugmentedGroup& group, double int
   if (!group.blocks.covers(group.phi) || !group.blocks.covers(group.q_d)) {
     group.blocks.cover(group.phi).cover(group.q_d);
   }
+  group.transition.assign(group.blocks, group.phi);
+  group.noise.assign(group.blocks, group.q_d);
 }
 
 void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,

@@ -3,7 +3,7 @@
 // error state, plugin/noise_model_plugin.hpp): first-order shaping states give a diagonal,
 // ramps and oscillators 2 x 2 blocks, AR / ARMA companion forms a small dense block per axis.
 // Knowing it, the filter multiplies by Phi_t in O(k b) per column instead of O(k^2)
-// (filter/error_state_filter.hpp, propagate(const BlockTransition&)).
+// (filter/block_diagonal_matrix.hpp; filter/error_state_filter.hpp, BlockTransition).
 //
 // Blocks are contiguous ranges of states. A structure is detected from nonzero patterns: two
 // states belong to one block when some pattern couples them, and a block is widened to the
@@ -59,25 +59,5 @@ class BlockDiagonalStructure final {
   int size_ = 0;
   std::vector<Block> blocks_;
 };
-
-/// dst = B src: B (k x k) block-diagonal on `structure` (entries outside its blocks are taken
-/// as zero, not read), src and dst k x c. dst must not alias src. No allocation.
-void multiply_block_diagonal(const BlockDiagonalStructure& structure,
-                             const Eigen::Ref<const Eigen::MatrixXd>& b,
-                             const Eigen::Ref<const Eigen::MatrixXd>& src,
-                             Eigen::Ref<Eigen::MatrixXd> dst);
-
-/// dst = src B^T: B (k x k) block-diagonal on `structure`, src and dst c x k, not aliased.
-/// No allocation.
-void multiply_by_block_diagonal_transpose(const BlockDiagonalStructure& structure,
-                                          const Eigen::Ref<const Eigen::MatrixXd>& b,
-                                          const Eigen::Ref<const Eigen::MatrixXd>& src,
-                                          Eigen::Ref<Eigen::MatrixXd> dst);
-
-/// dst += B restricted to the blocks of `structure` (k x k each): adds a block-diagonal noise
-/// without touching the zeros outside the blocks. No allocation.
-void add_block_diagonal(const BlockDiagonalStructure& structure,
-                        const Eigen::Ref<const Eigen::MatrixXd>& b,
-                        Eigen::Ref<Eigen::MatrixXd> dst);
 
 }  // namespace stochnav

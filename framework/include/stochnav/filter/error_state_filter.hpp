@@ -13,7 +13,7 @@
 // core and any other states the aids and the INS errors couple densely), tail (n_a augmented
 // states of the noise models)]. Its transition is
 //   Phi = [[Phi_h, G], [0, Phi_t]],   Q_d = blockdiag(Q_h, Q_t),
-// with Phi_t and Q_t block-diagonal (filter/block_structure.hpp) and G nonzero in a few head
+// with Phi_t and Q_t block-diagonal (filter/block_diagonal_matrix.hpp) and G nonzero in a few head
 // rows only (the augmented sensor errors drive the attitude or velocity rows); measurements see
 // the head only. propagate(const BlockTransition&) and update() exploit this: O(n^2 (b + c) +
 // D^2 n) per propagation (b the largest tail block, c the coupled rows) and O(n^2 m) per
@@ -24,7 +24,7 @@
 #include <cstdint>
 #include <span>
 
-#include "stochnav/filter/block_structure.hpp"
+#include "stochnav/filter/block_diagonal_matrix.hpp"
 
 namespace stochnav {
 
@@ -48,13 +48,12 @@ struct UpdateOutcome {
 /// One group of augmented states in a BlockTransition: states [offset, offset + k) of the error
 /// state, with their transition and noise, driving the head rows [coupling_row, coupling_row + c).
 struct TailSegment {
-  int offset = 0;                                ///< first state of the segment, >= D
-  const BlockDiagonalStructure& blocks;          ///< of transition and noise; its size is k
-  Eigen::Ref<const Eigen::MatrixXd> transition;  ///< Phi_t of the segment, k x k (block-diagonal)
-  Eigen::Ref<const Eigen::MatrixXd> noise;       ///< Q_t of the segment, k x k (block-diagonal)
-  int coupling_row = 0;                          ///< first head row driven by the segment
-  Eigen::Ref<const Eigen::MatrixXd> coupling;    ///< G: Phi's rows coupling_row.., columns of
-                                                 ///< the segment; c x k (c = 0: none)
+  int offset = 0;                              ///< first state of the segment, >= D
+  const BlockDiagonalMatrix& transition;       ///< Phi_t of the segment, k x k
+  const BlockDiagonalMatrix& noise;            ///< Q_t of the segment, k x k
+  int coupling_row = 0;                        ///< first head row driven by the segment
+  Eigen::Ref<const Eigen::MatrixXd> coupling;  ///< G: Phi's rows coupling_row.., columns of
+                                               ///< the segment; c x k (c = 0: none)
 };
 
 /// Phi and Q_d of one propagation by blocks (see the header comment). Entries of Phi not

@@ -17,7 +17,7 @@
 #include <span>
 #include <vector>
 
-#include "stochnav/filter/block_structure.hpp"
+#include "stochnav/filter/block_diagonal_matrix.hpp"
 #include "stochnav/filter/error_dynamics.hpp"
 #include "stochnav/filter/error_state_filter.hpp"
 #include "stochnav/filter/filter_options.hpp"
@@ -72,6 +72,8 @@ class MwdNavigator final {
     Eigen::MatrixXd phi, q_d;    // of the last interval, size x size
     // Structured covariance (FilterOptions::structured_covariance):
     BlockDiagonalStructure blocks;      // of phi and q_d, coarsened when a new pattern shows
+    BlockDiagonalMatrix transition;     // phi on `blocks`
+    BlockDiagonalMatrix noise;          // q_d on `blocks`
     double transition_interval_s = -1;  // phi, q_d are valid for it (time-invariant models)
     Eigen::MatrixXd coupling;           // +-C_nb_dt M: the group's rows of Phi, 3 x size
     Eigen::VectorXd propagated;         // scratch, size
@@ -110,7 +112,7 @@ class MwdNavigator final {
   double accel_cached_dt_ = -1.0;
   Eigen::Matrix3d c_nb_;  // attitude at the start of the current epoch
 
-  Eigen::MatrixXd phi_, q_d_;  // n x n scratch
+  Eigen::MatrixXd phi_, q_d_;  // n x n scratch (D x D, the head, when structured)
   Eigen::Matrix3d bias_walk_;
   Eigen::VectorXd correction_;
   Eigen::VectorXd residual_;
