@@ -44,6 +44,9 @@ struct RandomSegment {
   BlockDiagonalStructure blocks;
   Eigen::MatrixXd phi, q, coupling;
   BlockDiagonalMatrix transition, noise;  // phi and q on blocks
+  Eigen::Matrix3d gain;                   // coupling = gain * map
+  Eigen::MatrixXd map;                    // 3 x size, one or two nonzeros per column
+  SparseMap sparse_map;
   int coupling_row = 0;
 };
 
@@ -72,7 +75,15 @@ RandomSegment random_segment(int offset, int size, int head_size, std::mt19937_6
   }
   segment.transition.assign(segment.blocks, segment.phi);
   segment.noise.assign(segment.blocks, segment.q);
-  segment.coupling = random_matrix(3, size, engine);
+  segment.gain = random_matrix(3, 3, engine);
+  segment.map = Eigen::MatrixXd::Zero(3, size);
+  std::uniform_int_distribution<int> axis(0, 2);
+  for (int j = 0; j < size; ++j) {
+    segment.map(axis(engine), j) = 1.0 + random_matrix(1, 1, engine)(0, 0);
+    if (j % 5 == 0) segment.map(axis(engine), j) = 0.5;  // a state driving two axes
+  }
+  segment.sparse_map = SparseMap(segment.map);
+  segment.coupling = segment.gain * segment.map;
   segment.coupling_row = std::uniform_int_distribution<int>(0, head_size - 3)(engine);
   return segment;
 }
@@ -127,7 +138,8 @@ TEST_P(StructuredCovariance, PropagationEqualsTheDenseProducts) {
     const Eigen::MatrixXd p = random_spd(t.dense_phi.rows(), engine);
     std::vector<TailSegment> tail;
     for (const RandomSegment& s : t.segments) {
-      tail.push_back(TailSegment{s.offset, s.transition, s.noise, s.coupling_row, s.coupling});
+      tail.push_back(
+          TailSegment{s.offset, s.transition, s.noise, s.coupling_row, s.gain, s.sparse_map});
     }
     ErrorStateFilter filter(p);
     filter.propagate(BlockTransition{t.head_phi, t.head_q, tail});

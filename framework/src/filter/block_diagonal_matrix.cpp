@@ -82,6 +82,62 @@ void BlockDiagonalMatrix::multiply_transpose_from_right(
   }
 }
 
+void BlockDiagonalMatrix::multiply_lower(const Eigen::Ref<const Eigen::MatrixXd>& src,
+                                         Eigen::Ref<Eigen::MatrixXd> dst, int offset) const {
+  assert(src.rows() == size() && dst.rows() == size() && dst.cols() == src.cols());
+  assert(offset + size() <= src.cols());
+  const double* next = dense_.data();
+  for (const Block& block : structure_.blocks()) {
+    const int o = block.offset, s = block.size;
+    const int columns = offset + o + s;
+    if (block.diagonal) {
+      dst.block(o, 0, s, columns) =
+          diagonal_.segment(o, s).asDiagonal() * src.block(o, 0, s, columns);
+      continue;
+    }
+    if (s == 2) {
+      dst.block(o, 0, 2, columns).noalias() =
+          Eigen::Map<const Eigen::Matrix2d>(next).lazyProduct(src.block(o, 0, 2, columns));
+    } else if (s <= kLazyProductMaxBlock) {
+      dst.block(o, 0, s, columns).noalias() =
+          ConstMap(next, s, s).lazyProduct(src.block(o, 0, s, columns));
+    } else {
+      dst.block(o, 0, s, columns).noalias() = ConstMap(next, s, s) * src.block(o, 0, s, columns);
+    }
+    next += s * s;
+  }
+}
+
+void BlockDiagonalMatrix::multiply_transpose_from_right_lower(
+    const Eigen::Ref<const Eigen::MatrixXd>& src, Eigen::Ref<Eigen::MatrixXd> dst,
+    int offset) const {
+  assert(src.cols() == size() && dst.cols() == size() && dst.rows() == src.rows());
+  assert(offset + size() <= src.rows());
+  const double* next = dense_.data();
+  for (const Block& block : structure_.blocks()) {
+    const int o = block.offset, s = block.size;
+    const int first = offset + o;
+    const int rows = static_cast<int>(src.rows()) - first;
+    if (block.diagonal) {
+      dst.block(first, o, rows, s) =
+          src.block(first, o, rows, s) * diagonal_.segment(o, s).asDiagonal();
+      continue;
+    }
+    if (s == 2) {
+      dst.block(first, o, rows, 2).noalias() =
+          src.block(first, o, rows, 2)
+              .lazyProduct(Eigen::Map<const Eigen::Matrix2d>(next).transpose());
+    } else if (s <= kLazyProductMaxBlock) {
+      dst.block(first, o, rows, s).noalias() =
+          src.block(first, o, rows, s).lazyProduct(ConstMap(next, s, s).transpose());
+    } else {
+      dst.block(first, o, rows, s).noalias() =
+          src.block(first, o, rows, s) * ConstMap(next, s, s).transpose();
+    }
+    next += s * s;
+  }
+}
+
 void BlockDiagonalMatrix::add_to(Eigen::Ref<Eigen::MatrixXd> dst) const {
   assert(dst.rows() == size() && dst.cols() == size());
   const double* next = dense_.data();

@@ -1,6 +1,5 @@
 #include "stochnav/filter/error_state_filter.hpp"
 
-#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -42,8 +41,10 @@ void ErrorStateFilter::propagate(const BlockTransition& transition) {
   //   P'_hh = F_h Z + G Y + Q_h,  Z = P_hh F_h^T + P_ht G^T
   //   P'_th = F_t Y,              Y = P_th F_h^T + P_tt G^T
   //   P'_tt = F_t X + Q_t,        X = P_tt F_t^T
-  // G is nonzero only in each segment's coupling rows and F_t, Q_t are block-diagonal, so every
-  // product below touches the nonzero blocks only. P'_ht is P'_th^T.
+  // G is nonzero only in each segment's coupling rows (G = L M, M sparse) and F_t, Q_t are
+  // block-diagonal, so every product touches nonzero blocks only. P'_tt is computed on and
+  // below the diagonal (by blocks) and mirrored, P'_ht is P'_th^T and P'_hh is averaged with
+  // its transpose: P' is exactly symmetric.
   const auto& phi_h = transition.head_transition;
   const auto p_hh = covariance_.topLeftCorner(d, d);
   const auto p_ht = covariance_.topRightCorner(d, n_a);
@@ -57,42 +58,59 @@ void ErrorStateFilter::propagate(const BlockTransition& transition) {
   tail_head_.noalias() = p_th * phi_h.transpose();
   head_head_.noalias() = p_hh * phi_h.transpose();
   for (const TailSegment& segment : transition.tail) {
-    const Eigen::Index k = segment.transition.size();
+    const int k = segment.transition.size();
     if (k == 0) continue;
     assert(segment.offset >= d && segment.offset + k <= n && segment.noise.size() == k);
-    const Eigen::Index local = segment.offset - d;
+    const int local = segment.offset - static_cast<int>(d);
     const Eigen::Index c = segment.coupling.rows();
     if (c > 0) {
+      assert(segment.coupling_map.cols() == k &&
+             segment.coupling_map.rows() == segment.coupling.cols());
+      const Eigen::Index r = segment.coupling.cols();
+      tail_map_.setZero(n_a, r);
+      segment.coupling_map.add_product_transpose_from_right(p_tt.middleCols(local, k), tail_map_);
       tail_head_.middleCols(segment.coupling_row, c).noalias() +=
-          p_tt.middleCols(local, k) * segment.coupling.transpose();
+          tail_map_ * segment.coupling.transpose();
+      head_map_.setZero(d, r);
+      segment.coupling_map.add_product_transpose_from_right(p_ht.middleCols(local, k), head_map_);
       head_head_.middleCols(segment.coupling_row, c).noalias() +=
-          p_ht.middleCols(local, k) * segment.coupling.transpose();
+          head_map_ * segment.coupling.transpose();
     }
-    segment.transition.multiply_transpose_from_right(p_tt.middleCols(local, k),
-                                                     tail_tail_.middleCols(local, k));
+    segment.transition.multiply_transpose_from_right_lower(p_tt.middleCols(local, k),
+                                                           tail_tail_.middleCols(local, k), local);
   }
 
   auto next_hh = scratch_.topLeftCorner(d, d);
   next_hh.noalias() = phi_h * head_head_;
-  next_hh += transition.head_noise;
   for (const TailSegment& segment : transition.tail) {
-    const Eigen::Index k = segment.transition.size();
+    const int k = segment.transition.size();
     if (k == 0) continue;
-    const Eigen::Index local = segment.offset - d;
+    const int local = segment.offset - static_cast<int>(d);
     const Eigen::Index c = segment.coupling.rows();
     if (c > 0) {
-      next_hh.middleRows(segment.coupling_row, c).noalias() +=
-          segment.coupling * tail_head_.middleRows(local, k);
+      map_head_.setZero(segment.coupling.cols(), d);
+      segment.coupling_map.add_product(tail_head_.middleRows(local, k), map_head_);
+      next_hh.middleRows(segment.coupling_row, c).noalias() += segment.coupling * map_head_;
     }
     segment.transition.multiply(tail_head_.middleRows(local, k),
                                 scratch_.block(segment.offset, 0, k, d));
     auto next_tt = scratch_.block(segment.offset, d, k, n_a);
-    segment.transition.multiply(tail_tail_.middleRows(local, k), next_tt);
+    segment.transition.multiply_lower(tail_tail_.middleRows(local, k), next_tt, local);
     segment.noise.add_to(next_tt.middleCols(local, k));
   }
+  for (Eigen::Index j = 0; j < d; ++j) {
+    for (Eigen::Index i = j; i < d; ++i) {
+      const double value = 0.5 * (next_hh(i, j) + next_hh(j, i)) + transition.head_noise(i, j);
+      next_hh(i, j) = next_hh(j, i) = value;
+    }
+  }
   scratch_.topRightCorner(d, n_a) = scratch_.bottomLeftCorner(n_a, d).transpose();
+  auto next_tt = scratch_.bottomRightCorner(n_a, n_a);
+  for (Eigen::Index j = 0; j < n_a; ++j) {
+    for (Eigen::Index i = j + 1; i < n_a; ++i) next_tt(j, i) = next_tt(i, j);
+  }
   covariance_.swap(scratch_);
-  keep_healthy(Symmetrize::kAverage);
+  keep_healthy(Symmetrize::kNone);
 }
 
 UpdateOutcome ErrorStateFilter::update(const Eigen::Ref<const Eigen::VectorXd>& z,
@@ -159,21 +177,13 @@ UpdateOutcome ErrorStateFilter::update(const Eigen::Ref<const Eigen::VectorXd>& 
 }
 
 void ErrorStateFilter::keep_healthy(Symmetrize how) {
-  // In square tiles, so that the transposed accesses (j, i) reuse the cache lines they load
-  // instead of striding through the whole matrix.
-  constexpr Eigen::Index kTile = 16;
-  const Eigen::Index n = covariance_.rows();
-  for (Eigen::Index j0 = 0; j0 < n; j0 += kTile) {
-    const Eigen::Index j_end = std::min(j0 + kTile, n);
-    for (Eigen::Index i0 = j0; i0 < n; i0 += kTile) {
-      const Eigen::Index i_end = std::min(i0 + kTile, n);
-      for (Eigen::Index j = j0; j < j_end; ++j) {
-        for (Eigen::Index i = std::max(i0, j + 1); i < i_end; ++i) {
-          const double value = how == Symmetrize::kAverage
-                                   ? 0.5 * (covariance_(i, j) + covariance_(j, i))
-                                   : covariance_(i, j);
-          covariance_(i, j) = covariance_(j, i) = value;
-        }
+  if (how != Symmetrize::kNone) {
+    for (Eigen::Index j = 0; j < covariance_.cols(); ++j) {
+      for (Eigen::Index i = j + 1; i < covariance_.rows(); ++i) {
+        const double value = how == Symmetrize::kAverage
+                                 ? 0.5 * (covariance_(i, j) + covariance_(j, i))
+                                 : covariance_(i, j);
+        covariance_(i, j) = covariance_(j, i) = value;
       }
     }
   }

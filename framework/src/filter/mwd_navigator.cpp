@@ -54,7 +54,7 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
     group->q_d = Eigen::MatrixXd::Zero(group->size, group->size);
     if (group->size > 0) model->augmented_sensor_map(group->sensor_map);
     group->blocks = BlockDiagonalStructure(group->size);
-    group->coupling = Eigen::MatrixXd::Zero(3, group->size);
+    group->sparse_sensor_map = SparseMap(group->sensor_map);
     group->propagated = Eigen::VectorXd::Zero(group->size);
   }
   // The dense head ends where the first augmented block starts (layout: head, then the gyro's
@@ -146,21 +146,21 @@ void MwdNavigator::propagate_covariance() {
                                    std::tuple{&accel_augmented_, cs::kVelocity, -1.0}}) {
     if (group->size == 0) continue;
     update_augmented_transition(*group, interval);
-    group->coupling.noalias() = sign * fast_.c_nb_dt * group->sensor_map;
+    group->coupling = sign * fast_.c_nb_dt;
     group->transition.multiply(group->estimate, group->propagated);
     group->estimate.swap(group->propagated);
     if (!options_.structured_covariance) {
       phi_.block(group->offset, group->offset, group->size, group->size) = group->phi;
       q_d_.block(group->offset, group->offset, group->size, group->size) = group->q_d;
-      phi_.block(rows, group->offset, 3, group->size) = group->coupling;
+      phi_.block(rows, group->offset, 3, group->size) = group->coupling * group->sensor_map;
     }
   }
   if (options_.structured_covariance) {
     const std::array<TailSegment, 2> tail{
         TailSegment{gyro_augmented_.offset, gyro_augmented_.transition, gyro_augmented_.noise,
-                    cs::kAttitude, gyro_augmented_.coupling},
+                    cs::kAttitude, gyro_augmented_.coupling, gyro_augmented_.sparse_sensor_map},
         TailSegment{accel_augmented_.offset, accel_augmented_.transition, accel_augmented_.noise,
-                    cs::kVelocity, accel_augmented_.coupling}};
+                    cs::kVelocity, accel_augmented_.coupling, accel_augmented_.sparse_sensor_map}};
     filter_.propagate(BlockTransition{phi_, q_d_, tail});
   } else {
     filter_.propagate(phi_, q_d_);

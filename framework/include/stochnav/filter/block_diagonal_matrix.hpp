@@ -31,6 +31,19 @@ class BlockDiagonalMatrix final {
   /// dst = src B^T; src and dst c x k, not aliased. No allocation.
   void multiply_transpose_from_right(const Eigen::Ref<const Eigen::MatrixXd>& src,
                                      Eigen::Ref<Eigen::MatrixXd> dst) const;
+  /// The lower triangles of the products above, for symmetric results (A a x a, a >= offset
+  /// + k, of which this matrix's states occupy [offset, offset + k)):
+  /// multiply_lower: src, dst the k rows [offset, offset + k) of A (k x a); dst = B src is
+  /// computed in the columns up to each block's last state, which cover every entry of B A on
+  /// or below A's diagonal; the others are left unchanged. No allocation.
+  void multiply_lower(const Eigen::Ref<const Eigen::MatrixXd>& src, Eigen::Ref<Eigen::MatrixXd> dst,
+                      int offset) const;
+  /// multiply_transpose_from_right_lower: src, dst the k columns [offset, offset + k) of A
+  /// (a x k); dst = src B^T is computed in the rows from each block's first state down. No
+  /// allocation.
+  void multiply_transpose_from_right_lower(const Eigen::Ref<const Eigen::MatrixXd>& src,
+                                           Eigen::Ref<Eigen::MatrixXd> dst, int offset) const;
+
   /// dst += B; dst k x k, untouched outside the blocks. No allocation.
   void add_to(Eigen::Ref<Eigen::MatrixXd> dst) const;
 

@@ -14,10 +14,11 @@
 // states of the noise models)]. Its transition is
 //   Phi = [[Phi_h, G], [0, Phi_t]],   Q_d = blockdiag(Q_h, Q_t),
 // with Phi_t and Q_t block-diagonal (filter/block_diagonal_matrix.hpp) and G nonzero in a few head
-// rows only (the augmented sensor errors drive the attitude or velocity rows); measurements see
-// the head only. propagate(const BlockTransition&) and update() exploit this: O(n^2 (b + c) +
-// D^2 n) per propagation (b the largest tail block, c the coupled rows) and O(n^2 m) per
-// update, instead of O(n^3) each. No allocation once the sizes have been met.
+// rows only (the augmented sensor errors drive the attitude or velocity rows: G = +-C_nb_dt M,
+// M sparse, filter/sparse_map.hpp); measurements see the head only. propagate(const
+// BlockTransition&) and update() exploit this: O(n^2 (b + c) + D^2 n) per propagation (b the
+// largest tail block, c the coupled rows) and O(n^2 m) per update, instead of O(n^3) each. No
+// allocation once the sizes have been met.
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -25,6 +26,7 @@
 #include <span>
 
 #include "stochnav/filter/block_diagonal_matrix.hpp"
+#include "stochnav/filter/sparse_map.hpp"
 
 namespace stochnav {
 
@@ -46,14 +48,15 @@ struct UpdateOutcome {
 };
 
 /// One group of augmented states in a BlockTransition: states [offset, offset + k) of the error
-/// state, with their transition and noise, driving the head rows [coupling_row, coupling_row + c).
+/// state, with their transition and noise, driving the c head rows [coupling_row,
+/// coupling_row + c) through G = L M (Phi's entries in those rows and the segment's columns).
 struct TailSegment {
   int offset = 0;                              ///< first state of the segment, >= D
   const BlockDiagonalMatrix& transition;       ///< Phi_t of the segment, k x k
   const BlockDiagonalMatrix& noise;            ///< Q_t of the segment, k x k
   int coupling_row = 0;                        ///< first head row driven by the segment
-  Eigen::Ref<const Eigen::MatrixXd> coupling;  ///< G: Phi's rows coupling_row.., columns of
-                                               ///< the segment; c x k (c = 0: none)
+  Eigen::Ref<const Eigen::MatrixXd> coupling;  ///< L, c x r (c = 0: no coupling)
+  const SparseMap& coupling_map;               ///< M, r x k (e.g. the sensor map, r = 3)
 };
 
 /// Phi and Q_d of one propagation by blocks (see the header comment). Entries of Phi not
@@ -110,8 +113,9 @@ class ErrorStateFilter final {
 
  private:
   // Makes P exactly symmetric (kAverage: the mean of P and P^T; kMirrorLower: the lower
-  // triangle copied over the upper one), then repairs it (FilterHealth).
-  enum class Symmetrize { kAverage, kMirrorLower };
+  // triangle copied over the upper one; kNone: P is symmetric already), then repairs it
+  // (FilterHealth).
+  enum class Symmetrize { kAverage, kMirrorLower, kNone };
   void keep_healthy(Symmetrize how);
   static constexpr int kCoreSize = 15;
 
@@ -126,8 +130,10 @@ class ErrorStateFilter final {
   Eigen::MatrixXd joseph_term_;          // K S / 2 - U, n x m
   Eigen::MatrixXd h_full_;               // H padded to m x n (JosephForm::kProduct)
   // propagate(const BlockTransition&): Y = P_th Phi_h^T + P_tt G^T (n_a x D),
-  // Z = P_hh Phi_h^T + P_ht G^T (D x D), X = P_tt Phi_t^T (n_a x n_a).
+  // Z = P_hh Phi_h^T + P_ht G^T (D x D), X = P_tt Phi_t^T (n_a x n_a), and the products with
+  // the coupling maps P_tt M^T (n_a x r), P_ht M^T (D x r), M Y (r x D).
   Eigen::MatrixXd tail_head_, head_head_, tail_tail_;
+  Eigen::MatrixXd tail_map_, head_map_, map_head_;
   FilterHealth health_;
 };
 

@@ -75,7 +75,8 @@ class MwdNavigator final {
     BlockDiagonalMatrix transition;     // phi on `blocks`
     BlockDiagonalMatrix noise;          // q_d on `blocks`
     double transition_interval_s = -1;  // phi, q_d are valid for it (time-invariant models)
-    Eigen::MatrixXd coupling;           // +-C_nb_dt M: the group's rows of Phi, 3 x size
+    SparseMap sparse_sensor_map;        // sensor_map's nonzeros
+    Eigen::Matrix3d coupling;           // +-C_nb_dt: Phi's group rows are coupling * M
     Eigen::VectorXd propagated;         // scratch, size
   };
 
