@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -212,6 +213,22 @@ INSTANTIATE_TEST_SUITE_P(HeadSizes, StructuredCovariance,
                            }
                            return name;
                          });
+
+TEST(ErrorStateFilter, NonFiniteStructuredPropagationResetsToTheInitialCovariance) {
+  std::mt19937_64 engine(6);
+  RandomTransition t = random_transition(15, {10, 8}, engine);
+  const Eigen::MatrixXd p = random_spd(33, engine);
+  ErrorStateFilter filter(p);
+  t.head_phi(4, 2) = std::numeric_limits<double>::infinity();
+  std::vector<TailSegment> tail;
+  for (const RandomSegment& s : t.segments) {
+    tail.push_back(
+        TailSegment{s.offset, s.transition, s.noise, s.coupling_row, s.gain, s.sparse_map});
+  }
+  filter.propagate(BlockTransition{t.head_phi, t.head_q, tail});
+  EXPECT_EQ(filter.health().non_finite, 1u);
+  EXPECT_EQ(filter.covariance(), p);
+}
 
 TEST(ErrorStateFilter, SingularInnovationIsCountedAndSkipped) {
   std::mt19937_64 engine(7);
