@@ -21,6 +21,7 @@
 #include "stochnav/filter/error_dynamics.hpp"
 #include "stochnav/filter/error_state_filter.hpp"
 #include "stochnav/filter/filter_options.hpp"
+#include "stochnav/filter/sparse_map.hpp"
 #include "stochnav/ins/nav_state.hpp"
 #include "stochnav/ins/strapdown.hpp"
 #include "stochnav/plugin/aid_plugin.hpp"
