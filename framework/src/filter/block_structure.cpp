@@ -27,8 +27,10 @@ bool BlockDiagonalStructure::covers(const Eigen::Ref<const Eigen::MatrixXd>& mat
       // Inside a dense block only the rows outside it must be zero; in a run, all but (j, j).
       const int inside_begin = block.diagonal ? j : block.offset;
       const int inside_end = block.diagonal ? j + 1 : block.offset + block.size;
-      if (!matrix.col(j).head(inside_begin).isZero(0.0)) return false;
-      if (!matrix.col(j).tail(size_ - inside_end).isZero(0.0)) return false;
+      // A sum of magnitudes is 0 only when every entry is (no underflow: nothing is squared;
+      // a NaN or an overflow makes it NaN or infinite), and it vectorises.
+      if (!(matrix.col(j).head(inside_begin).cwiseAbs().sum() == 0.0)) return false;
+      if (!(matrix.col(j).tail(size_ - inside_end).cwiseAbs().sum() == 0.0)) return false;
     }
   }
   return true;
