@@ -1,5 +1,6 @@
 #include "stochnav/filter/mwd_navigator.hpp"
 
+#include <array>
 #include <cmath>
 #include <string_view>
 #include <utility>
@@ -82,17 +83,26 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
     group->phi = Eigen::MatrixXd::Identity(group->size, group->size);
     group->q_d = Eigen::MatrixXd::Zero(group->size, group->size);
     if (group->size > 0) model->augmented_sensor_map(group->sensor_map);
+    group->blocks = BlockDiagonalStructure(group->size);
+    group->sparse_sensor_map = SparseMap(group->sensor_map);
+    group->propagated = Eigen::VectorXd::Zero(group->size);
+  }
+  // The dense head ends where the first augmented block starts (layout: head, then the gyro's
+  // augmented block, then the accelerometer's).
+  head_size_ = layout_.size();
+  for (const AugmentedGroup* group : {&accel_augmented_, &gyro_augmented_}) {
+    if (group->size > 0) head_size_ = group->offset;
   }
   gyro_bias_b_ = options.initial_gyro_bias_radps;
   accel_bias_b_ = options.initial_accel_bias_mps2;
   gyro_scale_.offset = block_offset(layout_, "gyro_scale_factor");
   accel_scale_.offset = block_offset(layout_, "accel_scale_factor");
-  head_size_ = cs::kSize + (gyro_scale_.offset >= 0 ? 3 : 0) + (accel_scale_.offset >= 0 ? 3 : 0);
   head_f_ = Eigen::MatrixXd::Zero(head_size_, head_size_);
   aid_intervals_.assign(aids_.size(), AidIntervalSums{});
   const int n = layout_.size();
-  phi_ = Eigen::MatrixXd::Identity(n, n);
-  q_d_ = Eigen::MatrixXd::Zero(n, n);
+  const int phi_size = options_.structured_covariance ? head_size_ : n;
+  phi_ = Eigen::MatrixXd::Identity(phi_size, phi_size);
+  q_d_ = Eigen::MatrixXd::Zero(phi_size, phi_size);
   correction_ = Eigen::VectorXd::Zero(n);
   innovations_.reserve(aids_.size());
   consecutive_rejections_.assign(aids_.size(), 0);
@@ -225,13 +235,26 @@ void MwdNavigator::propagate_covariance() {
   for (auto [group, rows, sign] : {std::tuple{&gyro_augmented_, cs::kAttitude, 1.0},
                                    std::tuple{&accel_augmented_, cs::kVelocity, -1.0}}) {
     if (group->size == 0) continue;
-    group->model->augmented_transition(interval_start_s_, interval, group->phi, group->q_d);
-    phi_.block(group->offset, group->offset, group->size, group->size) = group->phi;
-    q_d_.block(group->offset, group->offset, group->size, group->size) = group->q_d;
-    phi_.block(rows, group->offset, 3, group->size) = sign * fast_.c_nb_dt * group->sensor_map;
-    group->estimate = group->phi * group->estimate;
+    update_augmented_transition(*group, interval);
+    group->coupling = sign * fast_.c_nb_dt;
+    group->transition.multiply(group->estimate, group->propagated);
+    group->estimate.swap(group->propagated);
+    if (!options_.structured_covariance) {
+      phi_.block(group->offset, group->offset, group->size, group->size) = group->phi;
+      q_d_.block(group->offset, group->offset, group->size, group->size) = group->q_d;
+      phi_.block(rows, group->offset, 3, group->size) = group->coupling * group->sensor_map;
+    }
   }
-  filter_.propagate(phi_, q_d_);
+  if (options_.structured_covariance) {
+    const std::array<TailSegment, 2> tail{
+        TailSegment{gyro_augmented_.offset, gyro_augmented_.transition, gyro_augmented_.noise,
+                    cs::kAttitude, gyro_augmented_.coupling, gyro_augmented_.sparse_sensor_map},
+        TailSegment{accel_augmented_.offset, accel_augmented_.transition, accel_augmented_.noise,
+                    cs::kVelocity, accel_augmented_.coupling, accel_augmented_.sparse_sensor_map}};
+    filter_.propagate(BlockTransition{phi_, q_d_, tail});
+  } else {
+    filter_.propagate(phi_, q_d_);
+  }
 
   interval_start_s_ += interval;
   fast_ = FastInputIntegrals{};
@@ -239,10 +262,23 @@ void MwdNavigator::propagate_covariance() {
   velocity_noise_.setZero();
 }
 
+// Phi and Qd of a time-invariant model depend on the interval only: computed again only when
+// it changes (not the exp() of every state at every interval). A pattern outside the known
+// blocks (a new model phase, an entry that was zero at the first interval) coarsens them.
+void MwdNavigator::update_augmented_transition(AugmentedGroup& group, double interval_s) {
+  if (!group.model->time_varying() && interval_s == group.transition_interval_s) return;
+  group.model->augmented_transition(interval_start_s_, interval_s, group.phi, group.q_d);
+  group.transition_interval_s = group.model->time_varying() ? -1.0 : interval_s;
+  if (!group.blocks.covers(group.phi) || !group.blocks.covers(group.q_d)) {
+    group.blocks.cover(group.phi).cover(group.q_d);
+  }
+  group.transition.assign(group.blocks, group.phi);
+  group.noise.assign(group.blocks, group.q_d);
+}
+
 void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
                               const Eigen::Vector3d& f_ib_b) {
   plugin::ImuSample imu{.t_s = t_s, .omega_ib_b = omega_ib_b, .f_ib_b = f_ib_b};
-  const int n = layout_.size();
   for (std::size_t index = 0; index < aids_.size(); ++index) {
     plugin::AidPlugin& aid = *aids_[index];
     if (!aid.has_measurement(t_s)) continue;
@@ -253,8 +289,6 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
     h_core_.resize(m, cs::kSize);
     r_.resize(m, m);
     if (!aid.measure(t_s, ins_.state(), imu, residual_, h_core_, r_)) continue;
-    h_full_.setZero(m, n);
-    h_full_.leftCols<cs::kSize>() = h_core_;
 
     const bool adaptive = gyro_noise_.time_varying() || accel_noise_.time_varying();
     const Eigen::MatrixXd prior = adaptive ? filter_.covariance() : Eigen::MatrixXd();
@@ -264,7 +298,8 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
                             rejections >= options_.max_consecutive_rejections;
     const bool gated = aid.gate().enabled && !locked_out;
     const UpdateOutcome outcome = filter_.update(
-        residual_, h_full_, r_, gated ? aid.gate().threshold : INFINITY, correction_);
+        residual_, h_core_, r_, gated ? aid.gate().threshold : INFINITY, correction_,
+        options_.structured_covariance ? JosephForm::kExpanded : JosephForm::kProduct);
     rejections = outcome.accepted ? 0 : rejections + 1;
     InnovationRecord record{.t_s = t_s,
                             .aid_index = static_cast<int>(index),

@@ -8,9 +8,25 @@
 // covariances factorised by Cholesky. Trouble (a non-positive-definite innovation covariance,
 // a non-positive diagonal of P, a non-finite value) never throws: it is counted in
 // FilterHealth, the update concerned is skipped, and P is repaired when it can be.
+//
+// Structure (the cost of augmented states): the error state is x = [head (D dense states: the
+// core and any other states the aids and the INS errors couple densely), tail (n_a augmented
+// states of the noise models)]. Its transition is
+//   Phi = [[Phi_h, G], [0, Phi_t]],   Q_d = blockdiag(Q_h, Q_t),
+// with Phi_t and Q_t block-diagonal (filter/block_diagonal_matrix.hpp) and G nonzero in a few head
+// rows only (the augmented sensor errors drive the attitude or velocity rows: G = +-C_nb_dt M,
+// M sparse, filter/sparse_map.hpp); measurements see the head only. propagate(const
+// BlockTransition&) and update() exploit this: O(n^2 (b + c) + D^2 n) per propagation (b the
+// largest tail block, c the coupled rows) and O(n^2 m) per update, instead of O(n^3) each. No
+// allocation once the sizes have been met.
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <cstdint>
+#include <span>
+
+#include "stochnav/filter/block_diagonal_matrix.hpp"
+#include "stochnav/filter/sparse_map.hpp"
 
 namespace stochnav {
 
@@ -31,6 +47,36 @@ struct UpdateOutcome {
   double nis = 0.0;       ///< z^T S^-1 z (NaN when singular)
 };
 
+/// One group of augmented states in a BlockTransition: states [offset, offset + k) of the error
+/// state, with their transition and noise, driving the c head rows [coupling_row,
+/// coupling_row + c) through G = L M (Phi's entries in those rows and the segment's columns).
+struct TailSegment {
+  int offset = 0;                              ///< first state of the segment, >= D
+  const BlockDiagonalMatrix& transition;       ///< Phi_t of the segment, k x k
+  const BlockDiagonalMatrix& noise;            ///< Q_t of the segment, k x k
+  int coupling_row = 0;                        ///< first head row driven by the segment
+  Eigen::Ref<const Eigen::MatrixXd> coupling;  ///< L, c x r (c = 0: no coupling)
+  const SparseMap& coupling_map;               ///< M, r x k (e.g. the sensor map, r = 3)
+};
+
+/// Phi and Q_d of one propagation by blocks (see the header comment). Entries of Phi not
+/// described here are zero, and so are those of Q_d outside the head and the segments' blocks.
+struct BlockTransition {
+  Eigen::Ref<const Eigen::MatrixXd> head_transition;  ///< Phi_h, D x D
+  Eigen::Ref<const Eigen::MatrixXd> head_noise;       ///< Q_h, D x D
+  /// In order of offset, contiguous from D to n (segments of size 0 are allowed and skipped).
+  std::span<const TailSegment> tail;
+};
+
+/// How update() applies the Joseph form (I - K H) P (I - K H)^T + K R K^T.
+enum class JosephForm {
+  /// P - K U^T - U K^T + K S K^T with U = P H^T, S = H P H^T + R: algebraically identical for
+  /// any gain, O(n^2 m), symmetric by construction (one triangle computed, then mirrored).
+  kExpanded,
+  /// The textbook product with the n x n matrix I - K H, O(n^3): the reference.
+  kProduct,
+};
+
 class ErrorStateFilter final {
  public:
   /// P0: n x n symmetric positive definite initial covariance of the error state.
@@ -40,16 +86,25 @@ class ErrorStateFilter final {
   const Eigen::MatrixXd& covariance() const { return covariance_; }
   const FilterHealth& health() const { return health_; }
 
-  /// P <- Phi P Phi^T + Q_d (n x n each; Phi the discrete transition, Q_d the discrete noise).
-  void propagate(const Eigen::MatrixXd& phi, const Eigen::MatrixXd& q_d);
+  /// P <- Phi P Phi^T + Q_d (n x n each; Phi the discrete transition, Q_d the discrete noise),
+  /// by dense products: O(n^3). The reference for propagate(const BlockTransition&).
+  void propagate(const Eigen::Ref<const Eigen::MatrixXd>& phi,
+                 const Eigen::Ref<const Eigen::MatrixXd>& q_d);
 
-  /// Measurement z = H dx + v, v ~ N(0, R): z (m), H (m x n), R (m x m). When accepted
+  /// P <- Phi P Phi^T + Q_d with Phi and Q_d given by blocks (BlockTransition): the same
+  /// result as the dense propagate to rounding, in O(n^2 (b + c) + D^2 n). Precondition:
+  /// D + the segments' sizes = n, segments contiguous, coupling rows inside the head.
+  void propagate(const BlockTransition& transition);
+
+  /// Measurement z = H dx + v, v ~ N(0, R): z (m), H (m x k) the first k <= n columns of the
+  /// Jacobian (the others zero: aids see the head states only), R (m x m). When accepted
   /// (NIS <= gate_threshold and S positive definite) writes the error estimate K z into
-  /// `correction` (n) and updates P in Joseph form; otherwise leaves both unchanged.
+  /// `correction` (n) and updates P in Joseph form (`form`); otherwise leaves both unchanged.
   UpdateOutcome update(const Eigen::Ref<const Eigen::VectorXd>& z,
                        const Eigen::Ref<const Eigen::MatrixXd>& h,
                        const Eigen::Ref<const Eigen::MatrixXd>& r, double gate_threshold,
-                       Eigen::Ref<Eigen::VectorXd> correction);
+                       Eigen::Ref<Eigen::VectorXd> correction,
+                       JosephForm form = JosephForm::kExpanded);
 
   /// S = H P H^T + R of the last update attempt (m x m) and its gain K (n x m; zero if
   /// rejected): for innovation records and adaptive noise models.
@@ -57,14 +112,28 @@ class ErrorStateFilter final {
   const Eigen::MatrixXd& last_gain() const { return gain_; }
 
  private:
-  void keep_healthy();
+  // Makes P exactly symmetric (kAverage: the mean of P and P^T; kMirrorLower: the lower
+  // triangle copied over the upper one; kNone: P is symmetric already), then repairs it
+  // (FilterHealth).
+  enum class Symmetrize { kAverage, kMirrorLower, kNone };
+  void keep_healthy(Symmetrize how);
   static constexpr int kCoreSize = 15;
 
   Eigen::MatrixXd covariance_;
   Eigen::MatrixXd initial_covariance_;
   Eigen::MatrixXd innovation_covariance_;
   Eigen::MatrixXd gain_;
-  Eigen::MatrixXd scratch_;
+  Eigen::LLT<Eigen::MatrixXd> innovation_factor_;
+  Eigen::VectorXd whitened_innovation_;  // L^-1 z, m
+  Eigen::MatrixXd scratch_;              // n x n
+  Eigen::MatrixXd p_ht_;                 // U = P H^T, n x m
+  Eigen::MatrixXd joseph_term_;          // K S / 2 - U, n x m
+  Eigen::MatrixXd h_full_;               // H padded to m x n (JosephForm::kProduct)
+  // propagate(const BlockTransition&): Y = P_th Phi_h^T + P_tt G^T (n_a x D),
+  // Z = P_hh Phi_h^T + P_ht G^T (D x D), X = P_tt Phi_t^T (n_a x n_a), and the products with
+  // the coupling maps P_tt M^T (n_a x r), P_ht M^T (D x r), M Y (r x D).
+  Eigen::MatrixXd tail_head_, head_head_, tail_tail_;
+  Eigen::MatrixXd tail_map_, head_map_, map_head_;
   FilterHealth health_;
 };
 

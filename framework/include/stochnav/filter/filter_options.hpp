@@ -55,6 +55,12 @@ struct FilterOptions {
   // connection: without these states the filter attributes it to the bias.
   Eigen::Vector3d gyro_scale_factor_sigma{0.0, 0.0, 0.0};   ///< body axes (dimensionless)
   Eigen::Vector3d accel_scale_factor_sigma{0.0, 0.0, 0.0};  ///< body axes (dimensionless)
+
+  /// Covariance products by blocks (filter/error_state_filter.hpp, BlockTransition and
+  /// JosephForm::kExpanded): augmented states cost O(n^2) per propagation and update instead of
+  /// O(n^3), with the same results to rounding. false: the dense products, kept as the
+  /// reference for tests and benchmarks.
+  bool structured_covariance = true;
 };
 
 }  // namespace stochnav

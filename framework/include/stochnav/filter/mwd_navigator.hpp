@@ -20,9 +20,11 @@
 #include <span>
 #include <vector>
 
+#include "stochnav/filter/block_diagonal_matrix.hpp"
 #include "stochnav/filter/error_dynamics.hpp"
 #include "stochnav/filter/error_state_filter.hpp"
 #include "stochnav/filter/filter_options.hpp"
+#include "stochnav/filter/sparse_map.hpp"
 #include "stochnav/ins/nav_state.hpp"
 #include "stochnav/ins/strapdown.hpp"
 #include "stochnav/plugin/aid_plugin.hpp"
@@ -74,7 +76,15 @@ class MwdNavigator final {
     int size = 0;
     Eigen::MatrixXd sensor_map;  // 3 x size
     Eigen::VectorXd estimate;    // nominal augmented states
-    Eigen::MatrixXd phi, q_d;    // scratch, size x size
+    Eigen::MatrixXd phi, q_d;    // of the last interval, size x size
+    // Structured covariance (FilterOptions::structured_covariance):
+    BlockDiagonalStructure blocks;      // of phi and q_d, coarsened when a new pattern shows
+    BlockDiagonalMatrix transition;     // phi on `blocks`
+    BlockDiagonalMatrix noise;          // q_d on `blocks`
+    double transition_interval_s = -1;  // phi, q_d are valid for it (time-invariant models)
+    SparseMap sparse_sensor_map;        // sensor_map's nonzeros
+    Eigen::Matrix3d coupling;           // +-C_nb_dt: Phi's group rows are coupling * M
+    Eigen::VectorXd propagated;         // scratch, size
   };
 
   struct ScaleFactorBlock {
@@ -99,6 +109,7 @@ class MwdNavigator final {
                         const Eigen::Matrix3d& c_nb, Eigen::Matrix3d& cache, double& cached_dt,
                         Eigen::Matrix3d& sum);
   void propagate_covariance();
+  void update_augmented_transition(AugmentedGroup& group, double interval_s);
   void apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b, const Eigen::Vector3d& f_ib_b);
   void feed_back(const Eigen::VectorXd& correction);
   Eigen::Vector3d sensor_correction(const AugmentedGroup& group) const;
@@ -117,7 +128,7 @@ class MwdNavigator final {
   AugmentedGroup accel_augmented_;
   ScaleFactorBlock gyro_scale_;
   ScaleFactorBlock accel_scale_;
-  int head_size_ = 0;  // core + scale-factor states: the dense part of the transition
+  int head_size_ = 0;  // D: core + scale-factor states, the dense head before the augmented blocks
   Eigen::MatrixXd head_f_;  // head_size_ x head_size_ scratch
   std::vector<AidIntervalSums> aid_intervals_;  // per aid, since its previous measurement epoch
 
@@ -131,11 +142,11 @@ class MwdNavigator final {
   double accel_cached_dt_ = -1.0;
   Eigen::Matrix3d c_nb_;  // attitude at the start of the current epoch
 
-  Eigen::MatrixXd phi_, q_d_;  // n x n scratch
+  Eigen::MatrixXd phi_, q_d_;  // n x n scratch (D x D, the head, when structured)
   Eigen::Matrix3d bias_walk_;
   Eigen::VectorXd correction_;
   Eigen::VectorXd residual_;
-  Eigen::MatrixXd h_core_, h_full_, r_;
+  Eigen::MatrixXd h_core_, r_;
   std::vector<InnovationRecord> innovations_;
 };
 
