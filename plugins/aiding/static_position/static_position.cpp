@@ -61,9 +61,11 @@ class StaticPositionAid final : public stochnav::plugin::AidPlugin {
                Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
                Eigen::Ref<Eigen::MatrixXd> r) const override {
     const stochnav::EarthRadii radii = stochnav::earth_radii(params_.latitude_rad);
-    residual(0) = std::remainder(state.longitude_rad - params_.longitude_rad, 2 * std::numbers::pi) *
-                  (radii.transverse_m + params_.height_m) * std::cos(params_.latitude_rad);
-    residual(1) = (state.latitude_rad - params_.latitude_rad) * (radii.meridian_m + params_.height_m);
+    residual(0) =
+        std::remainder(state.longitude_rad - params_.longitude_rad, 2 * std::numbers::pi) *
+        (radii.transverse_m + params_.height_m) * std::cos(params_.latitude_rad);
+    residual(1) =
+        (state.latitude_rad - params_.latitude_rad) * (radii.meridian_m + params_.height_m);
     residual(2) = state.height_m - params_.height_m;
     h.setZero();
     h.block<3, 3>(0, cs::kPosition).setIdentity();
@@ -78,12 +80,13 @@ class StaticPositionAid final : public stochnav::plugin::AidPlugin {
   }
 
   std::string describe() const override {
-    const std::string velocity =
-        params_.zero_velocity ? fmt::format(", {} m/s", params_.sigma_velocity_mps)
-                              : std::string(" (position only)");
-    return fmt::format("static_position: site {:.7f} deg, {:.7f} deg, {:.3f} m; {} Hz; sigma {} m{}",
-                       params_.latitude_rad / kRadPerDeg, params_.longitude_rad / kRadPerDeg,
-                       params_.height_m, params_.rate_hz, params_.sigma_position_m, velocity);
+    const std::string velocity = params_.zero_velocity
+                                     ? fmt::format(", {} m/s", params_.sigma_velocity_mps)
+                                     : std::string(" (position only)");
+    return fmt::format(
+        "static_position: site {:.7f} deg, {:.7f} deg, {:.3f} m; {} Hz; sigma {} m{}",
+        params_.latitude_rad / kRadPerDeg, params_.longitude_rad / kRadPerDeg, params_.height_m,
+        params_.rate_hz, params_.sigma_position_m, velocity);
   }
 
  private:
