@@ -27,7 +27,7 @@ ComponentMeaning component_meaning(const std::string& aid_type, std::size_t inde
   static const char* kAxes[] = {"E", "N", "U"};
   const std::string horizontal = "gyro tilt (g x phi) or horizontal accelerometer";
   const std::string vertical = "vertical accelerometer";
-  if (aid_type == "static_position" && index < 6) {
+  if ((aid_type == "static_position" && index < 6) || (aid_type == "position_fix" && index < 3)) {
     const bool position = index < 3;
     const std::size_t axis = index % 3;
     return {fmt::format("{} {} ({})", position ? "position" : "velocity", kAxes[axis],

@@ -2,11 +2,16 @@
 // paper's Eq. 25). At a fixed rate it measures the position error against the known site and
 // the velocity against zero:
 //   z = [dr (ENU, m, estimate - site); v_n (m/s)],  H = [I 0 0 0 0; 0 I 0 0 0],
-//   R = diag(sigma_position^2 I, sigma_velocity^2 I).
+//   R = diag(sigma_position^2 I, sigma_velocity^2 I),
+// with dr = (remainder(lon - lon_site, 2 pi) (R_N + h_site) cos(lat_site),
+// (lat - lat_site) (R_M + h_site), h - h_site), the radii at the site (ins/earth.hpp). With
+// "zero_velocity": false only the position rows: z = dr, H = [I 0 0 0 0],
+// R = sigma_position^2 I (measurement size 3).
 //
 // params:
 //   "rate_hz"             measurement rate (Hz), > 0, default 1
 //   "sigma_position_m"    1-sigma of the site position (m), > 0, default 0.01
+//   "zero_velocity"       bool, default true: also measure the velocity against zero
 //   "sigma_velocity_mps"  1-sigma of the zero velocity (m/s), > 0, default 0.001
 //   "site"                {"latitude_deg", "longitude_deg", "height_m"}; default: the run's
 //                         initial position
@@ -33,6 +38,7 @@ constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 struct StaticPositionParams {
   double rate_hz = 1.0;
   double sigma_position_m = 0.01;
+  bool zero_velocity = true;
   double sigma_velocity_mps = 0.001;
   double latitude_rad = 0.0;
   double longitude_rad = 0.0;
@@ -48,32 +54,39 @@ class StaticPositionAid final : public stochnav::plugin::AidPlugin {
         schedule_(stochnav::plugin::AidSchedule::periodic(start_s, params.rate_hz)) {}
 
   std::string_view type() const override { return "static_position"; }
-  int measurement_size() const override { return 6; }
+  int measurement_size() const override { return params_.zero_velocity ? 6 : 3; }
   bool has_measurement(double t_s) const override { return schedule_.due(t_s); }
 
   bool measure(double, const stochnav::NavState& state, const stochnav::plugin::ImuSample&,
                Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
                Eigen::Ref<Eigen::MatrixXd> r) const override {
     const stochnav::EarthRadii radii = stochnav::earth_radii(params_.latitude_rad);
-    residual(0) = std::remainder(state.longitude_rad - params_.longitude_rad, 2 * std::numbers::pi) *
-                  (radii.transverse_m + params_.height_m) * std::cos(params_.latitude_rad);
-    residual(1) = (state.latitude_rad - params_.latitude_rad) * (radii.meridian_m + params_.height_m);
+    residual(0) =
+        std::remainder(state.longitude_rad - params_.longitude_rad, 2 * std::numbers::pi) *
+        (radii.transverse_m + params_.height_m) * std::cos(params_.latitude_rad);
+    residual(1) =
+        (state.latitude_rad - params_.latitude_rad) * (radii.meridian_m + params_.height_m);
     residual(2) = state.height_m - params_.height_m;
-    residual.segment<3>(3) = state.v_n;
     h.setZero();
     h.block<3, 3>(0, cs::kPosition).setIdentity();
-    h.block<3, 3>(3, cs::kVelocity).setIdentity();
     r.setZero();
     r.diagonal().head<3>().setConstant(params_.sigma_position_m * params_.sigma_position_m);
-    r.diagonal().tail<3>().setConstant(params_.sigma_velocity_mps * params_.sigma_velocity_mps);
+    if (params_.zero_velocity) {
+      residual.segment<3>(3) = state.v_n;
+      h.block<3, 3>(3, cs::kVelocity).setIdentity();
+      r.diagonal().tail<3>().setConstant(params_.sigma_velocity_mps * params_.sigma_velocity_mps);
+    }
     return true;
   }
 
   std::string describe() const override {
+    const std::string velocity = params_.zero_velocity
+                                     ? fmt::format(", {} m/s", params_.sigma_velocity_mps)
+                                     : std::string(" (position only)");
     return fmt::format(
-        "static_position: site {:.7f} deg, {:.7f} deg, {:.3f} m; {} Hz; sigma {} m, {} m/s",
+        "static_position: site {:.7f} deg, {:.7f} deg, {:.3f} m; {} Hz; sigma {} m{}",
         params_.latitude_rad / kRadPerDeg, params_.longitude_rad / kRadPerDeg, params_.height_m,
-        params_.rate_hz, params_.sigma_position_m, params_.sigma_velocity_mps);
+        params_.rate_hz, params_.sigma_position_m, velocity);
   }
 
  private:
@@ -88,6 +101,7 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_static_position(
   params.rate_hz = reader.number_or("rate_hz", params.rate_hz, Bound::kPositive, "Hz");
   params.sigma_position_m =
       reader.number_or("sigma_position_m", params.sigma_position_m, Bound::kPositive, "m");
+  params.zero_velocity = reader.boolean_or("zero_velocity", params.zero_velocity);
   params.sigma_velocity_mps =
       reader.number_or("sigma_velocity_mps", params.sigma_velocity_mps, Bound::kPositive, "m/s");
   params.latitude_rad = context.initial_state.latitude_rad;
@@ -100,7 +114,7 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_static_position(
     params.height_m = site.number_or("height_m", 0.0, Bound::kAny, "m");
     site.finish();
   }
-  const auto gate = stochnav::plugin::read_nis_gate(reader, 6);
+  const auto gate = stochnav::plugin::read_nis_gate(reader, params.zero_velocity ? 6 : 3);
   reader.finish();
   return std::make_unique<StaticPositionAid>(params, gate, context.initial_state.t_s);
 }

@@ -26,10 +26,10 @@
 //   sinusoid           an autocorrelation that changes sign periodically (the period estimated
 //                      from its zero crossings; aliased by the aid rate);
 //   (effect null)      the level is too low throughout: the model (or R) overstates the noise.
-// Sensor: from the aid's component meaning (static_position / zupt: E, N, U position and
-// velocity; pipe_length, rop: along-hole). Under static or near-static aiding the horizontal
-// components carry the tilt error (gyro, through g x phi) and the horizontal accelerometers,
-// the vertical component the vertical accelerometer.
+// Sensor: from the aid's component meaning (static_position / position_fix / zupt: E, N, U
+// position and velocity; pipe_length, rop: along-hole). Under static or near-static aiding the
+// horizontal components carry the tilt error (gyro, through g x phi) and the horizontal
+// accelerometers, the vertical component the vertical accelerometer.
 
 #include <optional>
 #include <string>

@@ -1,0 +1,137 @@
+// Aid plugin "position_fix": position fixes with their sigmas from the run's aid data (GNSS at
+// the surface, a tie-on point, a gyro-survey station). At every row of the aid data that carries
+// a fix, the position error of the estimate against the fix, in ENU metres at the fix:
+//   z = [remainder(lon_est - lon_fix, 2 pi) (R_N + h_fix) cos(lat_fix);
+//        (lat_est - lat_fix) (R_M + h_fix);
+//        h_est - h_fix]                                    (m, ENU, estimate - fix)
+//   H = [I 0 0 0 0],  R = diag(sigma_east^2, sigma_north^2, sigma_up^2)
+// with R_M, R_N the radii of curvature at lat_fix (ins/earth.hpp). Every row of AidData has a
+// value in every column (no NaN or empty cells), so a row carries a fix only when all three of
+// its sigmas are > 0: write 0 (or a negative value) in the sigma columns of the rows without one.
+//
+// params:
+//   "columns"  optional object renaming the aid-data columns; keys and defaults:
+//              "latitude_deg": "fix_latitude_deg", "longitude_deg": "fix_longitude_deg",
+//              "height_m": "fix_height_m" (height above the WGS-84 ellipsoid),
+//              "sigma_east_m": "fix_sigma_east_m", "sigma_north_m": "fix_sigma_north_m",
+//              "sigma_up_m": "fix_sigma_up_m"
+//   gate keys: see plugin/aid_plugin.hpp (read_nis_gate)
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "stochnav/ins/earth.hpp"
+#include "stochnav/plugin/aid_plugin.hpp"
+#include "stochnav/plugin/aid_schedule.hpp"
+#include "stochnav/plugin/params.hpp"
+#include "stochnav/plugin/state_layout.hpp"
+
+namespace {
+
+namespace cs = stochnav::plugin::core_state;
+
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+
+// The six aid-data columns, in this order: latitude (deg), longitude (deg), height (m), sigma
+// east, north, up (m).
+constexpr std::array<std::string_view, 6> kColumnKeys = {
+    "latitude_deg", "longitude_deg", "height_m", "sigma_east_m", "sigma_north_m", "sigma_up_m"};
+
+struct FixColumns {
+  std::span<const double> latitude_deg;
+  std::span<const double> longitude_deg;
+  std::span<const double> height_m;
+  std::span<const double> sigma_east_m;
+  std::span<const double> sigma_north_m;
+  std::span<const double> sigma_up_m;
+};
+
+bool carries_fix(const FixColumns& columns, std::size_t row) {
+  return columns.sigma_east_m[row] > 0.0 && columns.sigma_north_m[row] > 0.0 &&
+         columns.sigma_up_m[row] > 0.0;
+}
+
+class PositionFixAid final : public stochnav::plugin::AidPlugin {
+ public:
+  PositionFixAid(stochnav::plugin::NisGate gate, std::span<const double> times_s,
+                 const FixColumns& columns, std::size_t fix_count)
+      : AidPlugin(gate),
+        schedule_(stochnav::plugin::AidSchedule::at_rows(times_s)),
+        columns_(columns),
+        fix_count_(fix_count) {}
+
+  std::string_view type() const override { return "position_fix"; }
+  int measurement_size() const override { return 3; }
+
+  bool has_measurement(double t_s) const override {
+    const auto row = schedule_.row_at(t_s);
+    return row && carries_fix(columns_, *row);
+  }
+
+  bool measure(double t_s, const stochnav::NavState& state, const stochnav::plugin::ImuSample&,
+               Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
+               Eigen::Ref<Eigen::MatrixXd> r) const override {
+    const auto row = schedule_.row_at(t_s);
+    if (!row || !carries_fix(columns_, *row)) return false;
+    const double latitude_rad = columns_.latitude_deg[*row] * kRadPerDeg;
+    const double longitude_rad = columns_.longitude_deg[*row] * kRadPerDeg;
+    const double height_m = columns_.height_m[*row];
+    const stochnav::EarthRadii radii = stochnav::earth_radii(latitude_rad);
+    residual(0) = std::remainder(state.longitude_rad - longitude_rad, 2 * std::numbers::pi) *
+                  (radii.transverse_m + height_m) * std::cos(latitude_rad);
+    residual(1) = (state.latitude_rad - latitude_rad) * (radii.meridian_m + height_m);
+    residual(2) = state.height_m - height_m;
+    h.setZero();
+    h.block<3, 3>(0, cs::kPosition).setIdentity();
+    r.setZero();
+    r(0, 0) = columns_.sigma_east_m[*row] * columns_.sigma_east_m[*row];
+    r(1, 1) = columns_.sigma_north_m[*row] * columns_.sigma_north_m[*row];
+    r(2, 2) = columns_.sigma_up_m[*row] * columns_.sigma_up_m[*row];
+    return true;
+  }
+
+  std::string describe() const override {
+    return fmt::format("position_fix: {} position fixes from the aid data, ENU sigmas per row",
+                       fix_count_);
+  }
+
+ private:
+  stochnav::plugin::AidSchedule schedule_;
+  FixColumns columns_;
+  std::size_t fix_count_;
+};
+
+std::unique_ptr<stochnav::plugin::AidPlugin> make_position_fix(
+    const nlohmann::json& json, const stochnav::plugin::AidContext& context) {
+  stochnav::plugin::ParamReader reader(json, context.params_pointer);
+  // A missing column is reported at the key that renames it ("<params>/columns/latitude_deg"),
+  // whether or not the params have it: that is where the user fixes it.
+  stochnav::plugin::ParamReader renames(reader.raw("columns"), reader.pointer("columns"));
+  std::array<std::string, 6> names;
+  for (std::size_t i = 0; i < kColumnKeys.size(); ++i) {
+    names[i] = renames.text_or(kColumnKeys[i], "fix_" + std::string(kColumnKeys[i]));
+  }
+  renames.finish();
+  const auto gate = stochnav::plugin::read_nis_gate(reader, 3);
+  reader.finish();
+  const stochnav::plugin::AidData& data = *context.data;
+  const auto column = [&](std::size_t i) {
+    return data.column(names[i], renames.pointer(kColumnKeys[i]));
+  };
+  const FixColumns columns{column(0), column(1), column(2), column(3), column(4), column(5)};
+  std::size_t fix_count = 0;
+  for (std::size_t row = 0; row < data.rows(); ++row) {
+    if (carries_fix(columns, row)) ++fix_count;
+  }
+  return std::make_unique<PositionFixAid>(gate, data.time_s(), columns, fix_count);
+}
+
+}  // namespace
+
+STOCHNAV_AID_PLUGIN("position_fix",
+                    "Position fixes with per-row ENU sigmas from the aid data (GNSS, tie-on, "
+                    "survey station)",
+                    make_position_fix)
