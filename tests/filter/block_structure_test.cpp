@@ -5,20 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include "random_matrix.hpp"
 
 namespace stochnav {
 namespace {
 
 using Block = BlockDiagonalStructure::Block;
 
-Eigen::MatrixXd random_matrix(int rows, int cols, std::mt19937_64& engine) {
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXd m(rows, cols);
-  for (int j = 0; j < cols; ++j) {
-    for (int i = 0; i < rows; ++i) m(i, j) = normal(engine);
-  }
-  return m;
-}
+using stochnav::testing::random_matrix;
 
 TEST(BlockDiagonalStructure, ADiagonalPatternIsOneDiagonalRun) {
   Eigen::MatrixXd phi = Eigen::MatrixXd::Zero(5, 5);
