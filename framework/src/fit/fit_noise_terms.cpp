@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <boost/math/distributions/chi_squared.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -307,6 +309,8 @@ FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
       set_parameter_value(value, k, natural);
       set_parameter_value(sigma, k, natural * std::sqrt(log_variance));
       if (fit->at_bound(term, k)) {
+        diagnostics.at_bound.push_back(
+            fmt::format("{}.{}", term_type_name(term.type), specs[k].name));
         diagnostics.warnings.push_back(fmt::format(
             "{} {} reached the edge of its search range: the data do not determine it",
             term_type_name(term.type), specs[k].name));
@@ -316,6 +320,20 @@ FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
     result.sigma.push_back(std::move(sigma));
   }
   return result;
+}
+
+double FitDiagnostics::reduced_chi_square() const {
+  if (points <= parameters) return std::numeric_limits<double>::quiet_NaN();
+  return chi_square / static_cast<double>(points - parameters);
+}
+
+double FitDiagnostics::chi_square_p_value() const {
+  if (points <= parameters || !std::isfinite(chi_square)) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  const boost::math::chi_squared_distribution<double> distribution(
+      static_cast<double>(points - parameters));
+  return boost::math::cdf(boost::math::complement(distribution, std::max(chi_square, 0.0)));
 }
 
 std::string_view robust_loss_name(RobustLoss loss) {

@@ -1,5 +1,7 @@
 #include "stochnav/plugin/calibration_fit.hpp"
 
+#include <cmath>
+
 #include "stochnav/core/errors.hpp"
 #include "stochnav/fit/fit_data.hpp"
 #include "stochnav/stats/deviation.hpp"
@@ -35,6 +37,24 @@ std::array<FitResult, 3> fit_calibration_axes(const CalibrationRecord& record,
         fit_data_from_deviations(Deviation::kOadev, points, unit, record.rate_hz), options);
   }
   return results;
+}
+
+nlohmann::json calibration_fit_quality(const std::array<FitResult, 3>& fits) {
+  const auto number_or_null = [](double x) {
+    return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
+  };
+  nlohmann::json quality = nlohmann::json::object();
+  const char* names[] = {"x", "y", "z"};
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    const FitDiagnostics& d = fits[axis].diagnostics;
+    quality[names[axis]] = {
+        {"chi_square", number_or_null(d.chi_square)},
+        {"dof", d.points > d.parameters ? d.points - d.parameters : 0},
+        {"chi_square_per_dof", number_or_null(d.reduced_chi_square())},
+        {"p_value", number_or_null(d.chi_square_p_value())},
+        {"at_bound", d.at_bound}};
+  }
+  return quality;
 }
 
 const NoiseTerm* find_term(const NoiseModel& model, TermType type) {

@@ -467,6 +467,23 @@ ScenarioConfig parse(const json& value) {
         kMetrePerHour;
     aids.finish();
   }
+  if (r.has("noise_variance_scale")) {
+    ObjectReader n(r.get("noise_variance_scale"), r.at("noise_variance_scale"),
+                   "{\"gyro\": x >= 0, \"accel\": x >= 0, \"moving_only\": bool}");
+    config.noise_variance_scale.gyro =
+        n.number("gyro", "a factor >= 0 on the scheduled gyro noise variance",
+                 Range::kNonNegative, 1.0);
+    config.noise_variance_scale.accel =
+        n.number("accel", "a factor >= 0 on the scheduled accelerometer noise variance",
+                 Range::kNonNegative, 1.0);
+    if (n.has("moving_only")) {
+      if (!n.get("moving_only").is_boolean()) {
+        fail(n.at("moving_only"), "is not a boolean", "true or false");
+      }
+      config.noise_variance_moving_only = n.get("moving_only").get<bool>();
+    }
+    n.finish();
+  }
   if (config.kind == ScenarioKind::kVibrationTable) {
     config.vibration_table = parse_table(r.get("vibration_table"), r.at("vibration_table"));
   } else {
@@ -552,6 +569,11 @@ json to_json(const ScenarioConfig& config) {
                  {"height_m", config.site.height_m}};
   out["sensors"] = {{"gyro", sensor_json(config.gyro, true)},
                     {"accel", sensor_json(config.accel, false)}};
+  if (config.noise_variance_scale.gyro != 1.0 || config.noise_variance_scale.accel != 1.0) {
+    out["noise_variance_scale"] = {{"gyro", config.noise_variance_scale.gyro},
+                                   {"accel", config.noise_variance_scale.accel},
+                                   {"moving_only", config.noise_variance_moving_only}};
+  }
   out["aids"] = {{"depth_scale_error", config.aids.depth_scale_error},
                  {"depth_noise_m", config.aids.depth_noise_m},
                  {"rop_noise_mph", config.aids.rop_noise_mps / kMetrePerHour}};

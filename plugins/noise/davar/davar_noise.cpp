@@ -357,6 +357,7 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
     params.n[axis] = std::move(series.angle_random_walk);
     raise_to_floor(params.n[axis], floor_fraction);
   }
+  nlohmann::json quality;  // the windows' DAVAR fits are not summarised: null without K
   if (with_walk) {
     stochnav::FitOptions walk_options;
     // N and K only, as the white plugin fits them: B is not given to the filter, so K must
@@ -372,8 +373,11 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
         params.k[axis] = std::get<stochnav::RateRandomWalkTerm>(*rrw).k;
       }
     }
+    quality = {{"rate_random_walk_fit", stochnav::plugin::calibration_fit_quality(fits)}};
   }
-  return std::make_unique<DavarNoise>(record.group, std::move(params));
+  auto model = std::make_unique<DavarNoise>(record.group, std::move(params));
+  model->set_fit_quality(std::move(quality));
+  return model;
 }
 
 }  // namespace

@@ -135,7 +135,9 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_white(
       params.k[axis] = std::get<stochnav::RateRandomWalkTerm>(*rrw).k;
     }
   }
-  return std::make_unique<WhiteNoise>(record.group, params);
+  auto model = std::make_unique<WhiteNoise>(record.group, params);
+  model->set_fit_quality(stochnav::plugin::calibration_fit_quality(fits));
+  return model;
 }
 
 }  // namespace

@@ -101,6 +101,13 @@ struct FitDiagnostics {
   SlopeReadoffs readoffs;              ///< IEEE 952 cross-check, natural units
   std::vector<SelectionStep> selection;  ///< automatic selection history
   std::vector<std::string> warnings;     ///< e.g. parameters at a bound
+  /// Parameters left on an edge of their search range, as "term_type.parameter" (e.g.
+  /// "rate_random_walk.K"): the data do not determine them (a failed term).
+  std::vector<std::string> at_bound;
+  /// chi_square / (points - parameters); NaN when there are no degrees of freedom left.
+  double reduced_chi_square() const;
+  /// Upper tail P(chi2(points - parameters) >= chi_square); NaN without degrees of freedom.
+  double chi_square_p_value() const;
 };
 
 struct FitResult {

@@ -16,6 +16,11 @@ namespace stochnav::plugin {
 std::array<FitResult, 3> fit_calibration_axes(const CalibrationRecord& record,
                                               const FitOptions& options);
 
+/// The fit quality of the three axes, for NoiseModelPlugin::set_fit_quality:
+/// {"x"|"y"|"z": {"chi_square", "dof" (points - parameters), "chi_square_per_dof", "p_value"
+/// (upper tail of chi2(dof); null without dof), "at_bound": ["term.param", ...]}}.
+nlohmann::json calibration_fit_quality(const std::array<FitResult, 3>& fits);
+
 /// The first term of `type` in a fit result's model, or nullptr.
 const NoiseTerm* find_term(const NoiseModel& model, TermType type);
 
