@@ -53,7 +53,8 @@ void plot_sweep(const std::string& title, const std::string& y_label,
     script += "EOD\n";
   }
   script += fmt::format(
-      "set multiplot layout 3,3 title '{}' noenhanced\nset grid\nset key top left font ',7' "
+      "set multiplot layout 3,3 title '{}' noenhanced\nset grid\nset offsets graph 0.05, graph "
+      "0.05, graph 0.05, graph 0.05\nset key top left font ',7' "
       "noenhanced\nset xlabel '{}' noenhanced font ',8'\nset ylabel '{}' noenhanced font ',8'\n{}",
       title, x_label, y_label, log_x ? "set logscale x\n" : "");
   for (std::size_t m = 0; m < kErrorMetricCount; ++m) {

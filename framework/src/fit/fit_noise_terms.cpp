@@ -233,7 +233,9 @@ std::optional<Weighting> model_weighting(const FitData& data, const NoiseModel& 
 
 }  // namespace
 
-FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
+namespace {
+
+FitResult fit_noise_terms_once(const FitData& data, const FitOptions& options) {
   if (auto problem = validate(data); !problem.empty()) fail(problem);
   if (auto problem = options.validate(); !problem.empty()) fail(problem);
   std::size_t explicit_parameters = 0;
@@ -320,6 +322,55 @@ FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
     result.sigma.push_back(std::move(sigma));
   }
   return result;
+}
+
+}  // namespace
+
+FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
+  FitResult result = fit_noise_terms_once(data, options);
+  if (!options.drop_terms_at_bound || options.terms.empty()) return result;
+  std::vector<std::string> dropped;
+  FitOptions current = options;
+  while (!result.diagnostics.at_bound.empty() && current.terms.size() > 1) {
+    // Drop every term with a parameter on its bound (all of them when all are).
+    std::vector<TermType> kept;
+    for (TermType type : current.terms) {
+      bool on_bound = false;
+      for (const auto& name : result.diagnostics.at_bound) {
+        on_bound |= name.rfind(std::string(term_type_name(type)) + ".", 0) == 0;
+      }
+      if (on_bound) {
+        dropped.push_back(fmt::format("{} (a parameter on its search bound)", term_type_name(type)));
+      } else {
+        kept.push_back(type);
+      }
+    }
+    if (kept.empty() || kept.size() == current.terms.size()) break;
+    current.terms = kept;
+    result = fit_noise_terms_once(data, current);
+  }
+  result.diagnostics.dropped_terms = dropped;
+  for (const auto& term : dropped) {
+    result.diagnostics.warnings.push_back("dropped " + term + " and refitted without it");
+  }
+  return result;
+}
+
+bool FitDiagnostics::failed() const { return !failure().empty(); }
+
+std::string FitDiagnostics::failure() const {
+  std::string reason;
+  for (const auto& name : at_bound) {
+    reason += (reason.empty() ? "" : "; ") + name + " on its search bound";
+  }
+  const double p = chi_square_p_value();
+  if (std::isfinite(p) && p < kFailedFitPValue) {
+    reason += fmt::format("{}chi-square {:.4g} for {} dof (p = {:.2g} < {:g}): the terms do not "
+                          "describe the record",
+                          reason.empty() ? "" : "; ", chi_square, points - parameters, p,
+                          kFailedFitPValue);
+  }
+  return reason;
 }
 
 double FitDiagnostics::reduced_chi_square() const {
