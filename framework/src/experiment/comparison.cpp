@@ -421,16 +421,16 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
 double sign_test_p_value(std::size_t wins, std::size_t losses) {
   const std::size_t n = wins + losses;
   if (n == 0) return 1.0;
-  // P(X <= k) summed in log space: exact for the seed counts of an experiment.
+  // P(X <= k) = sum_{i <= k} C(n, i) / 2^n, the binomial coefficients built up exactly (in
+  // double, exact while they stay below 2^53).
   const auto cdf = [n](std::size_t k) {
     double sum = 0.0;
+    double coefficient = 1.0;
     for (std::size_t i = 0; i <= k; ++i) {
-      sum += std::exp(std::lgamma(static_cast<double>(n) + 1.0) -
-                      std::lgamma(static_cast<double>(i) + 1.0) -
-                      std::lgamma(static_cast<double>(n - i) + 1.0) -
-                      static_cast<double>(n) * std::log(2.0));
+      sum += coefficient;
+      coefficient = coefficient * static_cast<double>(n - i) / static_cast<double>(i + 1);
     }
-    return sum;
+    return std::ldexp(sum, -static_cast<int>(n));
   };
   const double lower = cdf(wins);
   const double upper = wins == 0 ? 1.0 : 1.0 - cdf(wins - 1);
