@@ -332,20 +332,24 @@ FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
   std::vector<std::string> dropped;
   FitOptions current = options;
   while (!result.diagnostics.at_bound.empty() && current.terms.size() > 1) {
-    // Drop every term with a parameter on its bound (all of them when all are).
+    // Drop every term with a parameter on its bound; stop (the failure reported) when that
+    // would leave none.
     std::vector<TermType> kept;
+    std::vector<std::string> on_bound_now;
     for (TermType type : current.terms) {
       bool on_bound = false;
       for (const auto& name : result.diagnostics.at_bound) {
         on_bound |= name.rfind(std::string(term_type_name(type)) + ".", 0) == 0;
       }
       if (on_bound) {
-        dropped.push_back(fmt::format("{} (a parameter on its search bound)", term_type_name(type)));
+        on_bound_now.push_back(
+            fmt::format("{} (a parameter on its search bound)", term_type_name(type)));
       } else {
         kept.push_back(type);
       }
     }
     if (kept.empty() || kept.size() == current.terms.size()) break;
+    dropped.insert(dropped.end(), on_bound_now.begin(), on_bound_now.end());
     current.terms = kept;
     result = fit_noise_terms_once(data, current);
   }

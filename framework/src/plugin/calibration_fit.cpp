@@ -74,12 +74,21 @@ WhiteWalkFit fit_white_walk(const CalibrationRecord& record, bool with_walk) {
       if (std::abs(std::log(d.tau_s[i])) < std::abs(std::log(d.tau_s[near_one]))) near_one = i;
       if (d.edf[i] >= kReliableEdf) reliable = i;
     }
+    // The floor: the EDF-weighted mean Allan variance of the points from tau_n to tau_k (one
+    // point's estimate alone scatters by tens of percent).
+    double weighted = 0.0, weight = 0.0;
+    for (std::size_t i = std::min(near_one, reliable); i <= reliable; ++i) {
+      weighted += d.edf[i] * d.avar[i];
+      weight += d.edf[i];
+    }
+    const double floor_avar = weighted / weight;
     out.n[axis] = std::sqrt(d.avar[near_one] * d.tau_s[near_one]);
-    out.k[axis] = std::sqrt(d.avar[reliable] * 3.0 / d.tau_s[reliable]);
+    out.k[axis] = std::sqrt(floor_avar * 3.0 / d.tau_s[reliable]);
     quality["method"] = "floor_matched";
     quality["failed_fit"] = fit.diagnostics.failure();
     quality["tau_n_s"] = d.tau_s[near_one];
     quality["tau_k_s"] = d.tau_s[reliable];
+    quality["floor_adev"] = std::sqrt(floor_avar);  // natural units
   }
   return out;
 }

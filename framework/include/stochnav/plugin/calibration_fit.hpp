@@ -38,13 +38,15 @@ inline constexpr double kReliableEdf = 10.0;
 /// N + K fit fails (FitDiagnostics::failed: a coefficient on its search bound, or a chi-square
 /// with p < kFailedFitPValue — what a flicker floor, bias instability, does to a model that has
 /// no term for it), that axis uses the FLOOR-MATCHED rule instead: each line of the model meets
-/// the measured Allan deviation sigma(tau) at one tau,
-///   N = sigma(tau_n) sqrt(tau_n),      tau_n = the measured tau nearest 1 s,
-///   K = sigma(tau_k) sqrt(3 / tau_k),  tau_k = the longest tau whose EDF >= kReliableEdf
-/// (AVAR of a rate random walk K^2 tau / 3). Over a flat floor sigma_f = 0.664 B this gives
-/// K = 0.664 B sqrt(3 / tau_k): the bias wander the floor implies over the longest interval the
-/// record measures, and the model stays at or below the floor in between. N only (no walk) keeps
-/// the fit, its failure reported in quality.
+/// the measured floor at one tau,
+///   N = sigma(tau_n) sqrt(tau_n),        tau_n = the measured tau nearest 1 s,
+///   K = sigma_floor sqrt(3 / tau_k),     tau_k = the longest tau whose EDF >= kReliableEdf,
+/// sigma(tau) the measured Allan deviation, sigma_floor^2 the EDF-weighted mean Allan variance
+/// of the points from tau_n to tau_k (AVAR of a rate random walk: K^2 tau / 3). Over a flat
+/// floor sigma_f = 0.664 B this gives K = 0.664 B sqrt(3 / tau_k) (0.664 B sqrt(10800 / tau_k)
+/// in deg/h/sqrt(h) for B in deg/h): the bias wander the floor implies over the longest interval
+/// the record measures; the model stays at or below the floor in between. N only (no walk)
+/// keeps the fit, its failure reported in quality.
 WhiteWalkFit fit_white_walk(const CalibrationRecord& record, bool with_walk);
 
 /// The fit quality of the three axes, for NoiseModelPlugin::set_fit_quality:
