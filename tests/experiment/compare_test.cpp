@@ -258,8 +258,8 @@ TEST(CompareSweep, WritesOneFolderPerLevelAndSweepJson) {
 }
 
 // The scheduled gyro noise of a short static table with and without a variance factor of 16:
-// the white-noise level (the Allan deviation at short tau, where the ARW dominates) scales by
-// sqrt(16) = 4.
+// the white-noise level (the standard deviation of the increments, where the ARW dominates)
+// scales by sqrt(16) = 4; moving_noise_variance_scale does not touch a static phase.
 TEST(NoiseVarianceScale, ScalesTheSimulatedAngleRandomWalkBySqrt) {
   const TempDir dir;
   nlohmann::json scenario = short_scenario();
@@ -268,9 +268,10 @@ TEST(NoiseVarianceScale, ScalesTheSimulatedAngleRandomWalkBySqrt) {
   scenario["sensors"]["gyro"]["noise"]["terms"] = nlohmann::json::array();
   scenario["sensors"]["gyro"]["scheduled_noise"]["terms"][0]["N"] = 0.05;
   scenario["sensors"]["gyro"]["turn_on_bias_sigma_dph"] = 0.0;
-  const auto simulate = [&](const std::string& name, double factor) {
+  const auto simulate = [&](const std::string& name, double factor,
+                            const std::string& key = "noise_variance_scale") {
     nlohmann::json config = scenario;
-    if (factor != 1.0) config["noise_variance_scale"] = {{"gyro", factor}};
+    if (factor != 1.0) config[key] = {{"gyro", factor}};
     std::ofstream(dir.path() / (name + ".json")) << config.dump();
     const auto run = run_cli("simulate scenario '" + dir.file(name + ".json") + "' --out '" +
                                  dir.file(name) + "'",
@@ -313,6 +314,8 @@ TEST(NoiseVarianceScale, ScalesTheSimulatedAngleRandomWalkBySqrt) {
   const double plain = simulate("plain", 1.0);
   const double scaled = simulate("scaled", 16.0);
   EXPECT_NEAR(scaled / plain, 4.0, 0.15);
+  // The moving-phase factor leaves a static record alone.
+  EXPECT_DOUBLE_EQ(simulate("moving", 16.0, "moving_noise_variance_scale"), plain);
   // And in scenario.json (what the oracle reads): the phase scale is sqrt(16).
   const nlohmann::json truth = read_json(dir.path() / "scaled" / "scenario.json");
   EXPECT_NE(truth.dump().find("\"gyro_noise_scale\":4.0"), std::string::npos);

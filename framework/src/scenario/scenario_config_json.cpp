@@ -467,21 +467,16 @@ ScenarioConfig parse(const json& value) {
         kMetrePerHour;
     aids.finish();
   }
-  if (r.has("noise_variance_scale")) {
-    ObjectReader n(r.get("noise_variance_scale"), r.at("noise_variance_scale"),
-                   "{\"gyro\": x >= 0, \"accel\": x >= 0, \"moving_only\": bool}");
-    config.noise_variance_scale.gyro =
-        n.number("gyro", "a factor >= 0 on the scheduled gyro noise variance",
-                 Range::kNonNegative, 1.0);
-    config.noise_variance_scale.accel =
-        n.number("accel", "a factor >= 0 on the scheduled accelerometer noise variance",
-                 Range::kNonNegative, 1.0);
-    if (n.has("moving_only")) {
-      if (!n.get("moving_only").is_boolean()) {
-        fail(n.at("moving_only"), "is not a boolean", "true or false");
-      }
-      config.noise_variance_moving_only = n.get("moving_only").get<bool>();
-    }
+  for (const char* key : {"noise_variance_scale", "moving_noise_variance_scale"}) {
+    if (!r.has(key)) continue;
+    ObjectReader n(r.get(key), r.at(key), "{\"gyro\": x >= 0, \"accel\": x >= 0}");
+    NoiseScales& scales = std::string_view(key) == "noise_variance_scale"
+                              ? config.noise_variance_scale
+                              : config.moving_noise_variance_scale;
+    scales.gyro = n.number("gyro", "a factor >= 0 on the scheduled gyro noise variance",
+                           Range::kNonNegative, 1.0);
+    scales.accel = n.number("accel", "a factor >= 0 on the scheduled accelerometer noise variance",
+                            Range::kNonNegative, 1.0);
     n.finish();
   }
   if (config.kind == ScenarioKind::kVibrationTable) {
@@ -571,8 +566,12 @@ json to_json(const ScenarioConfig& config) {
                     {"accel", sensor_json(config.accel, false)}};
   if (config.noise_variance_scale.gyro != 1.0 || config.noise_variance_scale.accel != 1.0) {
     out["noise_variance_scale"] = {{"gyro", config.noise_variance_scale.gyro},
-                                   {"accel", config.noise_variance_scale.accel},
-                                   {"moving_only", config.noise_variance_moving_only}};
+                                   {"accel", config.noise_variance_scale.accel}};
+  }
+  if (config.moving_noise_variance_scale.gyro != 1.0 ||
+      config.moving_noise_variance_scale.accel != 1.0) {
+    out["moving_noise_variance_scale"] = {{"gyro", config.moving_noise_variance_scale.gyro},
+                                          {"accel", config.moving_noise_variance_scale.accel}};
   }
   out["aids"] = {{"depth_scale_error", config.aids.depth_scale_error},
                  {"depth_noise_m", config.aids.depth_noise_m},

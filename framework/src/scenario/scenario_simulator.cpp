@@ -14,12 +14,15 @@ namespace {
 constexpr std::size_t kBlock = 4096;
 
 // The amplitude factor on the scheduled noise in `phase`: the phase's own scale times the
-// square root of the scenario's noise_variance_scale (where it applies).
+// square roots of the scenario's variance factors that apply to it.
 double scheduled_scale(const ScenarioConfig& config, const ScenarioPhase& phase, bool gyro) {
   const double own = gyro ? phase.gyro_noise_scale : phase.accel_noise_scale;
-  if (config.noise_variance_moving_only && phase.stationary) return own;
-  return own * std::sqrt(gyro ? config.noise_variance_scale.gyro
-                              : config.noise_variance_scale.accel);
+  double variance = gyro ? config.noise_variance_scale.gyro : config.noise_variance_scale.accel;
+  if (!phase.stationary) {
+    variance *= gyro ? config.moving_noise_variance_scale.gyro
+                     : config.moving_noise_variance_scale.accel;
+  }
+  return own * std::sqrt(variance);
 }
 
 bool has_signal_terms(const NoiseModel& model) {

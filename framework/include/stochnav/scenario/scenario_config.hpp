@@ -128,9 +128,9 @@ struct ScenarioConfig {
   /// "noise_variance_scale": factors on the VARIANCE of the scheduled noise (its amplitude
   /// scales by the square root), on top of the phase scales; 1 = as configured.
   NoiseScales noise_variance_scale;
-  /// true: the factors apply only to phases in which the tool moves (vibration, drilling);
-  /// false (default): to every phase.
-  bool noise_variance_moving_only = false;
+  /// "moving_noise_variance_scale": the same, only in phases in which the tool moves
+  /// (vibration-table vibration, drilling); the two multiply where both apply.
+  NoiseScales moving_noise_variance_scale;
 };
 
 /// Total scenario length (s): the sum of the table phases, or drilling.duration_s.
