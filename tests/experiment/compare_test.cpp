@@ -8,8 +8,8 @@
 
 #include <boost/math/distributions/chi_squared.hpp>
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -66,7 +66,8 @@ nlohmann::json tiny_experiment(int seeds) {
           {"gyro_bias_deg_h", 0.7}}}}},
       {"variants",
        {{{"name", "classic"},
-         {"noise", {{"gyro", {{"plugin", "white"}, {"params", {{"N", 3.33e-5}}}}}, {"accel", kAccel}}}},
+         {"noise",
+          {{"gyro", {{"plugin", "white"}, {"params", {{"N", 3.33e-5}}}}}, {"accel", kAccel}}}},
         {{"name", "white_tuned"},
          {"noise",
           {{"gyro",
@@ -75,8 +76,9 @@ nlohmann::json tiny_experiment(int seeds) {
              {"fit", {{"end_s", 60}}}}},
            {"accel", kAccel}}}},
         {{"name", "oracle"},
-         {"noise", {{"gyro", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}},
-                    {"accel", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}}}}}}}};
+         {"noise",
+          {{"gyro", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}},
+           {"accel", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}}}}}}}};
   return experiment;
 }
 
@@ -91,8 +93,8 @@ fs::path write_experiment(const TempDir& dir, const nlohmann::json& experiment,
 
 TEST(SignTest, ExactBinomialValues) {
   EXPECT_DOUBLE_EQ(sign_test_p_value(0, 0), 1.0);
-  EXPECT_DOUBLE_EQ(sign_test_p_value(3, 0), 0.25);   // 2 * 1/8
-  EXPECT_DOUBLE_EQ(sign_test_p_value(5, 0), 0.0625);  // 2 / 32
+  EXPECT_DOUBLE_EQ(sign_test_p_value(3, 0), 0.25);              // 2 * 1/8
+  EXPECT_DOUBLE_EQ(sign_test_p_value(5, 0), 0.0625);            // 2 / 32
   EXPECT_NEAR(sign_test_p_value(9, 1), 22.0 / 1024.0, 1e-12);   // 2 * 11 / 1024
   EXPECT_NEAR(sign_test_p_value(1, 9), 22.0 / 1024.0, 1e-12);   // symmetric
   EXPECT_NEAR(sign_test_p_value(8, 2), 112.0 / 1024.0, 1e-12);  // 2 * 56 / 1024
@@ -103,9 +105,8 @@ TEST(SignTest, ExactBinomialValues) {
 TEST(CompareCli, ResultsCarryFittedConsistencyAndPairs) {
   const TempDir dir;
   nlohmann::json experiment = tiny_experiment(2);
-  experiment["pairs"] = nlohmann::json::array(
-      {nlohmann::json::array({"white_tuned", "classic"}),
-       nlohmann::json::array({"oracle", "white_tuned"})});
+  experiment["pairs"] = nlohmann::json::array({nlohmann::json::array({"white_tuned", "classic"}),
+                                               nlohmann::json::array({"oracle", "white_tuned"})});
   const fs::path file = write_experiment(dir, experiment);
   const auto run =
       run_cli("compare '" + file.string() + "' --out '" + dir.file("out") + "'", dir.path());
@@ -273,9 +274,9 @@ TEST(NoiseVarianceScale, ScalesTheSimulatedAngleRandomWalkBySqrt) {
     nlohmann::json config = scenario;
     if (factor != 1.0) config[key] = {{"gyro", factor}};
     std::ofstream(dir.path() / (name + ".json")) << config.dump();
-    const auto run = run_cli("simulate scenario '" + dir.file(name + ".json") + "' --out '" +
-                                 dir.file(name) + "'",
-                             dir.path());
+    const auto run = run_cli(
+        "simulate scenario '" + dir.file(name + ".json") + "' --out '" + dir.file(name) + "'",
+        dir.path());
     EXPECT_EQ(run.exit_code, 0) << run.err;
     // Sample standard deviation of the gyro x angle increments about their mean (static: the
     // noise).
@@ -343,8 +344,7 @@ TEST(CompareCli, BadVariantFailsBeforeSimulating) {
   experiment = tiny_experiment(1);
   experiment["variants"][0]["noise"]["gyro"]["params"]["N"] = -1;
   write_experiment(dir, experiment, scenario);
-  auto bad = run_cli("compare '" + file.string() + "' --out '" + dir.file("out") + "'",
-                     dir.path());
+  auto bad = run_cli("compare '" + file.string() + "' --out '" + dir.file("out") + "'", dir.path());
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("classic"), std::string::npos) << bad.err;
   experiment = tiny_experiment(1);

@@ -37,8 +37,8 @@ std::vector<double> level_axis(const ExperimentSweep& sweep, bool& log_scale) {
 // Nine panels (one per metric), one curve per series, mean with the seed spread (std) as error
 // bars against the level. `series` names the curves; values[level][series][metric] = {mean, std}.
 void plot_sweep(const std::string& title, const std::string& y_label,
-                const std::vector<std::string>& series, const std::vector<double>& x,
-                bool log_x, const std::vector<std::vector<std::vector<std::array<double, 2>>>>& values,
+                const std::vector<std::string>& series, const std::vector<double>& x, bool log_x,
+                const std::vector<std::vector<std::vector<std::array<double, 2>>>>& values,
                 const std::string& x_label, const fs::path& path) {
   std::string script;
   for (std::size_t c = 0; c < series.size(); ++c) {
