@@ -4,17 +4,22 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <numbers>
 #include <vector>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/noise_model.hpp"
+#include "stochnav/plugin/calibration_fit.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 #include "stochnav/sim/noise_generator.hpp"
 #include "noise_model_properties.hpp"
 #include "fit_recovery.hpp"
+#include "run_cli.hpp"
+#include "temp_dir.hpp"
 
 namespace stochnav::plugin {
 namespace {
@@ -193,6 +198,107 @@ TEST(WhiteFit, RecoversTheAngleRandomWalk) {
   for (int axis = 0; axis < 3; ++axis) {
     EXPECT_NEAR(model->params()["N"][axis].get<double>(), 0.2, 0.01) << model->describe();
   }
+}
+
+}  // namespace
+}  // namespace stochnav::plugin
+
+namespace stochnav::plugin {
+namespace {
+
+constexpr double kDegPerHourRad = std::numbers::pi / 180.0 / 3600.0;  // rad/s per deg/h
+
+// A constant white-plus-random-walk model of a B = 0.5 deg/h flicker floor (the paper's FOG,
+// static): the free N + K fit fails (the model has no flicker term: chi-square far beyond its
+// dof) and the white plugin falls back on the floor-matched rule of calibration_fit.hpp. Over
+// many seeds of 600 s records (the paper's static phase), K stays off any bound and within a
+// factor 1.5 of the rule's value for the floor, 0.664 B sqrt(10800 / tau_k) deg/h/sqrt(h) (it
+// was 71-81 deg/h/sqrt(h), at the search bound, before the rule).
+TEST(WhiteFit, FlickerFloorUsesTheFloorMatchedRandomWalk) {
+  const double b_dph = 0.5;
+  NoiseModel truth{Unit::kRadPerSecond,
+                   100.0,
+                   {AngleRandomWalkTerm{2e-4 * std::numbers::pi / 180.0 / 60.0},
+                    BiasInstabilityTerm{b_dph * kDegPerHourRad}}};
+  const nlohmann::json params = {{"rate_random_walk", true}};
+  for (std::uint64_t seed = 0; seed < 8; ++seed) {
+    const auto record = simulated_record(truth, 600.0, 100 + 3 * seed);
+    const auto model =
+        registry().fit_noise_model("white", record, params, context_for(SensorGroup::kGyro), "/p");
+    const nlohmann::json quality = model->fit_quality();
+    for (int axis = 0; axis < 3; ++axis) {
+      const auto& q = quality[std::string(1, "xyz"[axis])];
+      SCOPED_TRACE(q.dump());
+      EXPECT_EQ(q["method"], "floor_matched");
+      EXPECT_LT(q["p_value"].get<double>(), kFailedFitPValue);
+      const double tau_k = q["tau_k_s"].get<double>();
+      const double rule = 0.664 * b_dph * std::sqrt(10800.0 / tau_k);
+      const double k = model->params()["K"][axis].get<double>();
+      EXPECT_GT(k, rule / 1.5);
+      EXPECT_LT(k, rule * 1.5);
+      EXPECT_LT(k, 20.0);  // far below the old 71-81 at the bound
+    }
+  }
+}
+
+// A record built to put K on its bound: white noise plus a strong 0.5 Hz sinusoid, whose Allan
+// variance rises to a bump below 1 s and falls away at long tau. Fitted with N and K, the fit
+// pushes K up towards the bump far past the random walk the longest taus allow (the read-off
+// that sets K's search range), onto the edge of that range. fit_noise_terms reports a failed
+// fit, and with drop_terms_at_bound refits without K; `stochnav fit --terms` says so.
+TEST(FailedFit, TermOnItsBoundIsDroppedAndReported) {
+  const double deg_rt_h = std::numbers::pi / 180.0 / 60.0;
+  NoiseModel truth{Unit::kRadPerSecond, 100.0, {AngleRandomWalkTerm{0.2 * deg_rt_h}}};
+  auto record = simulated_record(truth, 300.0, 7);
+  for (auto& axis : record.axes) {
+    for (std::size_t i = 0; i < axis.size(); ++i) {
+      axis[i] += 1e-3 * std::sin(2.0 * std::numbers::pi * 0.5 * static_cast<double>(i) / 100.0);
+    }
+  }
+  FitOptions options;
+  options.terms = {TermType::kAngleRandomWalk, TermType::kRateRandomWalk};
+  const FitData data = calibration_axis_data(record, 0);
+  const FitResult kept = fit_noise_terms(data, options);
+  ASSERT_FALSE(kept.diagnostics.at_bound.empty()) << kept.diagnostics.failure();
+  EXPECT_NE(std::find(kept.diagnostics.at_bound.begin(), kept.diagnostics.at_bound.end(),
+                      "rate_random_walk.K"),
+            kept.diagnostics.at_bound.end());
+  EXPECT_TRUE(kept.diagnostics.failed());
+  EXPECT_NE(kept.diagnostics.failure().find("rate_random_walk.K on its search bound"),
+            std::string::npos);
+  options.drop_terms_at_bound = true;
+  const FitResult dropped = fit_noise_terms(data, options);
+  ASSERT_EQ(dropped.diagnostics.dropped_terms.size(), 1u);
+  EXPECT_NE(dropped.diagnostics.dropped_terms.front().find("rate_random_walk"), std::string::npos);
+  ASSERT_EQ(dropped.model.terms.size(), 1u);
+  EXPECT_EQ(term_type(dropped.model.terms.front()), TermType::kAngleRandomWalk);
+  EXPECT_TRUE(dropped.diagnostics.at_bound.empty());
+
+  // The CLI on the same axis (rad/s, one column).
+  const stochnav::testing::TempDir dir;
+  {
+    std::ofstream out(dir.path() / "rate.txt");
+    out.precision(17);
+    for (double value : record.axes[0]) out << value << "\n";
+  }
+  const auto run = stochnav::testing::run_cli(
+      "fit --input '" + dir.file("rate.txt") +
+          "' --rate 100 --terms angle_random_walk,rate_random_walk",
+      dir.path().string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("# dropped term: rate_random_walk"), std::string::npos) << run.out;
+}
+
+// A flicker floor fitted with N alone: chi-square far beyond its dof, a failed fit that says so.
+TEST(FailedFit, ChiSquareFarBeyondItsDofFails) {
+  NoiseModel truth{Unit::kRadPerSecond, 100.0, {BiasInstabilityTerm{0.5 * kDegPerHourRad}}};
+  const auto record = simulated_record(truth, 600.0, 21);
+  FitOptions options;
+  options.terms = {TermType::kAngleRandomWalk};
+  const FitResult fit = fit_noise_terms(calibration_axis_data(record, 0), options);
+  EXPECT_LT(fit.diagnostics.chi_square_p_value(), kFailedFitPValue);
+  EXPECT_TRUE(fit.diagnostics.failed());
+  EXPECT_NE(fit.diagnostics.failure().find("chi-square"), std::string::npos);
 }
 
 }  // namespace

@@ -37,8 +37,13 @@ void add_compare_command(CLI::App& app) {
       }
       config.seeds = arguments->seeds;
     }
-    const ComparisonResult result =
-        run_comparison(config, arguments->out, true);
+    if (config.sweep) {
+      const nlohmann::json sweep = run_sweep(config, arguments->out, true);
+      std::cout << "wrote " << arguments->out << "/sweep.json, sweep.png, sweep_pairs.png and "
+                << sweep["levels"].size() << " level folders (level_<i>/)\n";
+      return;
+    }
+    const ComparisonResult result = run_comparison(config, arguments->out, true);
     write_comparison(result, config, arguments->out);
     std::cout << comparison_table(result, config);
     std::cout << "\nwrote " << arguments->out << "/results.json, table.md, metrics.png, "

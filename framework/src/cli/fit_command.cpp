@@ -53,6 +53,8 @@ std::vector<TermType> parse_terms(const std::string& list) {
 FitOptions fit_options(const FitArguments& arguments) {
   FitOptions options;
   options.terms = parse_terms(arguments.terms);
+  // A given term the data leave on its search bound is dropped (and said so in the report).
+  options.drop_terms_at_bound = true;
   if (arguments.loss == "huber") {
     options.loss = RobustLoss::kHuber;
   } else if (arguments.loss == "cauchy") {

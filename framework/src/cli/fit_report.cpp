@@ -96,6 +96,8 @@ std::string format_fit(const FitResult& fit, const Record& record, OutputFormat 
   }
   out += "# IEEE 952 slope read-offs (cross-check):\n" + readoff_rows(fit, false);
   for (const auto& warning : d.warnings) out += "# warning: " + warning + "\n";
+  for (const auto& term : d.dropped_terms) out += "# dropped term: " + term + "\n";
+  if (d.failed()) out += "# FIT FAILED: " + d.failure() + "\n";
   return out;
 }
 

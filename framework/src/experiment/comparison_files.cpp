@@ -30,11 +30,27 @@ void plot_metrics(const ComparisonResult& result, const std::filesystem::path& p
           runs.size() > 1 ? std::sqrt(squares / static_cast<double>(runs.size() - 1)) : 0.0;
       script += fmt::format(" {:.6g} {:.6g}", mean, spread);
     }
+    // Consistency: the worst metric's share inside 3-sigma (%), and the NEES mean over its
+    // upper 95 % bound (above 1: optimistic).
+    const nlohmann::json consistency = variant_consistency(result, v);
+    double worst = std::nan("");
+    double nees_ratio = std::nan("");
+    if (consistency.is_object()) {
+      for (const auto& [name, share] : consistency["inside_3sigma"].items()) {
+        if (share.is_number() && !(share.get<double>() >= worst)) worst = share.get<double>();
+      }
+      if (consistency["nees_bounds"].is_array() && consistency["nees_mean"].is_number()) {
+        nees_ratio = consistency["nees_mean"].get<double>() /
+                     consistency["nees_bounds"][1].get<double>();
+      }
+    }
+    script += fmt::format(" {:.6g} {:.6g}", std::isfinite(worst) ? 100.0 * worst : 0.0,
+                          std::isfinite(nees_ratio) ? nees_ratio : 0.0);
     script += '\n';
   }
   script += "EOD\n";
   script +=
-      "set multiplot layout 3,3 title 'maximum absolute error per variant (mean and std over "
+      "set multiplot layout 4,3 title 'maximum absolute error per variant (mean and std over "
       "seeds)' noenhanced\nset style fill solid 0.6\nset boxwidth 0.6\nset xtics rotate by -40 "
       "noenhanced font ',8'\nset logscale y\nset grid y\nunset key\n";
   for (std::size_t m = 0; m < kErrorMetricCount; ++m) {
@@ -43,6 +59,14 @@ void plot_metrics(const ComparisonResult& result, const std::filesystem::path& p
         "'#4878a8', '' using 1:{}:{} with yerrorbars lc rgb 'black' pt 0\n",
         kErrorMetricNames[m], 3 + 2 * m, 3 + 2 * m, 4 + 2 * m);
   }
+  const std::size_t worst_column = 3 + 2 * kErrorMetricCount;
+  script += fmt::format(
+      "set title 'worst metric inside 3-sigma (%, all seeds)' noenhanced\nunset logscale y\n"
+      "set yrange [0:105]\nplot $metrics using 1:{}:xtic(2) with boxes lc rgb '#4878a8', 95 "
+      "with lines lc rgb 'red' dt 2\nset title 'NEES mean / upper 95 % bound (>1: optimistic)' "
+      "noenhanced\nset autoscale y\nset logscale y\nplot $metrics using 1:{}:xtic(2) with boxes "
+      "lc rgb '#4878a8', 1 with lines lc rgb 'red' dt 2\n",
+      worst_column, worst_column + 1);
   script += "unset multiplot\n";
   render_gnuplot(script, path);
 }

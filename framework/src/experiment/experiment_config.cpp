@@ -90,10 +90,12 @@ ExperimentConfig parse_experiment(const nlohmann::json& document, const fs::path
   if (!document.is_object()) throw ConfigError("/: expected a JSON object (an experiment)");
   reject_unknown_keys(document, "",
                       {"description", "comments", "data", "baseline", "aids", "filter", "variants",
-                       "threads"});
+                       "threads", "pairs", "sweep"});
   ExperimentConfig config;
+  config.document = document;
   config.file = file;
-  config.config_dir = file.parent_path();
+  // Absolute, so that a bare file name ("compare exp.json") finds its scenario and plugins.
+  config.config_dir = fs::absolute(file).parent_path();
   if (document.contains("description")) {
     config.description = member(document, "", "description", nlohmann::json::value_t::string,
                                 "a string")
@@ -184,10 +186,115 @@ ExperimentConfig parse_experiment(const nlohmann::json& document, const fs::path
                             "a non-negative integer")
                          .get<unsigned>();
   }
+  if (document.contains("pairs")) {
+    const auto& pairs = document["pairs"];
+    if (!pairs.is_array()) {
+      throw ConfigError("/pairs: expected an array of [A, B] variant-name pairs");
+    }
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const auto& pair = pairs[i];
+      if (!pair.is_array() || pair.size() != 2 || !pair[0].is_string() || !pair[1].is_string()) {
+        throw ConfigError(fmt::format("/pairs/{}: expected [\"A\", \"B\"] (two variant names)", i));
+      }
+      for (std::size_t k = 0; k < 2; ++k) {
+        if (!names.contains(pair[k].get<std::string>())) {
+          throw ConfigError(fmt::format("/pairs/{}/{}: '{}' is not a variant name", i, k,
+                                        pair[k].get<std::string>()));
+        }
+      }
+      if (pair[0] == pair[1]) {
+        throw ConfigError(fmt::format("/pairs/{}: a variant compared with itself; give two names", i));
+      }
+      config.pairs.emplace_back(pair[0].get<std::string>(), pair[1].get<std::string>());
+    }
+  } else {
+    for (const auto& variant : config.variants) {
+      if (variant.name != config.baseline) config.pairs.emplace_back(variant.name, config.baseline);
+    }
+  }
+  if (document.contains("sweep")) {
+    const auto& sweep = member(document, "", "sweep", nlohmann::json::value_t::object,
+                               "{\"name\", \"set\": [pointers], \"values\": [...]}");
+    reject_unknown_keys(sweep, "/sweep", {"name", "set", "values"});
+    ExperimentSweep parsed;
+    parsed.name =
+        member(sweep, "/sweep", "name", nlohmann::json::value_t::string, "a string").get<std::string>();
+    const auto& set = member(sweep, "/sweep", "set", nlohmann::json::value_t::array,
+                             "an array of JSON pointers (/scenario/... or /variants/<i>/...)");
+    const auto& values = member(sweep, "/sweep", "values", nlohmann::json::value_t::array,
+                                "an array of values, one per level");
+    if (set.empty()) throw ConfigError("/sweep/set: empty; expected at least one pointer");
+    if (values.empty()) throw ConfigError("/sweep/values: empty; expected at least one level");
+    for (std::size_t i = 0; i < set.size(); ++i) {
+      const bool ok = set[i].is_string() &&
+                      (set[i].get<std::string>().rfind("/scenario/", 0) == 0 ||
+                       set[i].get<std::string>().rfind("/variants/", 0) == 0);
+      if (!ok) {
+        throw ConfigError(fmt::format("/sweep/set/{}: expected a JSON pointer starting "
+                                      "/scenario/ or /variants/<i>/",
+                                      i));
+      }
+      if (set[i].get<std::string>().rfind("/scenario/", 0) == 0 && !config.scenario_config) {
+        throw ConfigError(fmt::format("/sweep/set/{}: /scenario/ pointers need simulated data "
+                                      "(data/scenario_config)",
+                                      i));
+      }
+      parsed.set.push_back(set[i].get<std::string>());
+    }
+    parsed.values.assign(values.begin(), values.end());
+    config.sweep = std::move(parsed);
+  }
   return config;
 }
 
+// Sets `value` at `pointer` of `document`, creating missing keys.
+void set_at(nlohmann::json& document, const std::string& pointer, const nlohmann::json& value,
+            const std::string& where) {
+  try {
+    document[nlohmann::json::json_pointer(pointer)] = value;
+  } catch (const nlohmann::json::exception& error) {
+    throw ConfigError(where + ": cannot set '" + pointer + "' (" + error.what() +
+                      "); give a pointer into the document's objects and arrays");
+  }
+}
+
 }  // namespace
+
+ExperimentConfig experiment_config_from_json(const nlohmann::json& document,
+                                             const fs::path& file) {
+  try {
+    return parse_experiment(document, file);
+  } catch (const ConfigError& error) {
+    throw ConfigError(file.string() + ": " + error.what());
+  }
+}
+
+ExperimentConfig sweep_level(const ExperimentConfig& config, std::size_t level) {
+  if (!config.sweep || level >= config.sweep->values.size()) {
+    throw ConfigError("sweep_level: no such level");
+  }
+  nlohmann::json document = config.document;
+  document.erase("sweep");
+  const nlohmann::json& value = config.sweep->values[level];
+  nlohmann::json scenario_values = nlohmann::json::object();
+  for (std::size_t i = 0; i < config.sweep->set.size(); ++i) {
+    const std::string& pointer = config.sweep->set[i];
+    const std::string where = fmt::format("{}: /sweep/set/{}", config.file.string(), i);
+    if (pointer.rfind("/scenario/", 0) == 0) {
+      scenario_values[pointer.substr(std::string("/scenario").size())] = value;
+    } else {
+      set_at(document, pointer, value, where);
+    }
+  }
+  ExperimentConfig out = experiment_config_from_json(document, config.file);
+  out.scenario_overrides = config.scenario_overrides;  // keeps --full-scenario's choice
+  if (out.scenario_config) out.seeds = config.seeds;    // and --seeds
+  out.scenario_sweep_values = std::move(scenario_values);
+  out.document = config.document;  // keep the original for messages
+  out.document.erase("sweep");
+  return out;
+}
+
 
 nlohmann::json variant_run_document(const ExperimentVariant& variant, const nlohmann::json& data) {
   nlohmann::json document = variant.run_config;
@@ -204,11 +311,7 @@ ExperimentConfig read_experiment_config(const fs::path& file) {
   } catch (const nlohmann::json::parse_error& error) {
     throw InputError(file.string() + ": not valid JSON (" + error.what() + ")");
   }
-  try {
-    return parse_experiment(document, file);
-  } catch (const ConfigError& error) {
-    throw ConfigError(file.string() + ": " + error.what());
-  }
+  return experiment_config_from_json(document, file);
 }
 
 }  // namespace stochnav

@@ -208,6 +208,9 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
 
   result.has_truth = truth_reader.has_value();
   result.noise_models = {{"gyro", plugins.gyro->describe()}, {"accel", plugins.accel->describe()}};
+  result.fitted = {{"gyro", plugins.gyro->params()}, {"accel", plugins.accel->params()}};
+  result.fit_quality = {{"gyro", plugins.gyro->fit_quality()},
+                        {"accel", plugins.accel->fit_quality()}};
   RunConsistency consistency(aid_types, aid_dofs);
   std::optional<RunFiles> files;
   if (!options.out_dir.empty()) {

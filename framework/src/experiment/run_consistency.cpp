@@ -66,7 +66,8 @@ nlohmann::json RunConsistency::consistency_json() const {
   for (std::size_t i = 0; i < kErrorMetricCount; ++i) {
     inside[std::string(kErrorMetricNames[i])] = number_or_null(inside_3sigma(i));
   }
-  return {{"inside_3sigma", inside}, {"nees_mean", number_or_null(nees_mean())}, {"nees_dof", 9}};
+  return {{"inside_3sigma", inside}, {"nees_mean", number_or_null(nees_mean())}, {"nees_dof", 9},
+          {"nees_samples", nees_count_}};
 }
 
 nlohmann::json RunConsistency::aids_json() const {

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <boost/math/distributions/chi_squared.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -231,7 +233,9 @@ std::optional<Weighting> model_weighting(const FitData& data, const NoiseModel& 
 
 }  // namespace
 
-FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
+namespace {
+
+FitResult fit_noise_terms_once(const FitData& data, const FitOptions& options) {
   if (auto problem = validate(data); !problem.empty()) fail(problem);
   if (auto problem = options.validate(); !problem.empty()) fail(problem);
   std::size_t explicit_parameters = 0;
@@ -307,6 +311,8 @@ FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
       set_parameter_value(value, k, natural);
       set_parameter_value(sigma, k, natural * std::sqrt(log_variance));
       if (fit->at_bound(term, k)) {
+        diagnostics.at_bound.push_back(
+            fmt::format("{}.{}", term_type_name(term.type), specs[k].name));
         diagnostics.warnings.push_back(fmt::format(
             "{} {} reached the edge of its search range: the data do not determine it",
             term_type_name(term.type), specs[k].name));
@@ -316,6 +322,73 @@ FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
     result.sigma.push_back(std::move(sigma));
   }
   return result;
+}
+
+}  // namespace
+
+FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
+  FitResult result = fit_noise_terms_once(data, options);
+  if (!options.drop_terms_at_bound || options.terms.empty()) return result;
+  std::vector<std::string> dropped;
+  FitOptions current = options;
+  while (!result.diagnostics.at_bound.empty() && current.terms.size() > 1) {
+    // Drop every term with a parameter on its bound; stop (the failure reported) when that
+    // would leave none.
+    std::vector<TermType> kept;
+    std::vector<std::string> on_bound_now;
+    for (TermType type : current.terms) {
+      bool on_bound = false;
+      for (const auto& name : result.diagnostics.at_bound) {
+        on_bound |= name.rfind(std::string(term_type_name(type)) + ".", 0) == 0;
+      }
+      if (on_bound) {
+        on_bound_now.push_back(
+            fmt::format("{} (a parameter on its search bound)", term_type_name(type)));
+      } else {
+        kept.push_back(type);
+      }
+    }
+    if (kept.empty() || kept.size() == current.terms.size()) break;
+    dropped.insert(dropped.end(), on_bound_now.begin(), on_bound_now.end());
+    current.terms = kept;
+    result = fit_noise_terms_once(data, current);
+  }
+  result.diagnostics.dropped_terms = dropped;
+  for (const auto& term : dropped) {
+    result.diagnostics.warnings.push_back("dropped " + term + " and refitted without it");
+  }
+  return result;
+}
+
+bool FitDiagnostics::failed() const { return !failure().empty(); }
+
+std::string FitDiagnostics::failure() const {
+  std::string reason;
+  for (const auto& name : at_bound) {
+    reason += (reason.empty() ? "" : "; ") + name + " on its search bound";
+  }
+  const double p = chi_square_p_value();
+  if (std::isfinite(p) && p < kFailedFitPValue) {
+    reason += fmt::format("{}chi-square {:.4g} for {} dof (p = {:.2g} < {:g}): the terms do not "
+                          "describe the record",
+                          reason.empty() ? "" : "; ", chi_square, points - parameters, p,
+                          kFailedFitPValue);
+  }
+  return reason;
+}
+
+double FitDiagnostics::reduced_chi_square() const {
+  if (points <= parameters) return std::numeric_limits<double>::quiet_NaN();
+  return chi_square / static_cast<double>(points - parameters);
+}
+
+double FitDiagnostics::chi_square_p_value() const {
+  if (points <= parameters || !std::isfinite(chi_square)) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  const boost::math::chi_squared_distribution<double> distribution(
+      static_cast<double>(points - parameters));
+  return boost::math::cdf(boost::math::complement(distribution, std::max(chi_square, 0.0)));
 }
 
 std::string_view robust_loss_name(RobustLoss loss) {

@@ -70,6 +70,10 @@ json fit_result_to_json(const FitResult& result) {
         {"R", readoff_json(r.rate_ramp, quantity, ParameterDimension::kRatePerTime)}}},
       {"selection", std::move(selection)},
       {"warnings", d.warnings},
+      {"failed", d.failed()},
+      {"failure", d.failure()},
+      {"dropped_terms", d.dropped_terms},
+      {"at_bound", d.at_bound},
   };
   return document;
 }

@@ -467,6 +467,18 @@ ScenarioConfig parse(const json& value) {
         kMetrePerHour;
     aids.finish();
   }
+  for (const char* key : {"noise_variance_scale", "moving_noise_variance_scale"}) {
+    if (!r.has(key)) continue;
+    ObjectReader n(r.get(key), r.at(key), "{\"gyro\": x >= 0, \"accel\": x >= 0}");
+    NoiseScales& scales = std::string_view(key) == "noise_variance_scale"
+                              ? config.noise_variance_scale
+                              : config.moving_noise_variance_scale;
+    scales.gyro = n.number("gyro", "a factor >= 0 on the scheduled gyro noise variance",
+                           Range::kNonNegative, 1.0);
+    scales.accel = n.number("accel", "a factor >= 0 on the scheduled accelerometer noise variance",
+                            Range::kNonNegative, 1.0);
+    n.finish();
+  }
   if (config.kind == ScenarioKind::kVibrationTable) {
     config.vibration_table = parse_table(r.get("vibration_table"), r.at("vibration_table"));
   } else {
@@ -552,6 +564,15 @@ json to_json(const ScenarioConfig& config) {
                  {"height_m", config.site.height_m}};
   out["sensors"] = {{"gyro", sensor_json(config.gyro, true)},
                     {"accel", sensor_json(config.accel, false)}};
+  if (config.noise_variance_scale.gyro != 1.0 || config.noise_variance_scale.accel != 1.0) {
+    out["noise_variance_scale"] = {{"gyro", config.noise_variance_scale.gyro},
+                                   {"accel", config.noise_variance_scale.accel}};
+  }
+  if (config.moving_noise_variance_scale.gyro != 1.0 ||
+      config.moving_noise_variance_scale.accel != 1.0) {
+    out["moving_noise_variance_scale"] = {{"gyro", config.moving_noise_variance_scale.gyro},
+                                          {"accel", config.moving_noise_variance_scale.accel}};
+  }
   out["aids"] = {{"depth_scale_error", config.aids.depth_scale_error},
                  {"depth_noise_m", config.aids.depth_noise_m},
                  {"rop_noise_mph", config.aids.rop_noise_mps / kMetrePerHour}};

@@ -13,6 +13,18 @@ namespace {
 
 constexpr std::size_t kBlock = 4096;
 
+// The amplitude factor on the scheduled noise in `phase`: the phase's own scale times the
+// square roots of the scenario's variance factors that apply to it.
+double scheduled_scale(const ScenarioConfig& config, const ScenarioPhase& phase, bool gyro) {
+  const double own = gyro ? phase.gyro_noise_scale : phase.accel_noise_scale;
+  double variance = gyro ? config.noise_variance_scale.gyro : config.noise_variance_scale.accel;
+  if (!phase.stationary) {
+    variance *= gyro ? config.moving_noise_variance_scale.gyro
+                     : config.moving_noise_variance_scale.accel;
+  }
+  return own * std::sqrt(variance);
+}
+
 bool has_signal_terms(const NoiseModel& model) {
   for (const auto& term : model.terms) {
     if (term_type(term) != TermType::kNonstationary) return true;
@@ -61,7 +73,7 @@ ScenarioSimulator::ScenarioSimulator(const ScenarioConfig& config, std::uint64_t
       std::size_t s = 0;
       for (const auto& phase : motion_->phases()) {
         if (phase.end_s > phase.start_s) {
-          term.segments[s++].scale = gyro ? phase.gyro_noise_scale : phase.accel_noise_scale;
+          term.segments[s++].scale = scheduled_scale(config, phase, gyro);
         }
       }
       scheduled.terms.push_back(std::move(term));
@@ -154,12 +166,12 @@ nlohmann::json ScenarioSimulator::noise_schedule_json() const {
                   {"start_s", phase.start_s},
                   {"end_s", phase.end_s},
                   {"stationary", phase.stationary},
-                  {"gyro_noise_scale", phase.gyro_noise_scale},
-                  {"accel_noise_scale", phase.accel_noise_scale}};
+                  {"gyro_noise_scale", scheduled_scale(config_, phase, true)},
+                  {"accel_noise_scale", scheduled_scale(config_, phase, false)}};
     for (int sensor = 0; sensor < 2; ++sensor) {
       const bool gyro = sensor == 0;
       const SensorErrorConfig& config = gyro ? config_.gyro : config_.accel;
-      const double scale = gyro ? phase.gyro_noise_scale : phase.accel_noise_scale;
+      const double scale = scheduled_scale(config_, phase, gyro);
       json models = json::array();
       json white_variance = json::array();
       for (std::size_t i = 0; i < 3; ++i) {

@@ -208,7 +208,9 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_adaptive(
   stochnav::plugin::ParamReader reader(json, context.params_pointer);
   const AdaptiveParams params = read_adaptive(reader, record.group, n_initial);
   reader.finish();
-  return std::make_unique<AdaptiveNoise>(record.group, params);
+  auto model = std::make_unique<AdaptiveNoise>(record.group, params);
+  model->set_fit_quality(stochnav::plugin::calibration_fit_quality(fits));
+  return model;
 }
 
 }  // namespace

@@ -229,7 +229,9 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_augmented(
   const auto fits = stochnav::plugin::fit_calibration_axes(record, options);
   for (std::size_t i = 0; i < 3; ++i) params.models[i] = fits[i].model;
   params.flicker_band_max_s = static_cast<double>(record.axes[0].size()) / record.rate_hz;
-  return std::make_unique<AugmentedNoise>(record.group, params);
+  auto model = std::make_unique<AugmentedNoise>(record.group, params);
+  model->set_fit_quality(stochnav::plugin::calibration_fit_quality(fits));
+  return model;
 }
 
 }  // namespace

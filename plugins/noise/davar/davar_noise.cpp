@@ -357,23 +357,19 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
     params.n[axis] = std::move(series.angle_random_walk);
     raise_to_floor(params.n[axis], floor_fraction);
   }
+  nlohmann::json quality;  // the windows' DAVAR fits are not summarised: null without K
   if (with_walk) {
-    stochnav::FitOptions walk_options;
-    // N and K only, as the white plugin fits them: B is not given to the filter, so K must
-    // absorb the bias wander that B would otherwise take (with B in the fit, K comes out ~0 and
-    // the filter's bias cannot follow the bias instability).
-    walk_options.terms = {stochnav::TermType::kAngleRandomWalk,
-                          stochnav::TermType::kRateRandomWalk};
-    const auto fits = stochnav::plugin::fit_calibration_axes(
-        walk_end_s > 0.0 ? leading_part(record, walk_end_s) : record, walk_options);
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-      if (const auto* rrw =
-              stochnav::plugin::find_term(fits[axis].model, stochnav::TermType::kRateRandomWalk)) {
-        params.k[axis] = std::get<stochnav::RateRandomWalkTerm>(*rrw).k;
-      }
-    }
+    // N and K only, as the white plugin fits them (with its floor-matched rule when the fit
+    // fails): B is not given to the filter, so K must absorb the bias wander that B would
+    // otherwise take.
+    const auto fit = stochnav::plugin::fit_white_walk(
+        walk_end_s > 0.0 ? leading_part(record, walk_end_s) : record, true);
+    params.k = fit.k;
+    quality = {{"rate_random_walk_fit", fit.quality}};
   }
-  return std::make_unique<DavarNoise>(record.group, std::move(params));
+  auto model = std::make_unique<DavarNoise>(record.group, std::move(params));
+  model->set_fit_quality(std::move(quality));
+  return model;
 }
 
 }  // namespace

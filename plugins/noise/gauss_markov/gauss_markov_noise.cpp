@@ -201,7 +201,9 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_gauss_markov(
                                  std::to_string(axis) + " is degenerate; use a longer record");
     }
   }
-  return std::make_unique<GaussMarkovNoise>(record.group, params);
+  auto model = std::make_unique<GaussMarkovNoise>(record.group, params);
+  model->set_fit_quality(stochnav::plugin::calibration_fit_quality(fits));
+  return model;
 }
 
 }  // namespace

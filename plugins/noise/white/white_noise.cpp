@@ -7,7 +7,9 @@
 // Discrete model over [t, t + dt]: Qw = diag(N^2) dt, Qb = diag(K^2) dt (natural units); no
 // augmented states.
 // Fit params: {"rate_random_walk": bool (default false: fit N only)}; fits N (and K) per axis
-// to the record's Allan variance.
+// to the record's Allan variance; a failed N + K fit (a flicker floor: K on its bound or a
+// chi-square far beyond its dof) uses the floor-matched rule of plugin/calibration_fit.hpp
+// (fit_white_walk), reported in fit_quality().
 
 #include <fmt/format.h>
 
@@ -120,22 +122,13 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_white(
   stochnav::plugin::ParamReader reader(json, context.params_pointer);
   const bool with_walk = reader.boolean_or("rate_random_walk", false);
   reader.finish();
-  stochnav::FitOptions options;
-  options.terms = {stochnav::TermType::kAngleRandomWalk};
-  if (with_walk) options.terms.push_back(stochnav::TermType::kRateRandomWalk);
-  const auto fits = stochnav::plugin::fit_calibration_axes(record, options);
+  const auto fit = stochnav::plugin::fit_white_walk(record, with_walk);
   WhiteParams params;
-  for (std::size_t axis = 0; axis < 3; ++axis) {
-    const auto& model = fits[axis].model;
-    if (const auto* arw =
-            stochnav::plugin::find_term(model, stochnav::TermType::kAngleRandomWalk)) {
-      params.n[axis] = std::get<stochnav::AngleRandomWalkTerm>(*arw).n;
-    }
-    if (const auto* rrw = stochnav::plugin::find_term(model, stochnav::TermType::kRateRandomWalk)) {
-      params.k[axis] = std::get<stochnav::RateRandomWalkTerm>(*rrw).k;
-    }
-  }
-  return std::make_unique<WhiteNoise>(record.group, params);
+  params.n = fit.n;
+  if (with_walk) params.k = fit.k;
+  auto model = std::make_unique<WhiteNoise>(record.group, params);
+  model->set_fit_quality(fit.quality);
+  return model;
 }
 
 }  // namespace

@@ -73,6 +73,8 @@ struct NavigationRunResult {
   double wall_seconds = 0.0;   ///< time the run took
   std::vector<ErrorSample> error_series;  ///< evenly thinned, first and last kept
   nlohmann::json noise_models;            ///< {"gyro": describe, "accel": describe}
+  nlohmann::json fitted;                  ///< {"gyro": params(), "accel": params()}
+  nlohmann::json fit_quality;             ///< {"gyro": fit_quality(), "accel": ...} (null: none)
   nlohmann::json consistency;             ///< RunConsistency::consistency_json()
   nlohmann::json aids;                    ///< RunConsistency::aids_json()
   std::string consistency_line;           ///< "consistency: ok" / "... OPTIMISTIC ..." / ""

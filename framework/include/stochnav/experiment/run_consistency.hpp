@@ -60,9 +60,11 @@ class RunConsistency final {
   /// Share of scored epochs with |error| <= 3 sigma (NaN when never scored).
   double inside_3sigma(std::size_t metric) const;
   double nees_mean() const;  ///< NaN when never scored
+  std::uint64_t nees_samples() const { return nees_count_; }  ///< epochs with a NEES
   const std::vector<AidStatistics>& aids() const { return aids_; }
 
-  /// {"inside_3sigma": {metric: share}, "nees_mean": x, "nees_dof": 9}, or null without truth.
+  /// {"inside_3sigma": {metric: share}, "nees_mean": x, "nees_dof": 9, "nees_samples": N}, or
+  /// null without truth.
   nlohmann::json consistency_json() const;
   /// [{"type", "dof", "attempts", "rejected_share", "nis_mean"}] per aid.
   nlohmann::json aids_json() const;

@@ -70,6 +70,10 @@ struct FitOptions {
   InformationCriterion criterion = InformationCriterion::kBic;
   double min_criterion_improvement = 0.0;  ///< >= 0
   int max_iterations = 200;                ///< Ceres iterations per solve, >= 1
+  /// A given term (options.terms) with a parameter left on its search bound is a failed term:
+  /// true drops it and refits without it (repeatedly, keeping at least one term), recording
+  /// it in FitDiagnostics::dropped_terms; false (default) keeps it, with a warning.
+  bool drop_terms_at_bound = false;
 
   /// Empty when valid; otherwise the reason, naming the option.
   std::string validate() const;
@@ -101,7 +105,25 @@ struct FitDiagnostics {
   SlopeReadoffs readoffs;              ///< IEEE 952 cross-check, natural units
   std::vector<SelectionStep> selection;  ///< automatic selection history
   std::vector<std::string> warnings;     ///< e.g. parameters at a bound
+  /// Parameters left on an edge of their search range, as "term_type.parameter" (e.g.
+  /// "rate_random_walk.K"): the data do not determine them (a failed term).
+  std::vector<std::string> at_bound;
+  /// Terms dropped by FitOptions::drop_terms_at_bound, as "term_type (param on its bound)".
+  std::vector<std::string> dropped_terms;
+  /// chi_square / (points - parameters); NaN when there are no degrees of freedom left.
+  double reduced_chi_square() const;
+  /// Upper tail P(chi2(points - parameters) >= chi_square); NaN without degrees of freedom.
+  double chi_square_p_value() const;
+  /// A failed fit: a parameter on its search bound, or chi_square_p_value() < kFailedFitPValue
+  /// (the terms do not describe the record).
+  bool failed() const;
+  /// Why failed() (empty when it did not): "rate_random_walk.K on its search bound",
+  /// "chi-square 2671 for 10 dof (p = 1e-300 < 1e-6)".
+  std::string failure() const;
 };
+
+/// A fit whose chi-square has an upper-tail probability below this has failed.
+inline constexpr double kFailedFitPValue = 1e-6;
 
 struct FitResult {
   /// The fitted terms in TermType order (natural units), unit and rate_hz from the data.

@@ -16,6 +16,44 @@ namespace stochnav::plugin {
 std::array<FitResult, 3> fit_calibration_axes(const CalibrationRecord& record,
                                               const FitOptions& options);
 
+/// The octave OADEV points of one axis of `record` (what fit_calibration_axes fits). Throws as
+/// fit_calibration_axes.
+FitData calibration_axis_data(const CalibrationRecord& record, std::size_t axis);
+
+/// Constant white noise N (and optionally a rate random walk K) per axis, natural units
+/// (rad/sqrt(s), rad/s/sqrt(s); m/s/sqrt(s), m/s^2/sqrt(s)), for the white and davar plugins.
+struct WhiteWalkFit {
+  std::array<double, 3> n{};
+  std::array<double, 3> k{};
+  /// Per axis (fit_quality): calibration_fit_quality's fields plus "method": "fit" | "floor_matched"
+  /// and, for floor_matched, "failed_fit" (FitDiagnostics::failure of the N + K fit), "tau_n_s",
+  /// "tau_k_s".
+  nlohmann::json quality;
+};
+
+/// Shortest Allan-variance EDF of a point still "reliable" for the floor rule below.
+inline constexpr double kReliableEdf = 10.0;
+
+/// Fits N (with_walk: N and K) to each axis's Allan variance (fit_calibration_axes). When the
+/// N + K fit fails (FitDiagnostics::failed: a coefficient on its search bound, or a chi-square
+/// with p < kFailedFitPValue — what a flicker floor, bias instability, does to a model that has
+/// no term for it), that axis uses the FLOOR-MATCHED rule instead: each line of the model meets
+/// the measured floor at one tau,
+///   N = sigma(tau_n) sqrt(tau_n),        tau_n = the measured tau nearest 1 s,
+///   K = sigma_floor sqrt(3 / tau_k),     tau_k = the longest tau whose EDF >= kReliableEdf,
+/// sigma(tau) the measured Allan deviation, sigma_floor^2 the EDF-weighted mean Allan variance
+/// of the points from tau_n to tau_k (AVAR of a rate random walk: K^2 tau / 3). Over a flat
+/// floor sigma_f = 0.664 B this gives K = 0.664 B sqrt(3 / tau_k) (0.664 B sqrt(10800 / tau_k)
+/// in deg/h/sqrt(h) for B in deg/h): the bias wander the floor implies over the longest interval
+/// the record measures; the model stays at or below the floor in between. N only (no walk)
+/// keeps the fit, its failure reported in quality.
+WhiteWalkFit fit_white_walk(const CalibrationRecord& record, bool with_walk);
+
+/// The fit quality of the three axes, for NoiseModelPlugin::set_fit_quality:
+/// {"x"|"y"|"z": {"chi_square", "dof" (points - parameters), "chi_square_per_dof", "p_value"
+/// (upper tail of chi2(dof); null without dof), "at_bound": ["term.param", ...]}}.
+nlohmann::json calibration_fit_quality(const std::array<FitResult, 3>& fits);
+
 /// The first term of `type` in a fit result's model, or nullptr.
 const NoiseTerm* find_term(const NoiseModel& model, TermType type);
 

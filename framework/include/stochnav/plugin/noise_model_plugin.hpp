@@ -159,6 +159,13 @@ class NoiseModelPlugin {
   /// Same type and group and parameters within rel_tol (|a - b| <= rel_tol max(|a|, |b|)).
   virtual bool equals(const NoiseModelPlugin& other, double rel_tol = 1e-9) const = 0;
 
+  /// How well a fitter's model fits its calibration record, set by the fitter (null for a model
+  /// built from params, and for fitters that cannot say). Fitters using fit_calibration_axes
+  /// set calibration_fit_quality(fits) (plugin/calibration_fit.hpp): per axis
+  /// {"chi_square", "dof", "chi_square_per_dof", "p_value", "at_bound": ["term.param", ...]}.
+  const nlohmann::json& fit_quality() const { return fit_quality_; }
+  void set_fit_quality(nlohmann::json quality) { fit_quality_ = std::move(quality); }
+
   /// Set by the runtime (state_layout.hpp) before the first propagation step.
   const StatePlacement& placement() const { return placement_; }
   void set_placement(const StatePlacement& placement) { placement_ = placement; }
@@ -175,6 +182,7 @@ class NoiseModelPlugin {
  private:
   SensorGroup group_;
   StatePlacement placement_;
+  nlohmann::json fit_quality_;  ///< null unless a fitter set it
 };
 
 /// The tolerance rule of NoiseModelPlugin::equals for one parameter:

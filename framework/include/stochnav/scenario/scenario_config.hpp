@@ -125,6 +125,12 @@ struct ScenarioConfig {
   AidConfig aids;
   std::optional<VibrationTableConfig> vibration_table;  ///< kind == kVibrationTable
   std::optional<DrillingConfig> drilling;               ///< kind == kDrilling
+  /// "noise_variance_scale": factors on the VARIANCE of the scheduled noise (its amplitude
+  /// scales by the square root), on top of the phase scales; 1 = as configured.
+  NoiseScales noise_variance_scale;
+  /// "moving_noise_variance_scale": the same, only in phases in which the tool moves
+  /// (vibration-table vibration, drilling); the two multiply where both apply.
+  NoiseScales moving_noise_variance_scale;
 };
 
 /// Total scenario length (s): the sum of the table phases, or drilling.duration_s.

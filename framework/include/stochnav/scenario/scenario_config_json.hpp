@@ -14,6 +14,11 @@
 //      "accel": {"noise": ..., "scheduled_noise": ..., "bias_mg": ..., "turn_on_bias_sigma_mg": s,
 //                "scale_factor_ppm": ...}},
 //    "aids": {"depth_scale_error": 1e-3, "depth_noise_m": 0.05, "rop_noise_mph": 0.5},
+//    "noise_variance_scale": {"gyro": 10, "accel": 1},          // optional, default 1:
+//            factors on the VARIANCE of the scheduled noise (amplitude x sqrt(factor)) on top
+//            of the phase scales, in every phase (a noise-level sweep)
+//    "moving_noise_variance_scale": {"gyro": 100, "accel": 1},  // optional, default 1: the
+//            same, only in phases where the tool moves (vibration-table vibration, drilling)
 //    "vibration_table": {"attitude": {"inclination_deg", "toolface_deg", "azimuth_deg"},
 //      "phases": [{"name": "static", "duration_s": 300, "motion": "static" | "sine" | "random",
 //                  "sine": {"frequency_hz": 25, "amplitude_g": 5},
