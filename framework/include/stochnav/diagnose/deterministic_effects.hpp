@@ -9,21 +9,23 @@
 // covariance G of every term (as in fit/oadev_covariance.hpp; a sinusoid of random phase adds
 // A^2 cos(w h) / (2 w^2)):
 //   Cov(d_i, d_j) = sum_{p,q in 0..2} a_p a_q G((i - j + p - q) T) / T^2,  a = (1, -2, 1).
-// The stochastic alternatives are the model's covariance S0 with a free scale s^2 (a mis-set
-// white level) and a free rate random walk k (covariance S0 + k S_K): both profiled out, so a
-// wandering bias is never read as a ramp. Each deterministic effect is a column of the GLS
-// design X (d = X b + e, e ~ s^2 (S0 + k S_K)):
+// The stochastic alternatives: the model's covariance S0 with a free scale s^2 (a mis-set
+// white level, profiled out), with or without a free rate random walk k (covariance
+// S0 + k S_K, k profiled on a grid), so a wandering bias is weighed against a drift. Each
+// deterministic effect is a column of the GLS design X (d = X b + e):
 //   rate_ramp        d_j = R T                        (a constant)
 //   aux_sensitivity  d_j = c (a_{j+1} - a_j)           (a: block means of the channel)
 //   bias_step        d_j = s (f_{j+1}(t) - f_j(t))     (f_j: part of block j after t)
-// The test of an effect is the likelihood ratio -2 ln(L0 / L1) of the design without and with
-// its column (s and k profiled in both): chi2(1) beyond the (1 - alpha) quantile for the ramp,
-// with a Bonferroni correction over the columns for aux channels, and for the step (whose time
-// is scanned, a maximum of a two-segment likelihood ratio over 4 M positions) the (1 - alpha /
-// (4 M)) quantile (conservative: the scanned statistics are correlated). Forward selection: at
-// each step the effect with the largest ratio over its threshold is added, all columns refitted
-// jointly; stop when none passes. The step time is refined on a grid of T/64 and its 1-sigma
-// interval read off the profile likelihood (ratio within 1 of its maximum).
+// Selection by information criterion: every alternative scores -2 ln L plus a price: the
+// random walk chi2_1(1 - alpha); a ramp the same; an aux column chi2_1(1 - alpha / #columns)
+// (Bonferroni); a step, whose time is the maximum of a two-segment likelihood ratio scanned
+// over 4 M positions, chi2_1(1 - alpha / (4 M)) (Bonferroni over the scan, conservative as the
+// scanned statistics are correlated). A deterministic candidate (with or without the random
+// walk) is taken when it scores best of all and its likelihood ratio against the same
+// stochastic alternative exceeds its price; then all columns are refitted jointly and the next
+// round starts; stop when a stochastic alternative scores best. The step time is refined on a
+// grid of T/64 and its 1-sigma interval read off the profile likelihood (ratio within 1 of its
+// maximum). Coefficient uncertainties: the GLS covariance with the residual scale.
 
 #include <array>
 #include <cstddef>
