@@ -40,6 +40,7 @@ struct DiagnoseArguments {
   DiagnoseOptions options;
   std::string plots = "png";
   std::vector<std::string> aux_columns;      ///< --aux: auxiliary channels of the input
+  std::string aux_file;                      ///< --aux-file: with --run, the channels' CSV
   std::string run_dir;                       ///< --run: diagnose a filter run instead
   InnovationAnalysisOptions run_options;     ///< its options
 };
@@ -217,8 +218,11 @@ void add_diagnose_command(CLI::App& app) {
   command
       ->add_option("--aux", arguments->aux_columns,
                    "Auxiliary columns of the input (e.g. temperature_c): test a bias linear in "
-                   "each (aux_sensitivity)")
+                   "each (aux_sensitivity); with --run, columns of RUN_DIR/aids.csv (or --aux-file) "
+                   "the innovations may drift with")
       ->delimiter(',');
+  command->add_option("--aux-file", arguments->aux_file,
+                      "--run: CSV with a time column t holding the --aux columns");
   command->callback([arguments, command] {
     if (!arguments->run_dir.empty()) {
       if (command->count("--input") > 0 || command->count("--model") > 0) {
@@ -227,7 +231,7 @@ void add_diagnose_command(CLI::App& app) {
       }
       arguments->run_options.alpha = arguments->options.alpha;
       run_innovation_diagnosis(arguments->run_dir, arguments->out_dir, arguments->run_options,
-                               arguments->plots);
+                               arguments->plots, arguments->aux_columns, arguments->aux_file);
       return;
     }
     if (command->count("--input") == 0 || command->count("--model") == 0) {
