@@ -10,9 +10,16 @@
 // the nonstationary effect it is the scale of one stretch of 15 % of the record (1.3 and 3). A run
 // detects the effect when an iteration names its type; it names it right when the first iteration
 // does. A control raises a false alarm when it gets any iteration.
+//
+// Deterministic effects (issue #16), found in the time domain: the ramp's level as above; a
+// bias step at t = 430 s of size sqrt(ratio) x 2 sigma_A(50 s) of the base (weak 0.5 -> 1.41
+// sigma_A, strong 4 -> 4 sigma_A); a bias linear in a temperature column (rise 10 degC/h plus
+// 2 degC at a 300-s period) with a coefficient whose swing over the sinusoid, 2 x 2 degC x c,
+// is the same sqrt(ratio) x 2 sigma_A(50 s).
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -54,7 +61,17 @@ struct Scenario {
   std::vector<TermType> hidden;  // empty: control
   NoiseModel base;
   NoiseModel truth;
+  bool aux = false;  // the record carries the temperature column
 };
+
+double base_deviation_50s(const NoiseModel& base) { return std::sqrt(allan_variance(base, 50.0)); }
+
+AuxSensitivityTerm temperature_term(double coefficient) {
+  AuxSensitivityTerm term;
+  term.coefficient = coefficient;
+  term.profile_period_s = 300.0;
+  return term;
+}
 
 // The hidden term of `type` scaled so its AVAR is `ratio` times the base model's at the tau it
 // shows most; for nonstationary, `ratio` is the stretch's scale.
@@ -93,6 +110,10 @@ NoiseTerm hidden_term(TermType type, double ratio, const NoiseModel& base) {
     }
     case TermType::kNonstationary:
       return NonstationaryTerm{{{430.0, 580.0, ratio}}};
+    case TermType::kBiasStep:
+      return BiasStepTerm{430.0, std::sqrt(ratio) * 2.0 * base_deviation_50s(base)};
+    case TermType::kAuxSensitivity:
+      return temperature_term(std::sqrt(ratio) * 2.0 * base_deviation_50s(base) / 4.0);
   }
   return QuantizationTerm{};
 }
@@ -119,6 +140,7 @@ Scenario single(TermType type, double ratio, const std::string& level) {
   s.base = base_for(type);
   s.truth = s.base;
   s.truth.terms.push_back(hidden_term(type, ratio, s.base));
+  s.aux = type == TermType::kAuxSensitivity;
   return s;
 }
 
@@ -130,6 +152,7 @@ Scenario pair(TermType a, TermType b) {
   s.truth = s.base;
   s.truth.terms.push_back(hidden_term(a, 4.0, s.base));
   s.truth.terms.push_back(hidden_term(b, 4.0, s.base));
+  s.aux = a == TermType::kAuxSensitivity || b == TermType::kAuxSensitivity;
   return s;
 }
 
@@ -148,7 +171,15 @@ Tally run(const Scenario& scenario, int seeds, std::uint64_t first_seed) {
   for (int k = 0; k < seeds; ++k) {
     const Record record = simulated_record(scenario.truth, kSamples, kRate,
                                            first_seed + static_cast<std::uint64_t>(k));
-    const DiagnoseResult result = diagnose(record, scenario.base, options);
+    std::vector<AuxChannel> aux;
+    if (scenario.aux) {
+      const AuxSensitivityTerm profile = temperature_term(0.0);
+      aux.push_back({profile.column, {}});
+      for (std::size_t i = 0; i < record.values.size(); ++i) {
+        aux[0].values.push_back(profile.profile_at((static_cast<double>(i) + 0.5) / kRate));
+      }
+    }
+    const DiagnoseResult result = diagnose(record, scenario.base, options, aux);
     ++tally.runs;
     std::vector<TermType> found;
     for (const auto& step : result.iterations) found.push_back(step.effect);
@@ -179,7 +210,8 @@ TEST(DiagnoseDetectionStudy, RatesOverHiddenEffectsPairsAndControls) {
   const std::vector<TermType> types = {TermType::kQuantization,    TermType::kAngleRandomWalk,
                                        TermType::kBiasInstability, TermType::kRateRandomWalk,
                                        TermType::kRateRamp,        TermType::kGaussMarkov,
-                                       TermType::kSinusoid,        TermType::kNonstationary};
+                                       TermType::kSinusoid,        TermType::kNonstationary,
+                                       TermType::kBiasStep,        TermType::kAuxSensitivity};
   // STOCHNAV_DIAGNOSE_STUDY_SEEDS=k runs k seeds per single-effect cell (default 3), k - 1 per
   // pair and k + 1 per control base: the test runs a modest study; the README quotes a larger one.
   int seeds = 3;
@@ -211,15 +243,20 @@ TEST(DiagnoseDetectionStudy, RatesOverHiddenEffectsPairsAndControls) {
   for (const auto& [a, b] : std::vector<std::pair<TermType, TermType>>{
            {TermType::kGaussMarkov, TermType::kSinusoid},
            {TermType::kRateRandomWalk, TermType::kSinusoid},
-           {TermType::kNonstationary, TermType::kGaussMarkov}}) {
+           {TermType::kNonstationary, TermType::kGaussMarkov},
+           {TermType::kRateRamp, TermType::kGaussMarkov},
+           {TermType::kBiasStep, TermType::kSinusoid},
+           {TermType::kAuxSensitivity, TermType::kRateRandomWalk}}) {
     const Scenario scenario = pair(a, b);
     const Tally t = run(scenario, kSeeds - 1, seed += 100);
     add(pairs, t);
     rows.emplace_back(scenario, t);
   }
   for (TermType type : {TermType::kQuantization, TermType::kAngleRandomWalk,
-                        TermType::kBiasInstability, TermType::kGaussMarkov}) {
+                        TermType::kBiasInstability, TermType::kGaussMarkov,
+                        TermType::kAuxSensitivity}) {
     Scenario control;
+    control.aux = type == TermType::kAuxSensitivity;  // a temperature column, no sensitivity
     control.base = base_for(type);
     control.truth = control.base;
     control.name = "control (" + std::to_string(control.base.terms.size()) + " terms, base of " +

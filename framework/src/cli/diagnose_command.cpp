@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <random>
 
@@ -37,6 +39,8 @@ struct DiagnoseArguments {
   std::string out_dir;
   DiagnoseOptions options;
   std::string plots = "png";
+  std::vector<std::string> aux_columns;      ///< --aux: auxiliary channels of the input
+  std::string aux_file;                      ///< --aux-file: with --run, the channels' CSV
   std::string run_dir;                       ///< --run: diagnose a filter run instead
   InnovationAnalysisOptions run_options;     ///< its options
 };
@@ -90,7 +94,23 @@ void run_diagnose(const DiagnoseArguments& arguments) {
                       " but the record in " + unit_name(record.unit) +
                       "; pass a matching --unit (or leave it out to use the model's)");
   }
-  const DiagnoseResult result = diagnose(record, model, arguments.options);
+  // Auxiliary channels: those asked for, and those the model's aux_sensitivity terms read.
+  std::vector<std::string> aux_names = arguments.aux_columns;
+  for (const NoiseTerm& term : model.terms) {
+    if (const auto* aux = std::get_if<AuxSensitivityTerm>(&term)) aux_names.push_back(aux->column);
+  }
+  std::vector<AuxChannel> aux;
+  for (const std::string& name : aux_names) {
+    if (std::any_of(aux.begin(), aux.end(), [&](const AuxChannel& c) { return c.name == name; })) {
+      continue;
+    }
+    ReadOptions aux_options = read_options;
+    aux_options.column = name;
+    aux_options.kind = DataKind::kRate;
+    aux_options.unit = Unit::kPlain;
+    aux.push_back({name, read_record(aux_options).values});
+  }
+  const DiagnoseResult result = diagnose(record, model, arguments.options, aux);
 
   std::error_code error;
   fs::create_directories(out, error);
@@ -195,6 +215,14 @@ void add_diagnose_command(CLI::App& app) {
   command->add_option("--windows", arguments->options.windows, "Windows of the stationarity test")
       ->capture_default_str();
   command->add_option("--plots", arguments->plots, "png, svg or none")->capture_default_str();
+  command
+      ->add_option("--aux", arguments->aux_columns,
+                   "Auxiliary columns of the input (e.g. temperature_c): test a bias linear in "
+                   "each (aux_sensitivity); with --run, columns of RUN_DIR/aids.csv (or --aux-file) "
+                   "the innovations may drift with")
+      ->delimiter(',');
+  command->add_option("--aux-file", arguments->aux_file,
+                      "--run: CSV with a time column t holding the --aux columns");
   command->callback([arguments, command] {
     if (!arguments->run_dir.empty()) {
       if (command->count("--input") > 0 || command->count("--model") > 0) {
@@ -203,7 +231,7 @@ void add_diagnose_command(CLI::App& app) {
       }
       arguments->run_options.alpha = arguments->options.alpha;
       run_innovation_diagnosis(arguments->run_dir, arguments->out_dir, arguments->run_options,
-                               arguments->plots);
+                               arguments->plots, arguments->aux_columns, arguments->aux_file);
       return;
     }
     if (command->count("--input") == 0 || command->count("--model") == 0) {

@@ -1,5 +1,6 @@
 // stochnav simulate noise | scenario: records with known truth.
 
+#include <algorithm>
 #include <fmt/format.h>
 
 #include <unistd.h>
@@ -79,10 +80,29 @@ void run_simulate_noise(const NoiseArguments& arguments) {
                                                 : derive_stream_seed(arguments.seed, 1000 + i);
     generators.emplace_back(axes[i].model, arguments.rate_hz, seed, arguments.duration_s);
   }
+  // Auxiliary channels that aux_sensitivity terms read (temperature), one column each, after
+  // the axes; the first term naming a column gives its profile.
+  std::vector<AuxSensitivityTerm> aux_channels;
+  for (const auto& axis : axes) {
+    for (const auto& term : axis.model.terms) {
+      const auto* aux = std::get_if<AuxSensitivityTerm>(&term);
+      if (aux == nullptr) continue;
+      const bool seen = std::any_of(aux_channels.begin(), aux_channels.end(),
+                                    [&](const auto& c) { return c.column == aux->column; });
+      const bool clashes = std::any_of(axes.begin(), axes.end(),
+                                       [&](const Axis& a) { return a.column == aux->column; });
+      if (clashes) {
+        throw ConfigError(arguments.model_path + ": aux_sensitivity column \"" + aux->column +
+                          "\" is also an axis name; rename one of them");
+      }
+      if (!seen) aux_channels.push_back(*aux);
+    }
+  }
   PendingFile pending(arguments.out);
   std::ofstream out(pending.temporary_path());
   out << 't';
   for (const auto& axis : axes) out << ',' << axis.column;
+  for (const auto& aux : aux_channels) out << ',' << aux.column;
   out << '\n';
   constexpr std::size_t kBlock = 1 << 14;
   std::vector<std::vector<double>> blocks(axes.size(), std::vector<double>(kBlock));
@@ -97,6 +117,11 @@ void run_simulate_noise(const NoiseArguments& arguments) {
       for (std::size_t a = 0; a < axes.size(); ++a) {
         fmt::format_to(std::back_inserter(line), ",{:.10g}",
                        blocks[a][k] / si_per_unit(axes[a].model.unit));
+      }
+      // The channel at the sample interval's midpoint, where the sampler reads it.
+      const double mid = (static_cast<double>(begin + k) + 0.5) / arguments.rate_hz;
+      for (const auto& aux : aux_channels) {
+        fmt::format_to(std::back_inserter(line), ",{:.10g}", aux.profile_at(mid));
       }
       line += '\n';
       out << line;

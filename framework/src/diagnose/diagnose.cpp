@@ -10,6 +10,7 @@
 #include "stochnav/diagnose/candidate_fit.hpp"
 #include "stochnav/diagnose/effective_model.hpp"
 #include "stochnav/model/allan_variance.hpp"
+#include "stochnav/diagnose/deterministic_effects.hpp"
 #include "stochnav/model/reporting_units.hpp"
 
 namespace stochnav {
@@ -31,6 +32,10 @@ std::string DiagnoseOptions::validate() const {
   for (TermType type : candidates) {
     if (type == TermType::kNonstationary) {
       return "candidates: nonstationary is offered by try_nonstationary; expected stationary types";
+    }
+    if (is_deterministic(type) && type != TermType::kRateRamp) {
+      return fmt::format("candidates: {} is found in the time domain (try_deterministic)",
+                         term_type_name(type));
     }
   }
   return {};
@@ -202,8 +207,14 @@ bool stationarity_fails(const StationarityTest& test, double alpha) {
 
 }  // namespace
 
+NoiseModel DiagnoseResult::final_model() const {
+  NoiseModel model = final_assessment().model;
+  for (const NoiseTerm& term : deterministic) model.terms.push_back(term);
+  return model;
+}
+
 DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
-                        const DiagnoseOptions& options) {
+                        const DiagnoseOptions& options, const std::vector<AuxChannel>& aux) {
   if (const auto problem = options.validate(); !problem.empty()) {
     throw ConfigError("diagnose: " + problem);
   }
@@ -215,21 +226,92 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
                       unit_name(record.unit) + "; pass a matching --unit");
   }
   DiagnoseResult result;
+  // The model's deterministic terms come off the record; the rest is the stochastic model.
+  NoiseModel stochastic{model.unit, model.rate_hz, {}};
+  for (const NoiseTerm& term : model.terms) {
+    if (is_deterministic(term_type(term))) {
+      result.deterministic.push_back(term);
+    } else {
+      stochastic.terms.push_back(term);
+    }
+  }
+  const std::vector<double> rate = natural_rate(record);
+  std::vector<AuxChannel> aux_rate;  // aligned with the rate samples
+  for (const AuxChannel& channel : aux) {
+    if (channel.values.size() < rate.size()) {
+      throw ConfigError(fmt::format("diagnose: aux column \"{}\" has {} values for {} samples",
+                                    channel.name, channel.values.size(), rate.size()));
+    }
+    aux_rate.push_back({channel.name, {channel.values.begin(),
+                                       channel.values.begin() + static_cast<std::ptrdiff_t>(rate.size())}});
+  }
+  const auto residual_record = [&](const std::vector<NoiseTerm>& terms) {
+    Record residual = record;
+    residual.kind = DataKind::kRate;
+    residual.values = remove_deterministic(rate, record.rate_hz, terms, aux_rate);
+    const double si = si_per_unit(record.unit);
+    for (double& value : residual.values) value /= si;
+    return residual;
+  };
+  result.measured = measure_record(
+      result.deterministic.empty() ? record : residual_record(result.deterministic),
+      options.windows);
+  result.initial = assess_model(stochastic, result.measured, options);
+
+  // Deterministic effects, found in the time domain and removed from the record.
+  std::vector<DeterministicFinding> findings;
+  if (options.try_deterministic) {
+    DeterministicOptions deterministic_options;
+    deterministic_options.alpha = options.alpha;
+    findings = find_deterministic_effects(
+        remove_deterministic(rate, record.rate_hz, result.deterministic, aux_rate),
+        record.rate_hz, stochastic, aux_rate, deterministic_options);
+  }
   // `current` points into iterations: no reallocation while the loop runs.
-  result.iterations.reserve(static_cast<std::size_t>(options.max_iterations));
-  result.measured = measure_record(record, options.windows);
+  result.iterations.reserve(static_cast<std::size_t>(options.max_iterations) + findings.size());
+  {
+    const ModelAssessment* previous = &result.initial;
+    std::vector<NoiseTerm> removed = result.deterministic;
+    for (const DeterministicFinding& finding : findings) {
+      removed.push_back(finding.term);
+      MeasuredStatistics measured_after =
+          measure_record(residual_record(removed), options.windows);
+      ModelAssessment after = assess_model(stochastic, measured_after, options);
+      if (after.gap.value > previous->gap.value) break;  // never a term that widens the gap
+      DiagnoseIteration step;
+      step.effect = term_type(finding.term);
+      step.added_term = finding.term;
+      step.added_term_sigma = finding.sigma;
+      step.time_range_s = finding.time_range_s;
+      step.gap_before = previous->gap.value;
+      step.gap_after = after.gap.value;
+      step.evidence = finding.evidence +
+                      fmt::format(" Removed from the record: gap {:.3g} -> {:.3g}. Added: {}.",
+                                  step.gap_before, step.gap_after,
+                                  describe_term_short(finding.term, record.unit));
+      step.after = std::move(after);
+      result.iterations.push_back(std::move(step));
+      result.deterministic.push_back(finding.term);
+      result.measured = std::move(measured_after);
+      previous = &result.iterations.back().after;
+    }
+  }
   const MeasuredStatistics& measured = result.measured;
-  result.initial = assess_model(model, measured, options);
   const std::vector<double> dense_tau = measured.dense_fit.tau_s;
   const std::vector<double> dense_avar = measured.dense_fit.avar;
   const std::vector<double> dense_edf = measured.dense_fit.edf;
 
-  const ModelAssessment* current = &result.initial;
+  const ModelAssessment* current =
+      result.iterations.empty() ? &result.initial : &result.iterations.back().after;
   if (current->gap.consistent) {
     result.consistent = true;
     result.conclusion =
-        fmt::format("The model is consistent with the record (gap {:.3g}): nothing to add.",
-                    current->gap.value);
+        result.iterations.empty()
+            ? fmt::format("The model is consistent with the record (gap {:.3g}): nothing to add.",
+                          current->gap.value)
+            : fmt::format("After {} deterministic term(s) the model is consistent with the record "
+                          "(gap {:.3g}).",
+                          result.iterations.size(), current->gap.value);
   }
   for (int iteration = 0; !result.consistent && iteration < options.max_iterations; ++iteration) {
     const Gap& before = current->gap;

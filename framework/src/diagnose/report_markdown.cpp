@@ -145,7 +145,7 @@ std::string diagnose_report_markdown(const DiagnoseResult& result, const std::st
     md += "## Dynamic Allan deviation\n\n";
     md += fmt::format("![DAVAR]({})\n\n", plots.davar);
   }
-  md += "## Final model\n\n" + model_lines(result.final_assessment().model) + "\n";
+  md += "## Final model\n\n" + model_lines(result.final_model()) + "\n";
   const Signature& left = result.final_signature;
   if (!result.consistent && left.found) {
     md += fmt::format(

@@ -35,6 +35,8 @@ T term_avar(TermType type, const T* log_p, double tau) {
     case TermType::kSinusoid:
       return closed_form::sinusoid_avar(exp(log_p[0]), exp(log_p[1]), tau);
     case TermType::kNonstationary:
+    case TermType::kBiasStep:
+    case TermType::kAuxSensitivity:
       break;
   }
   return T(0.0);
@@ -92,6 +94,8 @@ std::size_t parameter_count(TermType type) {
     case TermType::kSinusoid:
       return 2;
     case TermType::kNonstationary:
+    case TermType::kBiasStep:
+    case TermType::kAuxSensitivity:
       return 0;
     default:
       return 1;
@@ -141,6 +145,8 @@ double LogAvarFit::lower_bound(TermType type, std::size_t k) const {
     case TermType::kSinusoid:
       return k == 0 ? log_root_avar_min_ - kCoefficientDecadesBelow : std::log(0.01 / tau_max_);
     case TermType::kNonstationary:
+    case TermType::kBiasStep:
+    case TermType::kAuxSensitivity:
       break;
   }
   return -std::numeric_limits<double>::infinity();
@@ -165,6 +171,8 @@ double LogAvarFit::upper_bound(TermType type, std::size_t k) const {
     case TermType::kSinusoid:
       return k == 0 ? log_root_avar_max_ + kCoefficientDecadesAbove : std::log(1.0 / tau_min_);
     case TermType::kNonstationary:
+    case TermType::kBiasStep:
+    case TermType::kAuxSensitivity:
       break;
   }
   return std::numeric_limits<double>::infinity();
@@ -211,6 +219,8 @@ std::vector<std::vector<double>> LogAvarFit::starts(TermType type) const {
       }
       break;
     case TermType::kNonstationary:
+    case TermType::kBiasStep:
+    case TermType::kAuxSensitivity:
       break;
   }
   return result;

@@ -121,6 +121,9 @@ bool equals(const NoiseTerm& a, const NoiseTerm& b, double rel_tol) {
     }
     return true;
   }
+  if (const auto* aa = std::get_if<AuxSensitivityTerm>(&a)) {
+    if (aa->column != std::get<AuxSensitivityTerm>(b).column) return false;
+  }
   const auto specs = parameter_specs(term_type(a));
   for (std::size_t j = 0; j < specs.size(); ++j) {
     const auto va = parameter_value(a, j);
@@ -154,6 +157,9 @@ std::string describe(const NoiseTerm& term, Quantity quantity, const NoiseTerm* 
   }
   const auto specs = parameter_specs(type);
   bool first = true;
+  if (const auto* aux = std::get_if<AuxSensitivityTerm>(&term)) {
+    text += fmt::format(" column {},", aux->column);
+  }
   for (std::size_t j = 0; j < specs.size(); ++j) {
     const auto value = parameter_value(term, j);
     if (!value) continue;

@@ -67,6 +67,7 @@ std::string term_form(TermType type, Quantity quantity) {
   if (type == TermType::kNonstationary) {
     return form + ", \"segments\": [{\"start\": s, \"end\": s, \"scale\": x}, ...]}";
   }
+  if (type == TermType::kAuxSensitivity) form += ", \"column\": \"temperature_c\"";
   for (const auto& spec : parameter_specs(type)) {
     form += fmt::format(", \"{}\": {}{}", spec.name,
                         reported_unit_name(quantity, spec.dimension),
@@ -156,6 +157,15 @@ NoiseTerm noise_term_from_json(const json& value, Unit unit, std::string_view po
   const auto specs = parameter_specs(*type);
   for (const auto& [key, entry] : object.items()) {
     if (key == "type") continue;
+    if (key == "column" && *type == TermType::kAuxSensitivity) {
+      const std::string at = pointer + "/column";
+      if (!entry.is_string() || entry.get<std::string>().empty()) {
+        fail(at, type_problem(entry, "a non-empty string"),
+             "the CSV column of the auxiliary channel, e.g. \"temperature_c\"");
+      }
+      std::get<AuxSensitivityTerm>(term).column = entry.get<std::string>();
+      continue;
+    }
     const std::string at = pointer + "/" + pointer_token(key);
     bool known = false;
     for (const auto& spec : specs) {
@@ -247,6 +257,7 @@ json to_json(const NoiseTerm& term, Unit unit) {
     out["segments"] = std::move(segments);
     return out;
   }
+  if (const auto* aux = std::get_if<AuxSensitivityTerm>(&term)) out["column"] = aux->column;
   const auto specs = parameter_specs(type);
   for (std::size_t j = 0; j < specs.size(); ++j) {
     const auto value = parameter_value(term, j);

@@ -1,6 +1,8 @@
 #include "stochnav/model/noise_term.hpp"
 
 #include <array>
+#include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -10,15 +12,16 @@ namespace {
 using D = ParameterDimension;
 using R = ParameterRange;
 
-constexpr std::array<TermType, 8> kAllTypes{
+constexpr std::array<TermType, 10> kAllTypes{
     TermType::kQuantization,   TermType::kAngleRandomWalk, TermType::kBiasInstability,
     TermType::kRateRandomWalk, TermType::kRateRamp,        TermType::kGaussMarkov,
-    TermType::kSinusoid,       TermType::kNonstationary,
+    TermType::kSinusoid,       TermType::kNonstationary,   TermType::kBiasStep,
+    TermType::kAuxSensitivity,
 };
 
-constexpr std::array<std::string_view, 8> kNames{
-    "quantization",     "angle_random_walk", "bias_instability", "rate_random_walk",
-    "rate_ramp",        "gauss_markov",      "sinusoid",         "nonstationary",
+constexpr std::array<std::string_view, 10> kNames{
+    "quantization", "angle_random_walk", "bias_instability", "rate_random_walk", "rate_ramp",
+    "gauss_markov", "sinusoid",          "nonstationary",    "bias_step",        "aux_sensitivity",
 };
 
 constexpr std::array<ParameterSpec, 1> kQuantizationSpecs{{{"Q", D::kAngle, R::kNonNegative, false}}};
@@ -36,6 +39,17 @@ constexpr std::array<ParameterSpec, 3> kSinusoidSpecs{{
     {"amplitude", D::kRate, R::kNonNegative, false},
     {"frequency_hz", D::kFrequency, R::kPositive, false},
     {"phase_rad", D::kPhase, R::kAny, true},
+}};
+constexpr std::array<ParameterSpec, 2> kBiasStepSpecs{{
+    {"time_s", D::kTime, R::kNonNegative, false},
+    {"size", D::kRate, R::kAny, false},
+}};
+constexpr std::array<ParameterSpec, 5> kAuxSpecs{{
+    {"coefficient", D::kRate, R::kAny, false},
+    {"profile_start", D::kChannel, R::kAny, true},
+    {"profile_rise_per_h", D::kChannel, R::kAny, true},
+    {"profile_amplitude", D::kChannel, R::kAny, true},
+    {"profile_period_s", D::kTime, R::kPositive, true},
 }};
 
 [[noreturn]] void bad_index(std::size_t index) {
@@ -77,6 +91,10 @@ std::span<const ParameterSpec> parameter_specs(TermType type) {
       return kSinusoidSpecs;
     case TermType::kNonstationary:
       return {};
+    case TermType::kBiasStep:
+      return kBiasStepSpecs;
+    case TermType::kAuxSensitivity:
+      return kAuxSpecs;
   }
   return {};
 }
@@ -102,6 +120,15 @@ std::optional<double> parameter_value(const NoiseTerm& term, std::size_t index) 
           if (index == 0) return t.amplitude;
           if (index == 1) return t.frequency_hz;
           if (index == 2) return t.phase_rad;
+        } else if constexpr (std::is_same_v<T, BiasStepTerm>) {
+          if (index == 0) return t.time_s;
+          if (index == 1) return t.size;
+        } else if constexpr (std::is_same_v<T, AuxSensitivityTerm>) {
+          if (index == 0) return t.coefficient;
+          if (index == 1) return t.profile_start;
+          if (index == 2) return t.profile_rise_per_h;
+          if (index == 3) return t.profile_amplitude;
+          if (index == 4) return t.profile_period_s;
         }
         bad_index(index);
       },
@@ -115,6 +142,14 @@ void set_parameter_value(NoiseTerm& term, std::size_t index, std::optional<doubl
         if constexpr (std::is_same_v<T, SinusoidTerm>) {
           if (index == 2) {
             t.phase_rad = value;
+            return;
+          }
+        }
+        if constexpr (std::is_same_v<T, AuxSensitivityTerm>) {
+          if (index >= 1 && index <= 4) {
+            std::optional<double>* fields[] = {&t.profile_start, &t.profile_rise_per_h,
+                                               &t.profile_amplitude, &t.profile_period_s};
+            *fields[index - 1] = value;
             return;
           }
         }
@@ -136,6 +171,11 @@ void set_parameter_value(NoiseTerm& term, std::size_t index, std::optional<doubl
         } else if constexpr (std::is_same_v<T, SinusoidTerm>) {
           if (index == 0) return void(t.amplitude = v);
           if (index == 1) return void(t.frequency_hz = v);
+        } else if constexpr (std::is_same_v<T, BiasStepTerm>) {
+          if (index == 0) return void(t.time_s = v);
+          if (index == 1) return void(t.size = v);
+        } else if constexpr (std::is_same_v<T, AuxSensitivityTerm>) {
+          if (index == 0) return void(t.coefficient = v);
         }
         bad_index(index);
       },
@@ -160,8 +200,23 @@ NoiseTerm make_term(TermType type) {
       return SinusoidTerm{};
     case TermType::kNonstationary:
       return NonstationaryTerm{};
+    case TermType::kBiasStep:
+      return BiasStepTerm{};
+    case TermType::kAuxSensitivity:
+      return AuxSensitivityTerm{};
   }
   return NonstationaryTerm{};
+}
+
+bool is_deterministic(TermType type) {
+  return type == TermType::kRateRamp || type == TermType::kBiasStep ||
+         type == TermType::kAuxSensitivity;
+}
+
+double AuxSensitivityTerm::profile_at(double t_s) const {
+  const double period = profile_period_s.value_or(1800.0);
+  return profile_start.value_or(25.0) + profile_rise_per_h.value_or(10.0) * t_s / 3600.0 +
+         profile_amplitude.value_or(2.0) * std::sin(2.0 * std::numbers::pi * t_s / period);
 }
 
 }  // namespace stochnav

@@ -29,6 +29,7 @@ double natural_per_reported(Quantity quantity, ParameterDimension dimension) {
     case ParameterDimension::kTime:
     case ParameterDimension::kFrequency:
     case ParameterDimension::kPhase:
+    case ParameterDimension::kChannel:
       return 1.0;
     default:
       break;
@@ -59,6 +60,8 @@ std::string reported_unit_name(Quantity quantity, ParameterDimension dimension) 
       return "Hz";
     case ParameterDimension::kPhase:
       return "rad";
+    case ParameterDimension::kChannel:
+      return "channel unit";
     default:
       break;
   }

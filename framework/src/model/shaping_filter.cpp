@@ -1,5 +1,7 @@
 #include "stochnav/model/shaping_filter.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -123,8 +125,9 @@ ShapingFilter build_shaping_filter(const NoiseModel& model, const ShapingOptions
       }
     } else {
       throw ConfigError(
-          "build_shaping_filter: a nonstationary term has no stationary shaping filter; give "
-          "the stationary terms only");
+          fmt::format("build_shaping_filter: a {} term has no stationary shaping filter; give "
+                      "the stationary terms only",
+                      term_type_name(term_type(term))));
     }
   }
   return filter;

@@ -41,7 +41,8 @@ NoiseTerm scaled_term(const NoiseTerm& term, double scale) {
   for (std::size_t j = 0; j < specs.size(); ++j) {
     const ParameterDimension d = specs[j].dimension;
     if (d == ParameterDimension::kTime || d == ParameterDimension::kFrequency ||
-        d == ParameterDimension::kPhase) {
+        d == ParameterDimension::kPhase || d == ParameterDimension::kChannel ||
+        (type == TermType::kBiasStep && j == 0)) {
       continue;
     }
     if (const auto value = parameter_value(term, j)) set_parameter_value(out, j, *value * scale);

@@ -88,6 +88,39 @@ class RampSampler final : public TermSampler {
   double slope_per_sample_;
 };
 
+// A jump of `size` at time_s: each interval mean carries the part of its interval after it.
+class BiasStepSampler final : public TermSampler {
+ public:
+  BiasStepSampler(const BiasStepTerm& term, double tau0) : term_(term), tau0_(tau0) {}
+  void add_to(std::span<double> out, std::uint64_t first_index) override {
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const double start = static_cast<double>(first_index + i) * tau0_;
+      const double after = std::clamp((start + tau0_ - term_.time_s) / tau0_, 0.0, 1.0);
+      out[i] += term_.size * after;
+    }
+  }
+
+ private:
+  BiasStepTerm term_;
+  double tau0_;
+};
+
+// coefficient * aux(t) at the interval's midpoint (the profile is slow against tau0).
+class AuxSensitivitySampler final : public TermSampler {
+ public:
+  AuxSensitivitySampler(const AuxSensitivityTerm& term, double tau0) : term_(term), tau0_(tau0) {}
+  void add_to(std::span<double> out, std::uint64_t first_index) override {
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const double mid = (static_cast<double>(first_index + i) + 0.5) * tau0_;
+      out[i] += term_.coefficient * term_.profile_at(mid);
+    }
+  }
+
+ private:
+  AuxSensitivityTerm term_;
+  double tau0_;
+};
+
 // Ornstein-Uhlenbeck state x (variance s^2, correlation time T) and its integral I over each
 // interval, discretised exactly. With a = exp(-tau0/T):
 //   x' = a x + w1,  I = T (1 - a) x + w2,
@@ -242,6 +275,10 @@ std::unique_ptr<TermSampler> make_term_sampler(const NoiseTerm& term, double tau
           return std::make_unique<GaussMarkovSampler>(t.sigma, t.tau_c, tau0_s, stream_seed);
         } else if constexpr (std::is_same_v<T, SinusoidTerm>) {
           return std::make_unique<SinusoidSampler>(t, tau0_s, stream_seed);
+        } else if constexpr (std::is_same_v<T, BiasStepTerm>) {
+          return std::make_unique<BiasStepSampler>(t, tau0_s);
+        } else if constexpr (std::is_same_v<T, AuxSensitivityTerm>) {
+          return std::make_unique<AuxSensitivitySampler>(t, tau0_s);
         } else {
           return nullptr;
         }

@@ -23,6 +23,12 @@
 //      shrinks, and the chi-square beyond its dof shrinks by at least `min_relative_shrink`;
 //      otherwise stop (nothing helps, and no term is added that does not shrink the gap);
 //   6. repeat from 2 until consistent or max_iterations.
+// Before step 2, deterministic effects (rate_ramp, bias_step, aux_sensitivity) are found in
+// the time domain (diagnose/deterministic_effects.hpp: GLS regressions of block means with
+// likelihood-ratio tests against the stochastic alternatives), each reported as an iteration
+// and removed from the record; steps 2-6 then diagnose the stochastic remainder. A
+// deterministic term is kept when its time-domain test passes and the record gap does not grow
+// by its removal. The model's own deterministic terms are removed from the record first.
 // The effect's name is the type of the kept candidate; the signature is reported beside it as
 // evidence (they usually agree; the report says when they do not).
 //
@@ -34,8 +40,10 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "stochnav/diagnose/deterministic_effects.hpp"
 #include "stochnav/diagnose/gap.hpp"
 #include "stochnav/diagnose/measured_statistics.hpp"
 #include "stochnav/diagnose/signature.hpp"
@@ -62,8 +70,9 @@ struct DiagnoseOptions {
   /// Stationary term types tried as the missing effect.
   std::vector<TermType> candidates = {TermType::kQuantization,    TermType::kAngleRandomWalk,
                                       TermType::kBiasInstability, TermType::kRateRandomWalk,
-                                      TermType::kRateRamp,        TermType::kGaussMarkov,
-                                      TermType::kSinusoid};
+                                      TermType::kGaussMarkov,     TermType::kSinusoid};
+  /// Look for deterministic effects (rate ramp, bias step, aux channels) in the time domain.
+  bool try_deterministic = true;
   bool try_nonstationary = true;  ///< offer a nonstationary term when the windows disagree
 
   /// Empty when valid; otherwise the reason, naming the option.
@@ -95,6 +104,9 @@ struct DiagnoseIteration {
   std::optional<std::array<double, 2>> tau_range_s;   ///< where the AVAR leaves the band
   std::optional<std::array<double, 2>> time_range_s;  ///< deviating windows (record time)
   NoiseTerm added_term;                               ///< natural units
+  /// 1-sigma uncertainties of added_term's parameters by JSON name, natural units (the
+  /// deterministic terms; empty for the Allan-variance fits).
+  std::vector<std::pair<std::string, double>> added_term_sigma;
   bool refitted = false;                              ///< the other terms were refitted too
   double gap_before = 0.0;
   double gap_after = 0.0;
@@ -112,16 +124,25 @@ struct DiagnoseResult {
   /// Signature of the final model (what is left, when not consistent).
   Signature final_signature;
 
+  /// Deterministic terms (the model's own, then those found), removed from the record before
+  /// `measured` was taken; the assessments hold the stochastic part only.
+  std::vector<NoiseTerm> deterministic;
+
   const ModelAssessment& final_assessment() const {
     return iterations.empty() ? initial : iterations.back().after;
   }
+  /// The final stochastic model with the deterministic terms appended.
+  NoiseModel final_model() const;
 };
 
 /// Runs the workflow. Throws ConfigError for invalid options, a model whose unit measures
 /// another quantity than the record's, or a model with no positive Allan variance; InputError
-/// for a record too short to measure.
+/// for a record too short to measure. `aux`: auxiliary channels of the record (one value per
+/// sample of `record`), tested as aux_sensitivity; a model's aux_sensitivity term must find its
+/// column among them (ConfigError otherwise).
 DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
-                        const DiagnoseOptions& options = {});
+                        const DiagnoseOptions& options = {},
+                        const std::vector<AuxChannel>& aux = {});
 
 /// Assesses one model against measured statistics (steps 2 of the file comment).
 ModelAssessment assess_model(const NoiseModel& model, const MeasuredStatistics& measured,

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
@@ -26,6 +27,8 @@ enum class TermType {
   kGaussMarkov,
   kSinusoid,
   kNonstationary,
+  kBiasStep,
+  kAuxSensitivity,
 };
 
 /// Angle (or velocity) quantization. AVAR 3 Q^2 / tau^2.
@@ -82,15 +85,48 @@ struct NonstationaryTerm {
   std::vector<NonstationarySegment> segments;  ///< ascending, non-overlapping, at least one
 };
 
+/// Deterministic jump of the bias: `size` is added to every rate sample at record time >=
+/// time_s. No stationary Allan-variance contribution: diagnose finds it in the time domain
+/// (diagnose/deterministic_effects.hpp).
+struct BiasStepTerm {
+  double time_s = 0.0;  ///< record time of the jump (s), >= 0
+  double size = 0.0;    ///< jump of the rate, signal (rad/s for gyros); any sign
+};
+
+/// Bias linear in an auxiliary channel of the record (temperature): the rate carries
+/// coefficient * aux(t), aux read from the column `column` of the input file. No stationary
+/// Allan-variance contribution: diagnose finds it by regression on the channel.
+///
+/// For simulation only, the channel's profile (a linear rise plus a slow sinusoid):
+///   aux(t) = profile_start + profile_rise_per_h * t / 3600 + profile_amplitude sin(2 pi t /
+///   profile_period_s); absent values take the defaults below. `simulate noise` writes aux(t)
+///   as the column `column`.
+struct AuxSensitivityTerm {
+  std::string column = "temperature_c";  ///< CSV column of the auxiliary channel
+  double coefficient = 0.0;  ///< signal per unit of the channel (rad/s per degC); any sign
+  std::optional<double> profile_start;       ///< channel units; default 25
+  std::optional<double> profile_rise_per_h;  ///< channel units per hour; default 10
+  std::optional<double> profile_amplitude;   ///< channel units; default 2
+  std::optional<double> profile_period_s;    ///< s, > 0; default 1800
+
+  /// The simulated channel value at record time t_s (defaults filled in).
+  double profile_at(double t_s) const;
+};
+
 using NoiseTerm = std::variant<QuantizationTerm, AngleRandomWalkTerm, BiasInstabilityTerm,
                                RateRandomWalkTerm, RateRampTerm, GaussMarkovTerm, SinusoidTerm,
-                               NonstationaryTerm>;
+                               NonstationaryTerm, BiasStepTerm, AuxSensitivityTerm>;
+
+/// True for the deterministic terms diagnose finds in the time domain and removes from the
+/// record (rate_ramp, bias_step, aux_sensitivity); the rest is the stochastic model.
+bool is_deterministic(TermType type);
 
 /// The type of a term.
 TermType term_type(const NoiseTerm& term);
 
 /// The vocabulary name: "quantization", "angle_random_walk", "bias_instability",
-/// "rate_random_walk", "rate_ramp", "gauss_markov", "sinusoid", "nonstationary".
+/// "rate_random_walk", "rate_ramp", "gauss_markov", "sinusoid", "nonstationary", "bias_step",
+/// "aux_sensitivity".
 std::string_view term_type_name(TermType type);
 
 /// Inverse of term_type_name; nullopt for an unknown name.
@@ -109,6 +145,7 @@ enum class ParameterDimension {
   kTime,                 ///< tau_c: s
   kFrequency,            ///< frequency_hz: Hz
   kPhase,                ///< phase_rad: rad
+  kChannel,              ///< aux profile values: the auxiliary channel's own unit (no conversion)
 };
 
 /// Which values a scalar parameter may take.
@@ -122,7 +159,8 @@ struct ParameterSpec {
   bool optional;  ///< may be absent (only the sinusoid phase)
 };
 
-/// The scalar parameters of a term type, in JSON order. Empty for kNonstationary (segments).
+/// The scalar parameters of a term type, in JSON order. Empty for kNonstationary (segments);
+/// the aux_sensitivity column is a string, outside these.
 std::span<const ParameterSpec> parameter_specs(TermType type);
 
 /// Value of scalar parameter `index` of parameter_specs(term_type(term)) in natural units;
