@@ -324,8 +324,19 @@ void validate_variants(const ExperimentConfig& config) {
           if (std::string(error.what()).find(placeholder) == std::string::npos) throw;
         }
       }
+      // Aids are built on empty aid data: their params are checked by the plugin before it asks
+      // for its columns, and a missing column only says the data are not there yet.
+      const plugin::AidData no_data;
+      plugin::AidContext aid_context;
+      aid_context.data = &no_data;
+      aid_context.config_dir = config.config_dir;
       for (const auto& aid : run.aids) {
-        registry.find(plugin::PluginKind::kAid, aid.type, aid.type_pointer());
+        aid_context.params_pointer = aid.params_pointer();
+        try {
+          registry.create_aid(aid.type, aid.params, aid_context, aid.type_pointer());
+        } catch (const ConfigError& error) {
+          if (std::string(error.what()).find("has no column") == std::string::npos) throw;
+        }
       }
     } catch (const ConfigError& error) {
       rethrow_with_context(error, context);
