@@ -6,6 +6,9 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include "stochnav/stats/parallel.hpp"
 
 namespace stochnav {
 namespace {
@@ -78,11 +81,8 @@ PerDifference lag1_of_decimated_differences(std::span<const double> phase, std::
   return r1;
 }
 
-NoiseId lag1_noise_id(std::span<const double> phase, std::size_t m, int max_differences) {
-  const std::size_t points = (phase.size() - 1) / m + 1;
-  const PerDifference r1 = max_differences >= 3
-                               ? lag1_of_decimated_differences<3>(phase, m, points)
-                               : lag1_of_decimated_differences<2>(phase, m, points);
+/// Differences the decimated phase until its lag-1 autocorrelation r1[d] says white, or d_max.
+NoiseId noise_from_lag1(const PerDifference& r1, int max_differences) {
   for (int d = 0;; ++d) {
     const double r = r1[static_cast<std::size_t>(d)];
     const double delta = r / (1.0 + r);
@@ -92,6 +92,177 @@ NoiseId lag1_noise_id(std::span<const double> phase, std::size_t m, int max_diff
       return {std::clamp(rounded, -2, 2), NoiseIdMethod::kLag1Autocorrelation, alpha};
     }
   }
+}
+
+NoiseId lag1_noise_id(std::span<const double> phase, std::size_t m, int max_differences) {
+  const std::size_t points = (phase.size() - 1) / m + 1;
+  const PerDifference r1 = max_differences >= 3
+                               ? lag1_of_decimated_differences<3>(phase, m, points)
+                               : lag1_of_decimated_differences<2>(phase, m, points);
+  return noise_from_lag1(r1, max_differences);
+}
+
+// ---- The lag-1 statistics of many factors at once (identify_noises) ----
+//
+// Every factor m walks the same phase record (z[k] = x[k m]); done one factor after another,
+// the small factors each stream the whole record from memory (m = 1 .. 8 touch every cache line).
+// Instead the record is cut into blocks of kLag1BlockPoints phase points, and each task takes one
+// block and serves every factor's decimated points inside it while the block is in cache: two
+// passes over memory in all (the means first, then the centred sums), spread over the threads.
+// The block partial sums are added in block order: the same result for every thread count.
+
+/// Phase points per block: 256 KB, an L2-sized piece of the record.
+constexpr std::size_t kLag1BlockPoints = std::size_t{1} << 15;
+/// Independent accumulators per sum: they break the serial chain of additions.
+constexpr std::size_t kLag1Lanes = 4;
+
+/// The decimated indices k of factor m whose phase index k m lies in [first, last): [begin, end).
+struct DecimatedRange {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+};
+DecimatedRange decimated_range(std::size_t m, std::size_t points, std::size_t first,
+                               std::size_t last) {
+  const std::size_t begin = (first + m - 1) / m;
+  const std::size_t end = std::min(points, (last + m - 1) / m);
+  return {begin, std::max(begin, end)};
+}
+
+double sum_decimated(const double* x, std::size_t m, DecimatedRange range) {
+  std::array<double, kLag1Lanes> lanes{};
+  std::size_t k = range.begin;
+  for (; k + kLag1Lanes <= range.end; k += kLag1Lanes) {
+    for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) lanes[lane] += x[(k + lane) * m];
+  }
+  for (; k < range.end; ++k) lanes[0] += x[k * m];
+  return (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
+}
+
+/// Centred lag products and squares of the d-th differences, d <= MaxD, over one range.
+struct Lag1Sums {
+  PerDifference lagged{};
+  PerDifference squares{};
+};
+
+/// The d-th backward differences of z ending at k, d <= MaxD (only d <= k are meaningful).
+template <int MaxD>
+PerDifference differences_ending_at(const double* x, std::size_t m, std::size_t k) {
+  const auto z = [&](std::size_t back) { return back <= k ? x[(k - back) * m] : 0.0; };
+  const double z0 = z(0), z1 = z(1), z2 = z(2);
+  const double z3 = MaxD >= 3 ? z(3) : 0.0;
+  return PerDifference{z0, z0 - z1, z0 - 2.0 * z1 + z2, z0 - 3.0 * z1 + 3.0 * z2 - z3};
+}
+
+template <int MaxD>
+Lag1Sums lag1_sums(const double* x, std::size_t m, DecimatedRange range,
+                   const PerDifference& mean) {
+  Lag1Sums sums;
+  std::size_t k = range.begin;
+  // The first MaxD + 1 points, where the higher differences are still incomplete.
+  for (; k < range.end && k <= static_cast<std::size_t>(MaxD); ++k) {
+    const PerDifference now = differences_ending_at<MaxD>(x, m, k);
+    const PerDifference before = k > 0 ? differences_ending_at<MaxD>(x, m, k - 1) : PerDifference{};
+    for (std::size_t d = 0; d <= k && d <= MaxD; ++d) {
+      const double centred = now[d] - mean[d];
+      if (k > d) sums.lagged[d] += (before[d] - mean[d]) * centred;
+      sums.squares[d] += centred * centred;
+    }
+  }
+  // Each lane recomputes the differences ending at k - 1 instead of carrying them: no
+  // dependency between iterations but the accumulators.
+  std::array<std::array<double, kLag1Lanes>, MaxD + 1> lagged{};
+  std::array<std::array<double, kLag1Lanes>, MaxD + 1> squares{};
+  const auto accumulate = [&](std::size_t kk, std::size_t lane) {
+    const double* p = x + kk * m;
+    const double z0 = p[0];
+    const double z1 = *(p - m);
+    const double z2 = *(p - 2 * m);
+    const double z3 = *(p - 3 * m);
+    const double z4 = MaxD >= 3 ? *(p - 4 * m) : 0.0;
+    const PerDifference now{z0, z0 - z1, z0 - 2.0 * z1 + z2, z0 - 3.0 * z1 + 3.0 * z2 - z3};
+    const PerDifference before{z1, z1 - z2, z1 - 2.0 * z2 + z3, z1 - 3.0 * z2 + 3.0 * z3 - z4};
+    for (std::size_t d = 0; d <= MaxD; ++d) {
+      const double centred = now[d] - mean[d];
+      lagged[d][lane] += (before[d] - mean[d]) * centred;
+      squares[d][lane] += centred * centred;
+    }
+  };
+  for (; k + kLag1Lanes <= range.end; k += kLag1Lanes) {
+    for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) accumulate(k + lane, lane);
+  }
+  for (; k < range.end; ++k) accumulate(k, 0);
+  for (std::size_t d = 0; d <= MaxD; ++d) {
+    sums.lagged[d] += (lagged[d][0] + lagged[d][1]) + (lagged[d][2] + lagged[d][3]);
+    sums.squares[d] += (squares[d][0] + squares[d][1]) + (squares[d][2] + squares[d][3]);
+  }
+  return sums;
+}
+
+/// r1[d] of every factor, as lag1_of_decimated_differences<MaxD> gives (up to rounding).
+template <int MaxD>
+std::vector<PerDifference> lag1_of_many(std::span<const double> phase,
+                                        std::span<const std::size_t> m_values) {
+  const std::size_t factors = m_values.size();
+  const std::size_t blocks = (phase.size() + kLag1BlockPoints - 1) / kLag1BlockPoints;
+  std::vector<std::size_t> points(factors);
+  for (std::size_t j = 0; j < factors; ++j) points[j] = (phase.size() - 1) / m_values[j] + 1;
+  const auto range_in_block = [&](std::size_t j, std::size_t block) {
+    const std::size_t first = block * kLag1BlockPoints;
+    const std::size_t last = std::min(phase.size(), first + kLag1BlockPoints);
+    return decimated_range(m_values[j], points[j], first, last);
+  };
+
+  // Pass 1: the means of z.
+  std::vector<double> block_sums(blocks * factors, 0.0);
+  parallel_for(blocks, [&](std::size_t block) {
+    for (std::size_t j = 0; j < factors; ++j) {
+      block_sums[block * factors + j] =
+          sum_decimated(phase.data(), m_values[j], range_in_block(j, block));
+    }
+  });
+  std::vector<PerDifference> means(factors);
+  for (std::size_t j = 0; j < factors; ++j) {
+    double total = 0.0;
+    for (std::size_t block = 0; block < blocks; ++block) total += block_sums[block * factors + j];
+    const std::size_t m = m_values[j];
+    const auto z = [&](std::size_t k) { return phase[k * m]; };
+    const std::size_t last = points[j] - 1;
+    PerDifference& mean = means[j];
+    mean[0] = total / static_cast<double>(points[j]);
+    mean[1] = (z(last) - z(0)) / static_cast<double>(points[j] - 1);
+    mean[2] = ((z(last) - z(last - 1)) - (z(1) - z(0))) / static_cast<double>(points[j] - 2);
+    if constexpr (MaxD >= 3) {
+      mean[3] = ((z(last) - 2.0 * z(last - 1) + z(last - 2)) - (z(2) - 2.0 * z(1) + z(0))) /
+                static_cast<double>(points[j] - 3);
+    }
+  }
+
+  // Pass 2: the centred lag products and squares.
+  std::vector<Lag1Sums> block_lag1(blocks * factors);
+  parallel_for(blocks, [&](std::size_t block) {
+    for (std::size_t j = 0; j < factors; ++j) {
+      const DecimatedRange range = range_in_block(j, block);
+      if (range.begin < range.end) {
+        block_lag1[block * factors + j] =
+            lag1_sums<MaxD>(phase.data(), m_values[j], range, means[j]);
+      }
+    }
+  });
+  std::vector<PerDifference> r1(factors);
+  for (std::size_t j = 0; j < factors; ++j) {
+    Lag1Sums total;
+    for (std::size_t block = 0; block < blocks; ++block) {
+      const Lag1Sums& part = block_lag1[block * factors + j];
+      for (std::size_t d = 0; d <= MaxD; ++d) {
+        total.lagged[d] += part.lagged[d];
+        total.squares[d] += part.squares[d];
+      }
+    }
+    for (std::size_t d = 0; d <= MaxD; ++d) {
+      r1[j][d] = total.squares[d] > 0.0 ? total.lagged[d] / total.squares[d] : 0.0;
+    }
+  }
+  return r1;
 }
 
 /// Allan-variance tau exponent mu -> noise alpha; mu = -2 is white or flicker PM (alpha 2, 1).
@@ -168,17 +339,58 @@ bool keeps_previous_noise_type(Deviation kind, std::size_t m, std::size_t phase_
   return averages < (is_overlapping(kind) ? 8u : 10u);
 }
 
-NoiseId identify_noise(Deviation kind, std::span<const double> phase, std::size_t m) {
+namespace {
+void require_identifiable(std::span<const double> phase, std::size_t m) {
   if (m == 0 || phase.size() < 2 * m + 2) {
     throw std::invalid_argument("identify_noise: m = " + std::to_string(m) + " needs more than " +
                                 std::to_string(2 * m + 1) + " phase points, got " +
                                 std::to_string(phase.size()));
   }
+}
+}  // namespace
+
+NoiseId identify_noise(Deviation kind, std::span<const double> phase, std::size_t m) {
+  require_identifiable(phase, m);
   const std::size_t decimated_points = (phase.size() - 1) / m + 1;
   if (decimated_points >= kMinLag1Points) {
     return lag1_noise_id(phase, m, difference_order(kind));
   }
   return b1_noise_id(kind, phase, m);
+}
+
+}  // namespace stochnav
+
+namespace stochnav {
+
+std::vector<NoiseId> identify_noises(Deviation kind, std::span<const double> phase,
+                                     std::span<const std::size_t> m_values) {
+  for (std::size_t m : m_values) require_identifiable(phase, m);
+  std::vector<NoiseId> ids(m_values.size());
+  std::vector<std::size_t> lag1_factors;  // the m of the lag-1 method
+  std::vector<std::size_t> lag1_slots;    // their places in m_values
+  std::vector<std::size_t> other_slots;
+  for (std::size_t j = 0; j < m_values.size(); ++j) {
+    if ((phase.size() - 1) / m_values[j] + 1 >= kMinLag1Points) {
+      lag1_factors.push_back(m_values[j]);
+      lag1_slots.push_back(j);
+    } else {
+      other_slots.push_back(j);
+    }
+  }
+  // The B1 identifications: few averages each, one task per factor.
+  parallel_for(other_slots.size(), [&](std::size_t i) {
+    ids[other_slots[i]] = identify_noise(kind, phase, m_values[other_slots[i]]);
+  });
+  if (!lag1_factors.empty()) {
+    const int max_differences = difference_order(kind);
+    const std::vector<PerDifference> r1 = max_differences >= 3
+                                              ? lag1_of_many<3>(phase, lag1_factors)
+                                              : lag1_of_many<2>(phase, lag1_factors);
+    for (std::size_t i = 0; i < lag1_factors.size(); ++i) {
+      ids[lag1_slots[i]] = noise_from_lag1(r1[i], max_differences);
+    }
+  }
+  return ids;
 }
 
 }  // namespace stochnav
