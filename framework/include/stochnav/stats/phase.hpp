@@ -2,8 +2,11 @@
 // From a rate record (gyro rate, fractional frequency) to the phase record (angle, clock phase)
 // that every Allan-family estimator works on.
 
+#include <cstddef>
 #include <span>
 #include <vector>
+
+#include "stochnav/io/record.hpp"
 
 namespace stochnav {
 
@@ -16,6 +19,25 @@ namespace stochnav {
 /// cancellation against a large ramp. The mean and the running sum use compensated (Neumaier)
 /// summation: the error of x[i] stays a few ulps whatever N is.
 /// An empty `rate` gives {0}. tau0_s must be > 0 (not checked).
+/// The sums run in chunks of 65536 samples over the stats threads (parallel.hpp), each chunk
+/// started from the exact compensated sum before it: the result is the same for every thread
+/// count. Cost: two passes over the data.
 std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s);
+
+/// phase_from_rate without a second array: on entry buffer[1 .. N] hold the N rate samples
+/// (buffer[0] is ignored); on return buffer[0 .. N] hold the N + 1 phase points, bitwise those
+/// phase_from_rate gives. An empty buffer is left alone.
+void phase_from_rate_in_place(std::span<double> buffer, double tau0_s);
+
+/// A record file read straight into its phase: one array of the data in memory.
+struct PhaseRecord {
+  Record record;              ///< everything but `values`, which is left empty
+  std::size_t samples = 0;    ///< samples in the file's column
+  std::vector<double> phase;  ///< N + 1 points for rate data (phase_from_rate), N for phase data
+};
+
+/// Reads options.path (read_record, with room for the leading phase point) and integrates rate
+/// data in place. Throws as read_record.
+PhaseRecord read_phase_record(const ReadOptions& options);
 
 }  // namespace stochnav
