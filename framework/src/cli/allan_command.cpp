@@ -82,7 +82,7 @@ void run_allan(const AllanArguments& arguments) {
   // One array of the data: rate samples are integrated into phase where they were read.
   const PhaseRecord input = read_phase_record(arguments.input.to_read_options());
   const Record& record = input.record;
-  const std::vector<double>& phase = input.phase;
+  const std::span<const double> phase = input.phase();
   const auto m_values = averaging_factors(kind, spacing, phase.size(), record.tau0());
   if (m_values.empty()) {
     throw InputError(record.source + ": " + std::to_string(input.samples) +

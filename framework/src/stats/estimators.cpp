@@ -15,6 +15,7 @@
 
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/parallel.hpp"
+#include "vector_clones.hpp"
 
 namespace stochnav {
 namespace {
@@ -25,14 +26,6 @@ constexpr std::size_t kBlockTerms = 2048;
 /// Blocks per task of the pass along the record: 2^16 terms, about 150 tasks on 1e7 points.
 constexpr std::size_t kBlocksPerTask = 32;
 
-// The summation kernels are also compiled for AVX-512 (x86-64-v4) and AVX2 + FMA (x86-64-v3)
-// and chosen at load time by what the CPU has: four and two times the lanes of the SSE2 default.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define STOCHNAV_WIDE_VECTOR_CLONES \
-  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define STOCHNAV_WIDE_VECTOR_CLONES
-#endif
 
 /// sum_{i = begin}^{end - 1} (x[i+2m] - 2 x[i+m] + x[i])^2. Eight independent accumulators
 /// let the compiler keep the adds in vector registers (no reassociation is needed).

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "stochnav/stats/parallel.hpp"
+#include "vector_clones.hpp"
 
 namespace stochnav {
 namespace {
@@ -153,6 +154,57 @@ PerDifference differences_ending_at(const double* x, std::size_t m, std::size_t 
   return PerDifference{z0, z0 - z1, z0 - 2.0 * z1 + z2, z0 - 3.0 * z1 + 3.0 * z2 - z3};
 }
 
+/// Accumulators of the centred lag products and squares: [order d][lane].
+using LaneSums = std::array<std::array<double, kLag1Lanes>, kMaxDifferences + 1>;
+
+/// One contiguous piece of decimated points: z[-(max_d + 1) .. count - 1] readable. Adds the
+/// centred products D_d(t - 1) D_d(t) and squares D_d(t)^2, t = 0 .. count - 1, d <= max_d.
+/// Every loop is contiguous, so it vectorises.
+STOCHNAV_WIDE_VECTOR_CLONES
+void add_piece_sums(const double* z, std::size_t count, const PerDifference& mean, int max_d,
+                    LaneSums& lagged, LaneSums& squares) {
+  constexpr std::size_t kPiece = 512;
+  std::array<double, kPiece + 1> centred;
+  const double* e = z - 1;  // e[t] = z(t - 1), t = 0 .. count
+  for (int order = 0; order <= max_d; ++order) {
+    const double mu = mean[static_cast<std::size_t>(order)];
+    switch (order) {
+      case 0:
+        for (std::size_t t = 0; t <= count; ++t) centred[t] = e[t] - mu;
+        break;
+      case 1:
+        for (std::size_t t = 0; t <= count; ++t) centred[t] = (e[t] - *(e + t - 1)) - mu;
+        break;
+      case 2:
+        for (std::size_t t = 0; t <= count; ++t) {
+          centred[t] = (e[t] - 2.0 * *(e + t - 1) + *(e + t - 2)) - mu;
+        }
+        break;
+      default:
+        for (std::size_t t = 0; t <= count; ++t) {
+          centred[t] = (e[t] - 3.0 * *(e + t - 1) + 3.0 * *(e + t - 2) - *(e + t - 3)) - mu;
+        }
+        break;
+    }
+    // Local copies: the inputs might alias the caller's arrays, which would pin them in memory.
+    std::array<double, kLag1Lanes> lag = lagged[static_cast<std::size_t>(order)];
+    std::array<double, kLag1Lanes> square = squares[static_cast<std::size_t>(order)];
+    std::size_t t = 0;
+    for (; t + kLag1Lanes <= count; t += kLag1Lanes) {
+      for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) {
+        lag[lane] += centred[t + lane] * centred[t + lane + 1];
+        square[lane] += centred[t + lane + 1] * centred[t + lane + 1];
+      }
+    }
+    for (; t < count; ++t) {
+      lag[0] += centred[t] * centred[t + 1];
+      square[0] += centred[t + 1] * centred[t + 1];
+    }
+    lagged[static_cast<std::size_t>(order)] = lag;
+    squares[static_cast<std::size_t>(order)] = square;
+  }
+}
+
 template <int MaxD>
 Lag1Sums lag1_sums(const double* x, std::size_t m, DecimatedRange range,
                    const PerDifference& mean) {
@@ -168,29 +220,20 @@ Lag1Sums lag1_sums(const double* x, std::size_t m, DecimatedRange range,
       sums.squares[d] += centred * centred;
     }
   }
-  // Each lane recomputes the differences ending at k - 1 instead of carrying them: no
-  // dependency between iterations but the accumulators.
-  std::array<std::array<double, kLag1Lanes>, MaxD + 1> lagged{};
-  std::array<std::array<double, kLag1Lanes>, MaxD + 1> squares{};
-  const auto accumulate = [&](std::size_t kk, std::size_t lane) {
-    const double* p = x + kk * m;
-    const double z0 = p[0];
-    const double z1 = *(p - m);
-    const double z2 = *(p - 2 * m);
-    const double z3 = *(p - 3 * m);
-    const double z4 = MaxD >= 3 ? *(p - 4 * m) : 0.0;
-    const PerDifference now{z0, z0 - z1, z0 - 2.0 * z1 + z2, z0 - 3.0 * z1 + 3.0 * z2 - z3};
-    const PerDifference before{z1, z1 - z2, z1 - 2.0 * z2 + z3, z1 - 3.0 * z2 + 3.0 * z3 - z4};
-    for (std::size_t d = 0; d <= MaxD; ++d) {
-      const double centred = now[d] - mean[d];
-      lagged[d][lane] += (before[d] - mean[d]) * centred;
-      squares[d][lane] += centred * centred;
-    }
-  };
-  for (; k + kLag1Lanes <= range.end; k += kLag1Lanes) {
-    for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) accumulate(k + lane, lane);
+  // The rest in pieces: gather the piece's decimated points (and the MaxD + 1 before it) into a
+  // contiguous scratch array, then add_piece_sums.
+  constexpr std::size_t kPiece = 512;
+  constexpr std::size_t kBack = MaxD + 1;  // points before the piece its first term needs
+  std::array<double, kPiece + kBack> z;
+  LaneSums lagged{};
+  LaneSums squares{};
+  while (k < range.end) {
+    const std::size_t count = std::min(kPiece, range.end - k);
+    const double* from = x + (k - kBack) * m;
+    for (std::size_t t = 0; t < count + kBack; ++t) z[t] = from[t * m];
+    add_piece_sums(z.data() + kBack, count, mean, MaxD, lagged, squares);
+    k += count;
   }
-  for (; k < range.end; ++k) accumulate(k, 0);
   for (std::size_t d = 0; d <= MaxD; ++d) {
     sums.lagged[d] += (lagged[d][0] + lagged[d][1]) + (lagged[d][2] + lagged[d][3]);
     sums.squares[d] += (squares[d][0] + squares[d][1]) + (squares[d][2] + squares[d][3]);

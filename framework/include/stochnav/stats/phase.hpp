@@ -3,6 +3,7 @@
 // that every Allan-family estimator works on.
 
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -26,18 +27,29 @@ std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s)
 
 /// phase_from_rate without a second array: on entry buffer[1 .. N] hold the N rate samples
 /// (buffer[0] is ignored); on return buffer[0 .. N] hold the N + 1 phase points, bitwise those
-/// phase_from_rate gives. An empty buffer is left alone.
+/// phase_from_rate gives. An empty buffer is left alone. A NaN or infinite rate (or a sum that
+/// overflows) makes every phase point but the first NaN.
 void phase_from_rate_in_place(std::span<double> buffer, double tau0_s);
 
 /// A record file read straight into its phase: one array of the data in memory.
-struct PhaseRecord {
-  Record record;              ///< everything but `values`, which is left empty
-  std::size_t samples = 0;    ///< samples in the file's column
-  std::vector<double> phase;  ///< N + 1 points for rate data (phase_from_rate), N for phase data
+class PhaseRecord {
+ public:
+  Record record;            ///< everything but `values`, which is left empty
+  std::size_t samples = 0;  ///< samples in the file's column
+  /// N + 1 points for rate data (as phase_from_rate), N for phase data. Valid while this
+  /// object lives (moving it keeps the data where it is).
+  std::span<const double> phase() const { return phase_; }
+
+ private:
+  friend PhaseRecord read_phase_record(const ReadOptions& options);
+  std::vector<double> vector_;
+  std::shared_ptr<double[]> array_;
+  std::span<const double> phase_;
 };
 
-/// Reads options.path (read_record, with room for the leading phase point) and integrates rate
-/// data in place. Throws as read_record.
+/// Reads options.path as read_record does (same checks, same messages) and integrates rate data
+/// in place (phase_from_rate_in_place). A single-channel raw float64 rate file is memory-mapped
+/// and integrated straight into the phase array, its pages released as they are consumed.
 PhaseRecord read_phase_record(const ReadOptions& options);
 
 }  // namespace stochnav
