@@ -61,7 +61,8 @@ struct SplitMean {
 constexpr std::size_t kChunk = std::size_t{1} << 14;
 constexpr std::size_t kChunksPerTask = 4;
 
-/// Compensated sum of one chunk: four independent lanes, so the additions pipeline.
+/// Compensated sum of one chunk (or of a whole record): four independent lanes, so the
+/// additions pipeline.
 CompensatedSum chunk_sum(const double* values, std::size_t count) {
   std::array<CompensatedSum, 4> lanes;
   std::size_t i = 0;
@@ -156,10 +157,22 @@ void phase_from_rate_in_place(std::span<double> buffer, double tau0_s) {
 }
 
 std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s) {
+  // The reference algorithm, one running sum from the start: bitwise what stochnav has always
+  // given (diagnose and fit results rest on it).
   std::vector<double> phase = huge_page_buffer(rate.size() + 1);
-  phase.push_back(0.0);
-  phase.insert(phase.end(), rate.begin(), rate.end());
-  phase_from_rate_in_place(phase, tau0_s);
+  phase.resize(rate.size() + 1);
+  phase[0] = 0.0;
+  if (rate.empty()) return phase;
+  const CompensatedSum total = chunk_sum(rate.data(), rate.size());
+  const double n = static_cast<double>(rate.size());
+  const double mean_high = total.value() / n;
+  // The remainder of the division, exact up to one rounding: sum - n * high.
+  const double mean_low = (std::fma(-n, mean_high, total.high()) + total.low()) / n;
+  CompensatedSum running;
+  for (std::size_t i = 0; i < rate.size(); ++i) {
+    running.add(rate[i] - mean_high);
+    phase[i + 1] = (running.value() - static_cast<double>(i + 1) * mean_low) * tau0_s;
+  }
   return phase;
 }
 

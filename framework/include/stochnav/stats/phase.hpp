@@ -20,15 +20,16 @@ namespace stochnav {
 /// cancellation against a large ramp. The mean and the running sum use compensated (Neumaier)
 /// summation: the error of x[i] stays a few ulps whatever N is.
 /// An empty `rate` gives {0}. tau0_s must be > 0 (not checked).
-/// The sums run in chunks of 65536 samples over the stats threads (parallel.hpp), each chunk
-/// started from the exact compensated sum before it: the result is the same for every thread
-/// count. Cost: two passes over the data.
+/// One running sum from the first sample to the last (serial). Cost: two passes over the data.
 std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s);
 
-/// phase_from_rate without a second array: on entry buffer[1 .. N] hold the N rate samples
-/// (buffer[0] is ignored); on return buffer[0 .. N] hold the N + 1 phase points, bitwise those
-/// phase_from_rate gives. An empty buffer is left alone. A NaN or infinite rate (or a sum that
-/// overflows) makes every phase point but the first NaN.
+/// phase_from_rate without a second array, and in parallel: on entry buffer[1 .. N] hold the N
+/// rate samples (buffer[0] is ignored); on return buffer[0 .. N] hold the N + 1 phase points.
+/// The running sum is cut into chunks of 16384 samples spread over the stats threads
+/// (parallel.hpp), each chunk started from the exact compensated sum of the ones before it, so
+/// the points agree with phase_from_rate to a few ulps (not bitwise: the rounding happens in a
+/// different order) and are bitwise the same for every thread count. An empty buffer is left
+/// alone. A NaN or infinite rate (or a sum that overflows) makes every point but the first NaN.
 void phase_from_rate_in_place(std::span<double> buffer, double tau0_s);
 
 /// A record file read straight into its phase: one array of the data in memory.
