@@ -157,16 +157,16 @@ PerDifference differences_ending_at(const double* x, std::size_t m, std::size_t 
 /// Accumulators of the centred lag products and squares: [order d][lane].
 using LaneSums = std::array<std::array<double, kLag1Lanes>, kMaxDifferences + 1>;
 
-/// One contiguous piece of decimated points: z[-(max_d + 1) .. count - 1] readable. Adds the
-/// centred products D_d(t - 1) D_d(t) and squares D_d(t)^2, t = 0 .. count - 1, d <= max_d.
-/// Every loop is contiguous, so it vectorises.
+/// One contiguous piece of decimated points: z[-(highest + 1) .. count - 1] readable. Adds the
+/// centred products D_d(t - 1) D_d(t) and squares D_d(t)^2, t = 0 .. count - 1, for the orders
+/// lowest <= d <= highest. Every loop is contiguous, so it vectorises.
 STOCHNAV_WIDE_VECTOR_CLONES
-void add_piece_sums(const double* z, std::size_t count, const PerDifference& mean, int max_d,
-                    LaneSums& lagged, LaneSums& squares) {
+void add_piece_sums(const double* z, std::size_t count, const PerDifference& mean, int lowest,
+                    int highest, LaneSums& lagged, LaneSums& squares) {
   constexpr std::size_t kPiece = 512;
   std::array<double, kPiece + 1> centred;
   const double* e = z - 1;  // e[t] = z(t - 1), t = 0 .. count
-  for (int order = 0; order <= max_d; ++order) {
+  for (int order = lowest; order <= highest; ++order) {
     const double mu = mean[static_cast<std::size_t>(order)];
     switch (order) {
       case 0:
@@ -205,16 +205,20 @@ void add_piece_sums(const double* z, std::size_t count, const PerDifference& mea
   }
 }
 
+/// The sums of the orders lowest <= d <= highest (<= MaxD) over one range. Each order has its
+/// own accumulators, so they come out the same whichever orders are computed together.
 template <int MaxD>
 Lag1Sums lag1_sums(const double* x, std::size_t m, DecimatedRange range,
-                   const PerDifference& mean) {
+                   const PerDifference& mean, int lowest, int highest) {
   Lag1Sums sums;
   std::size_t k = range.begin;
+  const auto low = static_cast<std::size_t>(lowest);
+  const auto high = static_cast<std::size_t>(highest);
   // The first MaxD + 1 points, where the higher differences are still incomplete.
   for (; k < range.end && k <= static_cast<std::size_t>(MaxD); ++k) {
     const PerDifference now = differences_ending_at<MaxD>(x, m, k);
     const PerDifference before = k > 0 ? differences_ending_at<MaxD>(x, m, k - 1) : PerDifference{};
-    for (std::size_t d = 0; d <= k && d <= MaxD; ++d) {
+    for (std::size_t d = low; d <= k && d <= high; ++d) {
       const double centred = now[d] - mean[d];
       if (k > d) sums.lagged[d] += (before[d] - mean[d]) * centred;
       sums.squares[d] += centred * centred;
@@ -231,10 +235,10 @@ Lag1Sums lag1_sums(const double* x, std::size_t m, DecimatedRange range,
     const std::size_t count = std::min(kPiece, range.end - k);
     const double* from = x + (k - kBack) * m;
     for (std::size_t t = 0; t < count + kBack; ++t) z[t] = from[t * m];
-    add_piece_sums(z.data() + kBack, count, mean, MaxD, lagged, squares);
+    add_piece_sums(z.data() + kBack, count, mean, lowest, highest, lagged, squares);
     k += count;
   }
-  for (std::size_t d = 0; d <= MaxD; ++d) {
+  for (std::size_t d = low; d <= high; ++d) {
     sums.lagged[d] += (lagged[d][0] + lagged[d][1]) + (lagged[d][2] + lagged[d][3]);
     sums.squares[d] += (squares[d][0] + squares[d][1]) + (squares[d][2] + squares[d][3]);
   }
@@ -280,31 +284,46 @@ std::vector<PerDifference> lag1_of_many(std::span<const double> phase,
     }
   }
 
-  // Pass 2: the centred lag products and squares.
-  std::vector<Lag1Sums> block_lag1(blocks * factors);
-  parallel_for(blocks, [&](std::size_t block) {
-    for (std::size_t j = 0; j < factors; ++j) {
-      const DecimatedRange range = range_in_block(j, block);
-      if (range.begin < range.end) {
-        block_lag1[block * factors + j] =
-            lag1_sums<MaxD>(phase.data(), m_values[j], range, means[j]);
-      }
-    }
-  });
+  // Pass 2: the centred lag products and squares, of orders 0 and 1 for every factor; then of
+  // the higher orders for the factors whose differences still look correlated (usually a few
+  // long taus with few points). noise_from_lag1 reads no order beyond the one it stops at.
   std::vector<PerDifference> r1(factors);
-  for (std::size_t j = 0; j < factors; ++j) {
-    Lag1Sums total;
-    for (std::size_t block = 0; block < blocks; ++block) {
-      const Lag1Sums& part = block_lag1[block * factors + j];
-      for (std::size_t d = 0; d <= MaxD; ++d) {
-        total.lagged[d] += part.lagged[d];
-        total.squares[d] += part.squares[d];
+  const auto add_orders = [&](int lowest, int highest, const std::vector<std::size_t>& which) {
+    const std::size_t count = which.size();
+    std::vector<Lag1Sums> block_lag1(blocks * count);
+    parallel_for(blocks, [&](std::size_t block) {
+      for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t j = which[i];
+        const DecimatedRange range = range_in_block(j, block);
+        if (range.begin < range.end) {
+          block_lag1[block * count + i] =
+              lag1_sums<MaxD>(phase.data(), m_values[j], range, means[j], lowest, highest);
+        }
+      }
+    });
+    for (std::size_t i = 0; i < count; ++i) {
+      Lag1Sums total;
+      for (std::size_t block = 0; block < blocks; ++block) {
+        const Lag1Sums& part = block_lag1[block * count + i];
+        for (auto d = static_cast<std::size_t>(lowest); d <= static_cast<std::size_t>(highest); ++d) {
+          total.lagged[d] += part.lagged[d];
+          total.squares[d] += part.squares[d];
+        }
+      }
+      for (auto d = static_cast<std::size_t>(lowest); d <= static_cast<std::size_t>(highest); ++d) {
+        r1[which[i]][d] = total.squares[d] > 0.0 ? total.lagged[d] / total.squares[d] : 0.0;
       }
     }
-    for (std::size_t d = 0; d <= MaxD; ++d) {
-      r1[j][d] = total.squares[d] > 0.0 ? total.lagged[d] / total.squares[d] : 0.0;
-    }
+  };
+  std::vector<std::size_t> all(factors);
+  for (std::size_t j = 0; j < factors; ++j) all[j] = j;
+  add_orders(0, 1, all);
+  std::vector<std::size_t> correlated;
+  const auto white = [](double r) { return r / (1.0 + r) < 0.25; };  // as noise_from_lag1
+  for (std::size_t j = 0; j < factors; ++j) {
+    if (!white(r1[j][0]) && !white(r1[j][1])) correlated.push_back(j);
   }
+  if (!correlated.empty()) add_orders(2, MaxD, correlated);
   return r1;
 }
 
