@@ -87,9 +87,8 @@ TEST(ParallelFor, NestedCallsRunInline) {
   ThreadCountGuard guard;
   set_stats_thread_count(4);
   std::vector<std::atomic<int>> runs(8 * 8);
-  parallel_for(8, [&](std::size_t i) {
-    parallel_for(8, [&](std::size_t j) { ++runs[i * 8 + j]; });
-  });
+  parallel_for(8,
+               [&](std::size_t i) { parallel_for(8, [&](std::size_t j) { ++runs[i * 8 + j]; }); });
   for (const auto& count : runs) EXPECT_EQ(count.load(), 1);
 }
 
@@ -124,8 +123,8 @@ TEST(ThreadCountIndependence, ComputeDeviationAndNoiseIds) {
   expect_thread_count_independent([&] {
     std::vector<double> flat;
     for (const auto& p : compute_deviation(Deviation::kOadev, phase, 0.01, m)) {
-      flat.insert(flat.end(), {p.deviation, p.edf, p.lower, p.upper,
-                               static_cast<double>(p.alpha), static_cast<double>(p.terms)});
+      flat.insert(flat.end(), {p.deviation, p.edf, p.lower, p.upper, static_cast<double>(p.alpha),
+                               static_cast<double>(p.terms)});
     }
     return flat;
   });

@@ -61,9 +61,9 @@ std::string as_csv(const std::vector<DeviationPoint>& points) {
 
 std::string as_table(const std::vector<DeviationPoint>& points, const Record& record,
                      std::size_t samples, Deviation kind) {
-  std::string out = fmt::format("# {} of {} [{}], {} samples at {} Hz, unit {}\n",
-                                deviation_name(kind), record.source, record.column, samples,
-                                record.rate_hz, unit_name(record.unit));
+  std::string out =
+      fmt::format("# {} of {} [{}], {} samples at {} Hz, unit {}\n", deviation_name(kind),
+                  record.source, record.column, samples, record.rate_hz, unit_name(record.unit));
   out += fmt::format("{:>9} {:>12} {:>9} {:>5} {:>10} {:>12} {:>12} {:>12}\n", "m", "tau_s", "n",
                      "alpha", "edf", "lower", "deviation", "upper");
   for (const auto& p : points) {

@@ -117,7 +117,9 @@ class DavarAccumulator::Impl {
     // filed into the rows in lane order (the same rows for every thread count).
     parallel_for(lanes_.size(), [&](std::size_t lane) { advance(lane, available_end); });
     for (std::size_t lane = 0; lane < lanes_.size(); ++lane) {
-      for (const WindowSum& done : lanes_[lane].finished) record_window_sum(lane, done.window, done.sum);
+      for (const WindowSum& done : lanes_[lane].finished) {
+        record_window_sum(lane, done.window, done.sum);
+      }
       lanes_[lane].finished.clear();
     }
     emit_completed_rows();

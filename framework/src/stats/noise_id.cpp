@@ -208,8 +208,8 @@ void add_piece_sums(const double* z, std::size_t count, const PerDifference& mea
 /// The sums of the orders lowest <= d <= highest (<= MaxD) over one range. Each order has its
 /// own accumulators, so they come out the same whichever orders are computed together.
 template <int MaxD>
-Lag1Sums lag1_sums(const double* x, std::size_t m, DecimatedRange range,
-                   const PerDifference& mean, int lowest, int highest) {
+Lag1Sums lag1_sums(const double* x, std::size_t m, DecimatedRange range, const PerDifference& mean,
+                   int lowest, int highest) {
   Lag1Sums sums;
   std::size_t k = range.begin;
   const auto low = static_cast<std::size_t>(lowest);
@@ -305,7 +305,8 @@ std::vector<PerDifference> lag1_of_many(std::span<const double> phase,
       Lag1Sums total;
       for (std::size_t block = 0; block < blocks; ++block) {
         const Lag1Sums& part = block_lag1[block * count + i];
-        for (auto d = static_cast<std::size_t>(lowest); d <= static_cast<std::size_t>(highest); ++d) {
+        for (auto d = static_cast<std::size_t>(lowest); d <= static_cast<std::size_t>(highest);
+             ++d) {
           total.lagged[d] += part.lagged[d];
           total.squares[d] += part.squares[d];
         }

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <new>
-#include <limits>
 #include <string_view>
 #include <utility>
 
@@ -127,7 +127,8 @@ bool integrate(const double* rate, double* x_after_first, std::size_t n, double 
     const std::size_t last = std::min(chunks, first + kChunksPerTask);
     if (last - first == kChunksPerTask && chunk_size(last - 1) == kChunk) {
       std::array<CompensatedSum, kChunksPerTask> running;
-      for (std::size_t lane = 0; lane < kChunksPerTask; ++lane) running[lane] = starts[first + lane];
+      for (std::size_t lane = 0; lane < kChunksPerTask; ++lane)
+        running[lane] = starts[first + lane];
       for (std::size_t i = 0; i < kChunk; ++i) {
         for (std::size_t lane = 0; lane < kChunksPerTask; ++lane) {
           step(running[lane], (first + lane) * kChunk + i);
@@ -233,7 +234,8 @@ PhaseRecord read_phase_record(const ReadOptions& options) {
   result.vector_ = std::move(result.record.values);
   result.record.values.clear();
   result.samples = result.vector_.size() - (options.kind == DataKind::kRate ? 1 : 0);
-  if (options.kind == DataKind::kRate) phase_from_rate_in_place(result.vector_, result.record.tau0());
+  if (options.kind == DataKind::kRate)
+    phase_from_rate_in_place(result.vector_, result.record.tau0());
   result.phase_ = result.vector_;
   return result;
 }
