@@ -108,8 +108,9 @@ NoiseId lag1_noise_id(std::span<const double> phase, std::size_t m, int max_diff
 // Every factor m walks the same phase record (z[k] = x[k m]); done one factor after another,
 // the small factors each stream the whole record from memory (m = 1 .. 8 touch every cache line).
 // Instead the record is cut into blocks of kLag1BlockPoints phase points, and each task takes one
-// block and serves every factor's decimated points inside it while the block is in cache: two
-// passes over memory in all (the means first, then the centred sums), spread over the threads.
+// block and serves every factor's decimated points inside it while the block is in cache: one
+// pass over memory for orders 0 and 1 (the mean of order 0 comes out of the same pass, by the
+// shifted-data correction), and one more for orders 2 and 3 of the few factors that need them.
 // The block partial sums are added in block order: the same result for every thread count.
 
 /// Phase points per block: 256 KB, an L2-sized piece of the record.
@@ -129,20 +130,11 @@ DecimatedRange decimated_range(std::size_t m, std::size_t points, std::size_t fi
   return {begin, std::max(begin, end)};
 }
 
-double sum_decimated(const double* x, std::size_t m, DecimatedRange range) {
-  std::array<double, kLag1Lanes> lanes{};
-  std::size_t k = range.begin;
-  for (; k + kLag1Lanes <= range.end; k += kLag1Lanes) {
-    for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) lanes[lane] += x[(k + lane) * m];
-  }
-  for (; k < range.end; ++k) lanes[0] += x[k * m];
-  return (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
-}
-
 /// Centred lag products and squares of the d-th differences, d <= MaxD, over one range.
 struct Lag1Sums {
   PerDifference lagged{};
   PerDifference squares{};
+  double values = 0.0;  ///< sum of the centred values of order 0 (the shifted-data correction)
 };
 
 /// The d-th backward differences of z ending at k, d <= MaxD (only d <= k are meaningful).
@@ -162,7 +154,8 @@ using LaneSums = std::array<std::array<double, kLag1Lanes>, kMaxDifferences + 1>
 /// lowest <= d <= highest. Every loop is contiguous, so it vectorises.
 STOCHNAV_WIDE_VECTOR_CLONES
 void add_piece_sums(const double* z, std::size_t count, const PerDifference& mean, int lowest,
-                    int highest, LaneSums& lagged, LaneSums& squares) {
+                    int highest, LaneSums& lagged, LaneSums& squares,
+                    std::array<double, kLag1Lanes>& values) {
   constexpr std::size_t kPiece = 512;
   std::array<double, kPiece + 1> centred;
   const double* e = z - 1;  // e[t] = z(t - 1), t = 0 .. count
@@ -200,6 +193,15 @@ void add_piece_sums(const double* z, std::size_t count, const PerDifference& mea
       lag[0] += centred[t] * centred[t + 1];
       square[0] += centred[t + 1] * centred[t + 1];
     }
+    if (order == 0) {
+      std::array<double, kLag1Lanes> sum = values;
+      t = 0;
+      for (; t + kLag1Lanes <= count; t += kLag1Lanes) {
+        for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) sum[lane] += centred[t + lane + 1];
+      }
+      for (; t < count; ++t) sum[0] += centred[t + 1];
+      values = sum;
+    }
     lagged[static_cast<std::size_t>(order)] = lag;
     squares[static_cast<std::size_t>(order)] = square;
   }
@@ -222,6 +224,7 @@ Lag1Sums lag1_sums(const double* x, std::size_t m, DecimatedRange range, const P
       const double centred = now[d] - mean[d];
       if (k > d) sums.lagged[d] += (before[d] - mean[d]) * centred;
       sums.squares[d] += centred * centred;
+      if (d == 0) sums.values += centred;
     }
   }
   // The rest in pieces: gather the piece's decimated points (and the MaxD + 1 before it) into a
@@ -231,17 +234,19 @@ Lag1Sums lag1_sums(const double* x, std::size_t m, DecimatedRange range, const P
   std::array<double, kPiece + kBack> z;
   LaneSums lagged{};
   LaneSums squares{};
+  std::array<double, kLag1Lanes> values{};
   while (k < range.end) {
     const std::size_t count = std::min(kPiece, range.end - k);
     const double* from = x + (k - kBack) * m;
     for (std::size_t t = 0; t < count + kBack; ++t) z[t] = from[t * m];
-    add_piece_sums(z.data() + kBack, count, mean, lowest, highest, lagged, squares);
+    add_piece_sums(z.data() + kBack, count, mean, lowest, highest, lagged, squares, values);
     k += count;
   }
   for (std::size_t d = low; d <= high; ++d) {
     sums.lagged[d] += (lagged[d][0] + lagged[d][1]) + (lagged[d][2] + lagged[d][3]);
     sums.squares[d] += (squares[d][0] + squares[d][1]) + (squares[d][2] + squares[d][3]);
   }
+  sums.values += (values[0] + values[1]) + (values[2] + values[3]);
   return sums;
 }
 
@@ -259,23 +264,16 @@ std::vector<PerDifference> lag1_of_many(std::span<const double> phase,
     return decimated_range(m_values[j], points[j], first, last);
   };
 
-  // Pass 1: the means of z.
-  std::vector<double> block_sums(blocks * factors, 0.0);
-  parallel_for(blocks, [&](std::size_t block) {
-    for (std::size_t j = 0; j < factors; ++j) {
-      block_sums[block * factors + j] =
-          sum_decimated(phase.data(), m_values[j], range_in_block(j, block));
-    }
-  });
+  // The means of the differences d >= 1 telescope to their end points. For d = 0 the sums are
+  // taken about K = z(0) and corrected afterwards (shifted data: z(0) lies within the spread of
+  // a phase record, so nothing cancels badly): one pass over the record fewer.
   std::vector<PerDifference> means(factors);
   for (std::size_t j = 0; j < factors; ++j) {
-    double total = 0.0;
-    for (std::size_t block = 0; block < blocks; ++block) total += block_sums[block * factors + j];
     const std::size_t m = m_values[j];
     const auto z = [&](std::size_t k) { return phase[k * m]; };
     const std::size_t last = points[j] - 1;
     PerDifference& mean = means[j];
-    mean[0] = total / static_cast<double>(points[j]);
+    mean[0] = z(0);  // the shift K
     mean[1] = (z(last) - z(0)) / static_cast<double>(points[j] - 1);
     mean[2] = ((z(last) - z(last - 1)) - (z(1) - z(0))) / static_cast<double>(points[j] - 2);
     if constexpr (MaxD >= 3) {
@@ -310,6 +308,19 @@ std::vector<PerDifference> lag1_of_many(std::span<const double> phase,
           total.lagged[d] += part.lagged[d];
           total.squares[d] += part.squares[d];
         }
+        total.values += part.values;
+      }
+      if (lowest == 0) {
+        // From sums about K to sums about the mean: u = z - K, S = sum u, c = S / n = mean - K,
+        // u(0) = 0. sum (u - c)^2 = Q - S c; sum over pairs (u_(k-1) - c)(u_k - c)
+        // = L - c (2 S - u(n-1)) + (n - 1) c^2.
+        const std::size_t j = which[i];
+        const double n = static_cast<double>(points[j]);
+        const double shift_sum = total.values;
+        const double c = shift_sum / n;
+        const double u_last = phase[(points[j] - 1) * m_values[j]] - means[j][0];
+        total.squares[0] -= shift_sum * c;
+        total.lagged[0] += -c * (2.0 * shift_sum - u_last) + (n - 1.0) * c * c;
       }
       for (auto d = static_cast<std::size_t>(lowest); d <= static_cast<std::size_t>(highest); ++d) {
         r1[which[i]][d] = total.squares[d] > 0.0 ? total.lagged[d] / total.squares[d] : 0.0;
