@@ -60,10 +60,10 @@ std::string as_csv(const std::vector<DeviationPoint>& points) {
 }
 
 std::string as_table(const std::vector<DeviationPoint>& points, const Record& record,
-                     Deviation kind) {
-  std::string out = fmt::format("# {} of {} [{}], {} samples at {} Hz, unit {}\n",
-                                deviation_name(kind), record.source, record.column,
-                                record.values.size(), record.rate_hz, unit_name(record.unit));
+                     std::size_t samples, Deviation kind) {
+  std::string out =
+      fmt::format("# {} of {} [{}], {} samples at {} Hz, unit {}\n", deviation_name(kind),
+                  record.source, record.column, samples, record.rate_hz, unit_name(record.unit));
   out += fmt::format("{:>9} {:>12} {:>9} {:>5} {:>10} {:>12} {:>12} {:>12}\n", "m", "tau_s", "n",
                      "alpha", "edf", "lower", "deviation", "upper");
   for (const auto& p : points) {
@@ -79,13 +79,13 @@ void run_allan(const AllanArguments& arguments) {
   const Deviation kind = parse_deviation(arguments.deviation);
   if (!arguments.plot.empty()) check_plot_request(arguments.plot);
 
-  const Record record = read_record(arguments.input.to_read_options());
-  const std::vector<double> phase = record.kind == DataKind::kPhase
-                                        ? record.values
-                                        : phase_from_rate(record.values, record.tau0());
+  // One array of the data: rate samples are integrated into phase where they were read.
+  const PhaseRecord input = read_phase_record(arguments.input.to_read_options());
+  const Record& record = input.record;
+  const std::span<const double> phase = input.phase();
   const auto m_values = averaging_factors(kind, spacing, phase.size(), record.tau0());
   if (m_values.empty()) {
-    throw InputError(record.source + ": " + std::to_string(record.values.size()) +
+    throw InputError(record.source + ": " + std::to_string(input.samples) +
                      " samples are too few for any " + std::string(deviation_name(kind)) +
                      " averaging time; use a longer record");
   }
@@ -95,7 +95,7 @@ void run_allan(const AllanArguments& arguments) {
   switch (format) {
     case OutputFormat::kJson: text = as_json(points); break;
     case OutputFormat::kCsv: text = as_csv(points); break;
-    case OutputFormat::kTable: text = as_table(points, record, kind); break;
+    case OutputFormat::kTable: text = as_table(points, record, input.samples, kind); break;
   }
   if (!arguments.plot.empty()) {
     plot_allan_deviation(points, record, kind, arguments.fit, arguments.plot);

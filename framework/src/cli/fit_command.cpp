@@ -16,6 +16,7 @@
 #include "stochnav/stats/davar.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/edf.hpp"
+#include "stochnav/stats/parallel.hpp"
 #include "stochnav/stats/phase.hpp"
 
 namespace stochnav::cli {
@@ -144,8 +145,11 @@ void run_fit(const FitArguments& arguments) {
                                  .phase_count = davar.terms.front() + 2 * davar.m.front(),
                                  .overlapping = true}));
   }
-  std::vector<FitResult> fits;
-  for (const auto& row : davar.adev) fits.push_back(fit_window(row, davar, edf, record, options));
+  // The windows' fits are independent: spread over the stats threads, each result in its slot.
+  std::vector<FitResult> fits(davar.adev.size());
+  parallel_for(fits.size(), [&](std::size_t k) {
+    fits[k] = fit_window(davar.adev[k], davar, edf, record, options);
+  });
   write_output(arguments.output, format_windowed_fit(davar.time_s, fits, record, davar_options,
                                                      format));
 }

@@ -55,6 +55,7 @@ std::size_t LineReader::fill() {
     if (got == 0 && std::ferror(file_)) throw InputError(path_ + ": read error");
   }
   end_ += got;
+  bytes_read_ += got;
   if (got == 0) eof_ = true;
   return got;
 }

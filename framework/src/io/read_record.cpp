@@ -7,13 +7,13 @@
 
 namespace stochnav {
 
-Record read_record(const ReadOptions& options) {
+Record read_record(const ReadOptions& options) { return read_record(options, 0); }
+
+Record read_record(const ReadOptions& options, std::size_t leading_zeros) {
   SampleReader reader(options);
   Record record;
-  // Large blocks: the vector grows geometrically, and raw binary files are read in one go.
-  constexpr std::size_t kBlock = 1 << 22;
-  while (reader.read_block(record.values, kBlock) > 0) {
-  }
+  record.values.assign(leading_zeros, 0.0);
+  reader.read_all(record.values);
   record.rate_hz = reader.rate_hz();
   record.start_time_s = reader.start_time_s();
   record.kind = options.kind;

@@ -12,7 +12,9 @@
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/huge_page_buffer.hpp"
 #include "stochnav/io/line_reader.hpp"
+#include "stochnav/io/mapped_file.hpp"
 #include "stochnav/io/text_cells.hpp"
+#include "stochnav/stats/parallel.hpp"
 
 namespace stochnav {
 namespace {
@@ -59,23 +61,41 @@ class TimeAxis {
   void add(double t_s, const std::string& where) {
     if (count_ == 0) {
       first_ = t_s;
-    } else {
-      const double step = t_s - last_;
-      if (!(step > 0.0)) {
-        throw InputError(where + ": time does not increase (t = " + format(t_s) + " s after " +
-                         format(last_) + " s); sort the record and remove duplicate epochs");
-      }
-      if (count_ == 1) {
-        nominal_step_ = step;
-      } else if (std::abs(step - nominal_step_) > 0.01 * nominal_step_) {
-        throw InputError(where + ": time is not uniformly sampled (step " + format(step) +
-                         " s where the record started with " + format(nominal_step_) +
-                         " s); fill the gap or split the record at this line");
-      }
+    } else if (count_ == 1 && t_s - last_ > 0.0) {
+      nominal_step_ = t_s - last_;
+    } else if (const std::string problem = step_problem(last_, t_s, nominal_step_);
+               !problem.empty()) {
+      throw InputError(where + problem);
     }
     last_ = t_s;
     ++count_;
   }
+
+  /// "" when t_s may follow `previous` in a record sampled every `nominal_step` s (0: not yet
+  /// known, only an increase is required); otherwise the message after "path:line".
+  static std::string step_problem(double previous, double t_s, double nominal_step) {
+    const double step = t_s - previous;
+    if (!(step > 0.0)) {
+      return ": time does not increase (t = " + format(t_s) + " s after " + format(previous) +
+             " s); sort the record and remove duplicate epochs";
+    }
+    if (nominal_step > 0.0 && std::abs(step - nominal_step) > 0.01 * nominal_step) {
+      return ": time is not uniformly sampled (step " + format(step) +
+             " s where the record started with " + format(nominal_step) +
+             " s); fill the gap or split the record at this line";
+    }
+    return {};
+  }
+
+  /// Takes `count` more samples checked elsewhere, the last at `last_s`.
+  void extend(std::size_t count, double last_s) {
+    if (count == 0) return;
+    count_ += count;
+    last_ = last_s;
+  }
+  std::size_t count() const { return count_; }
+  double last() const { return last_; }
+  double nominal_step() const { return nominal_step_; }
   bool has_rate() const { return count_ >= 2; }
   double rate_hz() const { return static_cast<double>(count_ - 1) / (last_ - first_); }
   double first() const { return first_; }
@@ -91,6 +111,40 @@ class TimeAxis {
   double last_ = 0.0;
   double nominal_step_ = 0.0;
 };
+
+/// One piece of a text file parsed in parallel (SampleReader::Impl::read_text_in_parallel).
+struct TextChunk {
+  std::size_t lines = 0;           // lines in the chunk
+  std::size_t rows = 0;            // data lines (not blank, not '#')
+  std::size_t first_line = 0;      // 1-based number of its first line
+  std::size_t first_row = 0;       // index of its first sample in the output
+  std::size_t parsed = 0;          // rows parsed before the first problem
+  std::size_t first_row_line = 0;  // line of its first parsed row
+  double first_t = 0.0;            // time of its first and last parsed rows (s)
+  double last_t = 0.0;
+  std::size_t problem_line = 0;    // line of the first problem, if any
+  std::string problem;             // its message after "path:line"; empty if none
+};
+
+bool is_data_line(std::string_view line) {
+  const std::string_view trimmed = trim(line);
+  return !trimmed.empty() && trimmed.front() != '#';
+}
+
+/// Calls visit(line) for each line (terminator and a trailing '\r' removed) until it returns
+/// false.
+template <typename Visit>
+void for_each_line(std::string_view text, const Visit& visit) {
+  std::size_t at = 0;
+  while (at < text.size()) {
+    std::size_t end = text.find('\n', at);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(at, end - at);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (!visit(line)) return;
+    at = end + 1;
+  }
+}
 
 class SampleReader::Impl {
  public:
@@ -114,6 +168,20 @@ class SampleReader::Impl {
     const std::size_t got = binary_ ? read_binary(out, max_samples) : read_text(out, max_samples);
     samples_ += got;
     if (got == 0 && !finished_) finish();
+    return got;
+  }
+
+  std::size_t read_all(std::vector<double>& out) {
+    std::size_t got = 0;
+    if (!binary_ && lines_->plain() && !text_exhausted_) {
+      // Two samples the usual way fix the time step the chunks check against.
+      got = read_text(out, 2);
+      samples_ += got;
+      const std::size_t rest = read_text_in_parallel(out);
+      samples_ += rest;
+      got += rest;
+    }
+    while (const std::size_t block = read_block(out, std::size_t{1} << 22)) got += block;
     return got;
   }
 
@@ -194,40 +262,56 @@ class SampleReader::Impl {
     column_name_ = names_[*value_column_];
   }
 
-  void parse_line(std::string_view line, std::vector<double>& out) {
-    split_cells(line, separator_, cells_);
-    if (cells_.size() != names_.size() && format_ == FileFormat::kCsv) {
-      throw InputError(where() + ": row has " + std::to_string(cells_.size()) + " cells, the header " +
-                       std::to_string(names_.size()) + "; fix the row or remove it");
-    }
-    if (*value_column_ >= cells_.size()) {
-      throw InputError(where() + ": row has no column " + std::to_string(*value_column_) +
-                       "; fix the row or choose another --column");
-    }
+  /// One data line: its value (and time, if the record has a time column) or, on failure,
+  /// the message after "path:line". No shared state: safe on several threads at once.
+  struct Row {
     double value = 0.0;
-    const std::string_view cell = cells_[*value_column_];
-    if (!parse_number(cell, value)) {
-      throw InputError(where() + ": '" + std::string(trim(cell)) + "' in column '" + column_name_ +
-                       "' is not a number; fix or remove the row");
+    double t_s = 0.0;
+    std::string problem;
+  };
+  void parse_row(std::string_view line, std::vector<std::string_view>& cells, Row& row) const {
+    split_cells(line, separator_, cells);
+    if (cells.size() != names_.size() && format_ == FileFormat::kCsv) {
+      row.problem = ": row has " + std::to_string(cells.size()) + " cells, the header " +
+                    std::to_string(names_.size()) + "; fix the row or remove it";
+      return;
     }
-    if (!std::isfinite(value)) {
-      throw InputError(where() + ": " + std::string(trim(cell)) + " in column '" + column_name_ +
-                       "'; NaN and infinity are not samples: fill the gap or split the record");
+    if (*value_column_ >= cells.size()) {
+      row.problem = ": row has no column " + std::to_string(*value_column_) +
+                    "; fix the row or choose another --column";
+      return;
+    }
+    const std::string_view cell = cells[*value_column_];
+    if (!parse_number(cell, row.value)) {
+      row.problem = ": '" + std::string(trim(cell)) + "' in column '" + column_name_ +
+                    "' is not a number; fix or remove the row";
+      return;
+    }
+    if (!std::isfinite(row.value)) {
+      row.problem = ": " + std::string(trim(cell)) + " in column '" + column_name_ +
+                    "'; NaN and infinity are not samples: fill the gap or split the record";
+      return;
     }
     if (time_column_) {
-      double t = 0.0;
-      const std::string_view t_cell = cells_[*time_column_];
-      if (!parse_number(t_cell, t) || !std::isfinite(t)) {
-        throw InputError(where() + ": time '" + std::string(trim(t_cell)) +
-                         "' is not a finite number; fix or remove the row");
+      const std::string_view t_cell = cells[*time_column_];
+      if (!parse_number(t_cell, row.t_s) || !std::isfinite(row.t_s)) {
+        row.problem = ": time '" + std::string(trim(t_cell)) +
+                      "' is not a finite number; fix or remove the row";
       }
-      time_.add(t, where());
     }
-    out.push_back(value);
+  }
+
+  void parse_line(std::string_view line, std::vector<double>& out) {
+    Row row;
+    parse_row(line, cells_, row);
+    if (!row.problem.empty()) throw InputError(where() + row.problem);
+    if (time_column_) time_.add(row.t_s, where());
+    out.push_back(row.value);
   }
 
   std::size_t read_text(std::vector<double>& out, std::size_t max_samples) {
     std::size_t got = 0;
+    if (text_exhausted_) return 0;
     if (pending_line_ && max_samples > 0) {
       parse_line(*pending_line_, out);
       pending_line_.reset();
@@ -239,6 +323,115 @@ class SampleReader::Impl {
       ++got;
     }
     return got;
+  }
+
+  /// The rest of a plain text file, in parallel chunks of the memory-mapped file. Returns the
+  /// samples appended; the line reader is not used again.
+  std::size_t read_text_in_parallel(std::vector<double>& out) {
+    const MappedFile file(options_.path);
+    const std::string_view text(reinterpret_cast<const char*>(file.bytes().data()),
+                                file.bytes().size());
+    const std::size_t begin = std::min(lines_->consumed_bytes(), text.size());
+    // Chunk boundaries: every kChunkBytes, moved on to the next line start. They depend on the
+    // file alone, so the split does not depend on the thread count.
+    constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+    std::vector<std::size_t> starts{begin};
+    for (std::size_t at = begin + kChunkBytes; at < text.size();) {
+      const std::size_t newline = text.find('\n', at);
+      if (newline == std::string_view::npos || newline + 1 >= text.size()) break;
+      starts.push_back(newline + 1);
+      at = newline + 1 + kChunkBytes;
+    }
+    starts.push_back(text.size());
+    const std::size_t chunks = starts.size() - 1;
+    const auto chunk_text = [&](std::size_t c) {
+      return text.substr(starts[c], starts[c + 1] - starts[c]);
+    };
+
+    // Pass 1: lines and data rows per chunk, hence each chunk's first line number and its
+    // place in `out`, which then grows once.
+    std::vector<TextChunk> info(chunks);
+    parallel_for(chunks, [&](std::size_t c) {
+      for_each_line(chunk_text(c), [&](std::string_view line) {
+        ++info[c].lines;
+        if (is_data_line(line)) ++info[c].rows;
+        return true;
+      });
+      // Each pass lets go of a chunk's pages once done: the mapped text never sits in memory
+      // whole beside the samples.
+      file.release(starts[c], starts[c + 1] - starts[c]);
+    });
+    const std::size_t before = out.size();
+    std::size_t rows = 0;
+    std::size_t line = lines_->line_number() + 1;
+    for (auto& chunk : info) {
+      chunk.first_line = line;
+      chunk.first_row = before + rows;
+      line += chunk.lines;
+      rows += chunk.rows;
+    }
+    if (out.capacity() < before + rows) {
+      std::vector<double> whole = huge_page_buffer(before + rows);
+      whole.assign(out.begin(), out.end());
+      out.swap(whole);
+    }
+    out.resize(before + rows);
+
+    // Pass 2: every chunk parsed straight into its place; a chunk stops at its first problem.
+    const double nominal_step = time_.nominal_step();
+    parallel_for(chunks, [&](std::size_t c) {
+      TextChunk& chunk = info[c];
+      std::vector<std::string_view> cells;
+      Row row;
+      std::size_t line_number = chunk.first_line;
+      double* into = out.data() + chunk.first_row;
+      for_each_line(chunk_text(c), [&](std::string_view text_line) {
+        const std::size_t this_line = line_number++;
+        if (!is_data_line(text_line)) return true;
+        parse_row(trim(text_line), cells, row);
+        if (row.problem.empty() && time_column_ && chunk.parsed > 0) {
+          row.problem = TimeAxis::step_problem(chunk.last_t, row.t_s, nominal_step);
+        }
+        if (!row.problem.empty()) {
+          chunk.problem_line = this_line;
+          chunk.problem = std::move(row.problem);
+          return false;
+        }
+        if (chunk.parsed == 0) {
+          chunk.first_t = row.t_s;
+          chunk.first_row_line = this_line;
+        }
+        chunk.last_t = row.t_s;
+        into[chunk.parsed++] = row.value;
+        return true;
+      });
+      file.release(starts[c], starts[c + 1] - starts[c]);
+    });
+
+    // The first problem in file order: inside a chunk, or between the last row of one chunk and
+    // the first of the next (checked here, in order, as the serial reader would).
+    bool have_previous = time_.count() > 0;
+    double previous_t = time_.last();
+    std::size_t appended = 0;
+    for (const TextChunk& chunk : info) {
+      if (time_column_ && have_previous && chunk.parsed > 0) {
+        const std::string problem = TimeAxis::step_problem(previous_t, chunk.first_t, nominal_step);
+        if (!problem.empty()) {
+          throw InputError(options_.path + ":" + std::to_string(chunk.first_row_line) + problem);
+        }
+      }
+      if (!chunk.problem.empty()) {
+        throw InputError(options_.path + ":" + std::to_string(chunk.problem_line) + chunk.problem);
+      }
+      if (chunk.parsed > 0) {
+        if (time_column_) time_.extend(chunk.parsed, chunk.last_t);
+        have_previous = true;
+        previous_t = chunk.last_t;
+      }
+      appended += chunk.parsed;
+    }
+    text_exhausted_ = true;
+    return appended;
   }
 
   void open_binary() {
@@ -357,10 +550,12 @@ class SampleReader::Impl {
   TimeAxis time_;
   std::size_t samples_ = 0;
   bool finished_ = false;
+  bool text_exhausted_ = false;  // read_text_in_parallel took the rest of the file
 };
 
 SampleReader::SampleReader(const ReadOptions& options) : impl_(std::make_unique<Impl>(options)) {}
 SampleReader::~SampleReader() = default;
+std::size_t SampleReader::read_all(std::vector<double>& out) { return impl_->read_all(out); }
 std::size_t SampleReader::read_block(std::vector<double>& out, std::size_t max_samples) {
   return impl_->read_block(out, max_samples);
 }

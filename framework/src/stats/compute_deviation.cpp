@@ -10,6 +10,15 @@ std::vector<DeviationPoint> compute_deviation(Deviation kind, std::span<const do
                                               double tau0_s, std::span<const std::size_t> m_values,
                                               double confidence) {
   const std::vector<double> values = deviation_values(kind, phase, tau0_s, m_values);
+  // The noise types Stable32 identifies (not those it carries over), all together.
+  std::vector<std::size_t> identified_m;
+  for (std::size_t k = 0; k < m_values.size(); ++k) {
+    if (k == 0 || !keeps_previous_noise_type(kind, m_values[k], phase.size())) {
+      identified_m.push_back(m_values[k]);
+    }
+  }
+  const std::vector<NoiseId> identified = identify_noises(kind, phase, identified_m);
+  std::size_t next_identified = 0;
   std::vector<DeviationPoint> points;
   points.reserve(m_values.size());
   for (std::size_t k = 0; k < m_values.size(); ++k) {
@@ -20,7 +29,7 @@ std::vector<DeviationPoint> compute_deviation(Deviation kind, std::span<const do
     point.terms = term_count(kind, point.m, phase.size());
     point.alpha = !points.empty() && keeps_previous_noise_type(kind, point.m, phase.size())
                       ? points.back().alpha
-                      : identify_noise(kind, phase, point.m).alpha;
+                      : identified[next_identified++].alpha;
     point.edf = greenhall_edf({.alpha = point.alpha,
                                .d = difference_order(kind),
                                .m = point.m,

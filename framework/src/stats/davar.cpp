@@ -1,12 +1,15 @@
 #include "stochnav/stats/davar.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <string>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/stats/deviation.hpp"
+#include "stochnav/stats/parallel.hpp"
+#include "vector_clones.hpp"
 
 namespace stochnav {
 namespace {
@@ -27,6 +30,33 @@ struct CompensatedSum {
   }
 };
 
+/// sum_{i < count} (x[i+2m] - 2 x[i+m] + x[i])^2 with eight independent accumulators, so the
+/// compiler keeps the additions in vector registers.
+STOCHNAV_WIDE_VECTOR_CLONES
+double sum_squared_second_differences(const double* x, std::size_t m, std::size_t count) {
+  const double* x1 = x + m;
+  const double* x2 = x1 + m;
+  std::array<double, 8> acc{};
+  std::size_t i = 0;
+  for (; i + 8 <= count; i += 8) {
+    for (std::size_t lane = 0; lane < 8; ++lane) {
+      const double d = x2[i + lane] - 2.0 * x1[i + lane] + x[i + lane];
+      acc[lane] += d * d;
+    }
+  }
+  for (; i < count; ++i) {
+    const double d = x2[i] - 2.0 * x1[i] + x[i];
+    acc[0] += d * d;
+  }
+  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+}
+
+/// A window's sum at one averaging factor, waiting to go into its row.
+struct WindowSum {
+  std::size_t window = 0;
+  double sum = 0.0;
+};
+
 std::size_t phase_points_per_window(std::size_t window, DataKind kind) {
   return kind == DataKind::kRate ? window + 1 : window;
 }
@@ -39,6 +69,7 @@ struct TauLane {
   std::deque<CompensatedSum> open_starts;  // prefixes at the starts of windows not yet ended
   std::size_t next_start_window = 0;       // window whose start prefix is recorded next
   std::size_t next_end_window = 0;         // window whose sum ends next
+  std::vector<WindowSum> finished;         // sums completed by the current push
 };
 
 }  // namespace
@@ -82,7 +113,15 @@ class DavarAccumulator::Impl {
     if (samples.empty()) return;
     append_phase(samples);
     const std::size_t available_end = phase_base_ + phase_.size();  // one past last phase index
-    for (std::size_t lane = 0; lane < lanes_.size(); ++lane) advance(lane, available_end);
+    // The lanes are independent: each runs on one thread, its window sums kept aside, then
+    // filed into the rows in lane order (the same rows for every thread count).
+    parallel_for(lanes_.size(), [&](std::size_t lane) { advance(lane, available_end); });
+    for (std::size_t lane = 0; lane < lanes_.size(); ++lane) {
+      for (const WindowSum& done : lanes_[lane].finished) {
+        record_window_sum(lane, done.window, done.sum);
+      }
+      lanes_[lane].finished.clear();
+    }
     emit_completed_rows();
     drop_old_phase();
   }
@@ -128,7 +167,7 @@ class DavarAccumulator::Impl {
       const std::size_t end_position = lane.next_end_window * options_.step + span_end;
       const std::size_t start_position = lane.next_start_window * options_.step;
       if (lane.next_term == end_position && !lane.open_starts.empty()) {
-        record_window_sum(lane_index, lane.next_end_window, lane.prefix - lane.open_starts.front());
+        lane.finished.push_back({lane.next_end_window, lane.prefix - lane.open_starts.front()});
         lane.open_starts.pop_front();
         ++lane.next_end_window;
         continue;
@@ -147,14 +186,7 @@ class DavarAccumulator::Impl {
   }
 
   double sum_of_squared_terms(std::size_t m, std::size_t begin, std::size_t end) const {
-    const double* x = phase_.data() + (begin - phase_base_);
-    const std::size_t count = end - begin;
-    double sum = 0.0;
-    for (std::size_t i = 0; i < count; ++i) {
-      const double d = x[i + 2 * m] - 2.0 * x[i + m] + x[i];
-      sum += d * d;
-    }
-    return sum;
+    return sum_squared_second_differences(phase_.data() + (begin - phase_base_), m, end - begin);
   }
 
   void record_window_sum(std::size_t lane_index, std::size_t window, double sum) {
@@ -236,7 +268,7 @@ DavarResult dynamic_allan_deviation(const Record& record, const DavarOptions& op
                                  result.time_s.push_back(row.time_s);
                                  result.adev.push_back(row.deviation);
                                });
-  constexpr std::size_t kBlock = 1 << 16;
+  constexpr std::size_t kBlock = 1 << 18;
   const std::span<const double> all(record.values);
   for (std::size_t begin = 0; begin < all.size(); begin += kBlock) {
     accumulator.push(all.subspan(begin, std::min(kBlock, all.size() - begin)));

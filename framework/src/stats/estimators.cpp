@@ -3,6 +3,9 @@
 // the phase around each block offset (0, m, 2m, ...) is then read from memory once and shared
 // by every factor that needs it (with octave factors, offset 2m of one is offset m of the next).
 // No allocation per factor; the memory traffic, not the arithmetic, bounds the speed.
+// The blocks are grouped into tasks fixed by the record length alone and spread over the stats
+// threads (parallel.hpp); per-task sums are added in task order, so every thread count gives
+// bitwise the same result.
 
 #include <algorithm>
 #include <array>
@@ -11,6 +14,8 @@
 #include <string>
 
 #include "stochnav/stats/deviation.hpp"
+#include "stochnav/stats/parallel.hpp"
+#include "vector_clones.hpp"
 
 namespace stochnav {
 namespace {
@@ -18,13 +23,9 @@ namespace {
 /// Start indices per block: a few dozen offsets of it stay within the L2 cache.
 constexpr std::size_t kBlockTerms = 2048;
 
-// The summation kernels are also compiled for AVX2 + FMA (x86-64-v3) and chosen at load time
-// when the CPU has them: twice the lanes of the SSE2 baseline.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define STOCHNAV_WIDE_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define STOCHNAV_WIDE_VECTOR_CLONES
-#endif
+/// Blocks per task of the pass along the record: 2^16 terms, about 150 tasks on 1e7 points.
+constexpr std::size_t kBlocksPerTask = 32;
+
 
 /// sum_{i = begin}^{end - 1} (x[i+2m] - 2 x[i+m] + x[i])^2. Eight independent accumulators
 /// let the compiler keep the adds in vector registers (no reassociation is needed).
@@ -105,18 +106,30 @@ std::vector<double> overlapping_sums(int d, std::span<const double> phase,
     (on_rows ? down_rows : along_record).push_back(k);
   }
 
-  std::vector<double> sums(m_values.size(), 0.0);
   std::size_t most_terms = 0;
   for (std::size_t k : along_record) most_terms = std::max(most_terms, terms_of(m_values[k]));
-  for (std::size_t begin = 0; begin < most_terms; begin += kBlockTerms) {
-    for (std::size_t k : along_record) {
-      const std::size_t terms = terms_of(m_values[k]);
-      if (begin >= terms) continue;
-      const std::size_t end = std::min(begin + kBlockTerms, terms);
-      sums[k] += sum_differences(d, phase.data(), m_values[k], begin, end);
+  constexpr std::size_t kTaskTerms = kBlockTerms * kBlocksPerTask;
+  const std::size_t record_tasks = (most_terms + kTaskTerms - 1) / kTaskTerms;
+  const std::size_t column_tasks = (row_length + kBlockTerms - 1) / kBlockTerms;
+  // partial[task * factors + k]: the sum of factor k over the terms of one task.
+  const std::size_t factors = m_values.size();
+  std::vector<double> partial((record_tasks + column_tasks) * factors, 0.0);
+
+  const auto along_record_task = [&](std::size_t task) {
+    double* out = partial.data() + task * factors;
+    const std::size_t task_end = std::min(most_terms, (task + 1) * kTaskTerms);
+    for (std::size_t begin = task * kTaskTerms; begin < task_end; begin += kBlockTerms) {
+      for (std::size_t k : along_record) {
+        const std::size_t terms = terms_of(m_values[k]);
+        if (begin >= terms) continue;
+        const std::size_t end = std::min(begin + kBlockTerms, terms);
+        out[k] += sum_differences(d, phase.data(), m_values[k], begin, end);
+      }
     }
-  }
-  for (std::size_t column = 0; column < row_length; column += kBlockTerms) {
+  };
+  const auto down_rows_task = [&](std::size_t task) {
+    double* out = partial.data() + (record_tasks + task) * factors;
+    const std::size_t column = task * kBlockTerms;
     const std::size_t width = std::min(kBlockTerms, row_length - column);
     for (std::size_t begin = column;; begin += row_length) {
       bool any_term = false;
@@ -125,10 +138,22 @@ std::vector<double> overlapping_sums(int d, std::span<const double> phase,
         if (begin >= terms) continue;
         any_term = true;
         const std::size_t end = std::min(begin + width, terms);
-        sums[k] += sum_differences(d, phase.data(), m_values[k], begin, end);
+        out[k] += sum_differences(d, phase.data(), m_values[k], begin, end);
       }
       if (!any_term) break;
     }
+  };
+  parallel_for(record_tasks + column_tasks, [&](std::size_t task) {
+    if (task < record_tasks) {
+      along_record_task(task);
+    } else {
+      down_rows_task(task - record_tasks);
+    }
+  });
+
+  std::vector<double> sums(factors, 0.0);
+  for (std::size_t task = 0; task < record_tasks + column_tasks; ++task) {
+    for (std::size_t k = 0; k < factors; ++k) sums[k] += partial[task * factors + k];
   }
   return sums;
 }
@@ -231,12 +256,14 @@ std::vector<double> deviation_values(Deviation kind, std::span<const double> pha
   if (kind == Deviation::kOadev || kind == Deviation::kOhdev) {
     sums = overlapping_sums(difference_order(kind), phase, m_values);
   } else {
-    sums.reserve(m_values.size());
-    for (std::size_t m : m_values) {
+    // One task per factor: each sum is computed whole by one thread, as before.
+    sums.assign(m_values.size(), 0.0);
+    parallel_for(m_values.size(), [&](std::size_t k) {
+      const std::size_t m = m_values[k];
       const std::size_t terms = term_count(kind, m, n);
-      sums.push_back(is_modified(kind) ? modified_sum(phase, m, terms)
-                                       : strided_sum(difference_order(kind), phase, m, terms));
-    }
+      sums[k] = is_modified(kind) ? modified_sum(phase, m, terms)
+                                  : strided_sum(difference_order(kind), phase, m, terms);
+    });
   }
   std::vector<double> deviations(m_values.size());
   for (std::size_t k = 0; k < m_values.size(); ++k) {

@@ -6,6 +6,10 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include "stochnav/stats/parallel.hpp"
+#include "vector_clones.hpp"
 
 namespace stochnav {
 namespace {
@@ -78,11 +82,8 @@ PerDifference lag1_of_decimated_differences(std::span<const double> phase, std::
   return r1;
 }
 
-NoiseId lag1_noise_id(std::span<const double> phase, std::size_t m, int max_differences) {
-  const std::size_t points = (phase.size() - 1) / m + 1;
-  const PerDifference r1 = max_differences >= 3
-                               ? lag1_of_decimated_differences<3>(phase, m, points)
-                               : lag1_of_decimated_differences<2>(phase, m, points);
+/// Differences the decimated phase until its lag-1 autocorrelation r1[d] says white, or d_max.
+NoiseId noise_from_lag1(const PerDifference& r1, int max_differences) {
   for (int d = 0;; ++d) {
     const double r = r1[static_cast<std::size_t>(d)];
     const double delta = r / (1.0 + r);
@@ -92,6 +93,250 @@ NoiseId lag1_noise_id(std::span<const double> phase, std::size_t m, int max_diff
       return {std::clamp(rounded, -2, 2), NoiseIdMethod::kLag1Autocorrelation, alpha};
     }
   }
+}
+
+NoiseId lag1_noise_id(std::span<const double> phase, std::size_t m, int max_differences) {
+  const std::size_t points = (phase.size() - 1) / m + 1;
+  const PerDifference r1 = max_differences >= 3
+                               ? lag1_of_decimated_differences<3>(phase, m, points)
+                               : lag1_of_decimated_differences<2>(phase, m, points);
+  return noise_from_lag1(r1, max_differences);
+}
+
+// ---- The lag-1 statistics of many factors at once (identify_noises) ----
+//
+// Every factor m walks the same phase record (z[k] = x[k m]); done one factor after another,
+// the small factors each stream the whole record from memory (m = 1 .. 8 touch every cache line).
+// Instead the record is cut into blocks of kLag1BlockPoints phase points, and each task takes one
+// block and serves every factor's decimated points inside it while the block is in cache: one
+// pass over memory for orders 0 and 1 (the mean of order 0 comes out of the same pass, by the
+// shifted-data correction), and one more for orders 2 and 3 of the few factors that need them.
+// The block partial sums are added in block order: the same result for every thread count.
+
+/// Phase points per block: 256 KB, an L2-sized piece of the record.
+constexpr std::size_t kLag1BlockPoints = std::size_t{1} << 15;
+/// Independent accumulators per sum: they break the serial chain of additions.
+constexpr std::size_t kLag1Lanes = 4;
+
+/// The decimated indices k of factor m whose phase index k m lies in [first, last): [begin, end).
+struct DecimatedRange {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+};
+DecimatedRange decimated_range(std::size_t m, std::size_t points, std::size_t first,
+                               std::size_t last) {
+  const std::size_t begin = (first + m - 1) / m;
+  const std::size_t end = std::min(points, (last + m - 1) / m);
+  return {begin, std::max(begin, end)};
+}
+
+/// Centred lag products and squares of the d-th differences, d <= MaxD, over one range.
+struct Lag1Sums {
+  PerDifference lagged{};
+  PerDifference squares{};
+  double values = 0.0;  ///< sum of the centred values of order 0 (the shifted-data correction)
+};
+
+/// The d-th backward differences of z ending at k, d <= MaxD (only d <= k are meaningful).
+template <int MaxD>
+PerDifference differences_ending_at(const double* x, std::size_t m, std::size_t k) {
+  const auto z = [&](std::size_t back) { return back <= k ? x[(k - back) * m] : 0.0; };
+  const double z0 = z(0), z1 = z(1), z2 = z(2);
+  const double z3 = MaxD >= 3 ? z(3) : 0.0;
+  return PerDifference{z0, z0 - z1, z0 - 2.0 * z1 + z2, z0 - 3.0 * z1 + 3.0 * z2 - z3};
+}
+
+/// Accumulators of the centred lag products and squares: [order d][lane].
+using LaneSums = std::array<std::array<double, kLag1Lanes>, kMaxDifferences + 1>;
+
+/// One contiguous piece of decimated points: z[-(highest + 1) .. count - 1] readable. Adds the
+/// centred products D_d(t - 1) D_d(t) and squares D_d(t)^2, t = 0 .. count - 1, for the orders
+/// lowest <= d <= highest. Every loop is contiguous, so it vectorises.
+STOCHNAV_WIDE_VECTOR_CLONES
+void add_piece_sums(const double* z, std::size_t count, const PerDifference& mean, int lowest,
+                    int highest, LaneSums& lagged, LaneSums& squares,
+                    std::array<double, kLag1Lanes>& values) {
+  constexpr std::size_t kPiece = 512;
+  std::array<double, kPiece + 1> centred;
+  const double* e = z - 1;  // e[t] = z(t - 1), t = 0 .. count
+  for (int order = lowest; order <= highest; ++order) {
+    const double mu = mean[static_cast<std::size_t>(order)];
+    switch (order) {
+      case 0:
+        for (std::size_t t = 0; t <= count; ++t) centred[t] = e[t] - mu;
+        break;
+      case 1:
+        for (std::size_t t = 0; t <= count; ++t) centred[t] = (e[t] - *(e + t - 1)) - mu;
+        break;
+      case 2:
+        for (std::size_t t = 0; t <= count; ++t) {
+          centred[t] = (e[t] - 2.0 * *(e + t - 1) + *(e + t - 2)) - mu;
+        }
+        break;
+      default:
+        for (std::size_t t = 0; t <= count; ++t) {
+          centred[t] = (e[t] - 3.0 * *(e + t - 1) + 3.0 * *(e + t - 2) - *(e + t - 3)) - mu;
+        }
+        break;
+    }
+    // Local copies: the inputs might alias the caller's arrays, which would pin them in memory.
+    std::array<double, kLag1Lanes> lag = lagged[static_cast<std::size_t>(order)];
+    std::array<double, kLag1Lanes> square = squares[static_cast<std::size_t>(order)];
+    std::size_t t = 0;
+    for (; t + kLag1Lanes <= count; t += kLag1Lanes) {
+      for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) {
+        lag[lane] += centred[t + lane] * centred[t + lane + 1];
+        square[lane] += centred[t + lane + 1] * centred[t + lane + 1];
+      }
+    }
+    for (; t < count; ++t) {
+      lag[0] += centred[t] * centred[t + 1];
+      square[0] += centred[t + 1] * centred[t + 1];
+    }
+    if (order == 0) {
+      std::array<double, kLag1Lanes> sum = values;
+      t = 0;
+      for (; t + kLag1Lanes <= count; t += kLag1Lanes) {
+        for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) sum[lane] += centred[t + lane + 1];
+      }
+      for (; t < count; ++t) sum[0] += centred[t + 1];
+      values = sum;
+    }
+    lagged[static_cast<std::size_t>(order)] = lag;
+    squares[static_cast<std::size_t>(order)] = square;
+  }
+}
+
+/// The sums of the orders lowest <= d <= highest (<= MaxD) over one range. Each order has its
+/// own accumulators, so they come out the same whichever orders are computed together.
+template <int MaxD>
+Lag1Sums lag1_sums(const double* x, std::size_t m, DecimatedRange range, const PerDifference& mean,
+                   int lowest, int highest) {
+  Lag1Sums sums;
+  std::size_t k = range.begin;
+  const auto low = static_cast<std::size_t>(lowest);
+  const auto high = static_cast<std::size_t>(highest);
+  // The first MaxD + 1 points, where the higher differences are still incomplete.
+  for (; k < range.end && k <= static_cast<std::size_t>(MaxD); ++k) {
+    const PerDifference now = differences_ending_at<MaxD>(x, m, k);
+    const PerDifference before = k > 0 ? differences_ending_at<MaxD>(x, m, k - 1) : PerDifference{};
+    for (std::size_t d = low; d <= k && d <= high; ++d) {
+      const double centred = now[d] - mean[d];
+      if (k > d) sums.lagged[d] += (before[d] - mean[d]) * centred;
+      sums.squares[d] += centred * centred;
+      if (d == 0) sums.values += centred;
+    }
+  }
+  // The rest in pieces: gather the piece's decimated points (and the MaxD + 1 before it) into a
+  // contiguous scratch array, then add_piece_sums.
+  constexpr std::size_t kPiece = 512;
+  constexpr std::size_t kBack = MaxD + 1;  // points before the piece its first term needs
+  std::array<double, kPiece + kBack> z;
+  LaneSums lagged{};
+  LaneSums squares{};
+  std::array<double, kLag1Lanes> values{};
+  while (k < range.end) {
+    const std::size_t count = std::min(kPiece, range.end - k);
+    const double* from = x + (k - kBack) * m;
+    for (std::size_t t = 0; t < count + kBack; ++t) z[t] = from[t * m];
+    add_piece_sums(z.data() + kBack, count, mean, lowest, highest, lagged, squares, values);
+    k += count;
+  }
+  for (std::size_t d = low; d <= high; ++d) {
+    sums.lagged[d] += (lagged[d][0] + lagged[d][1]) + (lagged[d][2] + lagged[d][3]);
+    sums.squares[d] += (squares[d][0] + squares[d][1]) + (squares[d][2] + squares[d][3]);
+  }
+  sums.values += (values[0] + values[1]) + (values[2] + values[3]);
+  return sums;
+}
+
+/// r1[d] of every factor, as lag1_of_decimated_differences<MaxD> gives (up to rounding).
+template <int MaxD>
+std::vector<PerDifference> lag1_of_many(std::span<const double> phase,
+                                        std::span<const std::size_t> m_values) {
+  const std::size_t factors = m_values.size();
+  const std::size_t blocks = (phase.size() + kLag1BlockPoints - 1) / kLag1BlockPoints;
+  std::vector<std::size_t> points(factors);
+  for (std::size_t j = 0; j < factors; ++j) points[j] = (phase.size() - 1) / m_values[j] + 1;
+  const auto range_in_block = [&](std::size_t j, std::size_t block) {
+    const std::size_t first = block * kLag1BlockPoints;
+    const std::size_t last = std::min(phase.size(), first + kLag1BlockPoints);
+    return decimated_range(m_values[j], points[j], first, last);
+  };
+
+  // The means of the differences d >= 1 telescope to their end points. For d = 0 the sums are
+  // taken about K = z(0) and corrected afterwards (shifted data: z(0) lies within the spread of
+  // a phase record, so nothing cancels badly): one pass over the record fewer.
+  std::vector<PerDifference> means(factors);
+  for (std::size_t j = 0; j < factors; ++j) {
+    const std::size_t m = m_values[j];
+    const auto z = [&](std::size_t k) { return phase[k * m]; };
+    const std::size_t last = points[j] - 1;
+    PerDifference& mean = means[j];
+    mean[0] = z(0);  // the shift K
+    mean[1] = (z(last) - z(0)) / static_cast<double>(points[j] - 1);
+    mean[2] = ((z(last) - z(last - 1)) - (z(1) - z(0))) / static_cast<double>(points[j] - 2);
+    if constexpr (MaxD >= 3) {
+      mean[3] = ((z(last) - 2.0 * z(last - 1) + z(last - 2)) - (z(2) - 2.0 * z(1) + z(0))) /
+                static_cast<double>(points[j] - 3);
+    }
+  }
+
+  // Pass 2: the centred lag products and squares, of orders 0 and 1 for every factor; then of
+  // the higher orders for the factors whose differences still look correlated (usually a few
+  // long taus with few points). noise_from_lag1 reads no order beyond the one it stops at.
+  std::vector<PerDifference> r1(factors);
+  const auto add_orders = [&](int lowest, int highest, const std::vector<std::size_t>& which) {
+    const std::size_t count = which.size();
+    std::vector<Lag1Sums> block_lag1(blocks * count);
+    parallel_for(blocks, [&](std::size_t block) {
+      for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t j = which[i];
+        const DecimatedRange range = range_in_block(j, block);
+        if (range.begin < range.end) {
+          block_lag1[block * count + i] =
+              lag1_sums<MaxD>(phase.data(), m_values[j], range, means[j], lowest, highest);
+        }
+      }
+    });
+    for (std::size_t i = 0; i < count; ++i) {
+      Lag1Sums total;
+      for (std::size_t block = 0; block < blocks; ++block) {
+        const Lag1Sums& part = block_lag1[block * count + i];
+        for (auto d = static_cast<std::size_t>(lowest); d <= static_cast<std::size_t>(highest);
+             ++d) {
+          total.lagged[d] += part.lagged[d];
+          total.squares[d] += part.squares[d];
+        }
+        total.values += part.values;
+      }
+      if (lowest == 0) {
+        // From sums about K to sums about the mean: u = z - K, S = sum u, c = S / n = mean - K,
+        // u(0) = 0. sum (u - c)^2 = Q - S c; sum over pairs (u_(k-1) - c)(u_k - c)
+        // = L - c (2 S - u(n-1)) + (n - 1) c^2.
+        const std::size_t j = which[i];
+        const double n = static_cast<double>(points[j]);
+        const double shift_sum = total.values;
+        const double c = shift_sum / n;
+        const double u_last = phase[(points[j] - 1) * m_values[j]] - means[j][0];
+        total.squares[0] -= shift_sum * c;
+        total.lagged[0] += -c * (2.0 * shift_sum - u_last) + (n - 1.0) * c * c;
+      }
+      for (auto d = static_cast<std::size_t>(lowest); d <= static_cast<std::size_t>(highest); ++d) {
+        r1[which[i]][d] = total.squares[d] > 0.0 ? total.lagged[d] / total.squares[d] : 0.0;
+      }
+    }
+  };
+  std::vector<std::size_t> all(factors);
+  for (std::size_t j = 0; j < factors; ++j) all[j] = j;
+  add_orders(0, 1, all);
+  std::vector<std::size_t> correlated;
+  const auto white = [](double r) { return r / (1.0 + r) < 0.25; };  // as noise_from_lag1
+  for (std::size_t j = 0; j < factors; ++j) {
+    if (!white(r1[j][0]) && !white(r1[j][1])) correlated.push_back(j);
+  }
+  if (!correlated.empty()) add_orders(2, MaxD, correlated);
+  return r1;
 }
 
 /// Allan-variance tau exponent mu -> noise alpha; mu = -2 is white or flicker PM (alpha 2, 1).
@@ -168,17 +413,58 @@ bool keeps_previous_noise_type(Deviation kind, std::size_t m, std::size_t phase_
   return averages < (is_overlapping(kind) ? 8u : 10u);
 }
 
-NoiseId identify_noise(Deviation kind, std::span<const double> phase, std::size_t m) {
+namespace {
+void require_identifiable(std::span<const double> phase, std::size_t m) {
   if (m == 0 || phase.size() < 2 * m + 2) {
     throw std::invalid_argument("identify_noise: m = " + std::to_string(m) + " needs more than " +
                                 std::to_string(2 * m + 1) + " phase points, got " +
                                 std::to_string(phase.size()));
   }
+}
+}  // namespace
+
+NoiseId identify_noise(Deviation kind, std::span<const double> phase, std::size_t m) {
+  require_identifiable(phase, m);
   const std::size_t decimated_points = (phase.size() - 1) / m + 1;
   if (decimated_points >= kMinLag1Points) {
     return lag1_noise_id(phase, m, difference_order(kind));
   }
   return b1_noise_id(kind, phase, m);
+}
+
+}  // namespace stochnav
+
+namespace stochnav {
+
+std::vector<NoiseId> identify_noises(Deviation kind, std::span<const double> phase,
+                                     std::span<const std::size_t> m_values) {
+  for (std::size_t m : m_values) require_identifiable(phase, m);
+  std::vector<NoiseId> ids(m_values.size());
+  std::vector<std::size_t> lag1_factors;  // the m of the lag-1 method
+  std::vector<std::size_t> lag1_slots;    // their places in m_values
+  std::vector<std::size_t> other_slots;
+  for (std::size_t j = 0; j < m_values.size(); ++j) {
+    if ((phase.size() - 1) / m_values[j] + 1 >= kMinLag1Points) {
+      lag1_factors.push_back(m_values[j]);
+      lag1_slots.push_back(j);
+    } else {
+      other_slots.push_back(j);
+    }
+  }
+  // The B1 identifications: few averages each, one task per factor.
+  parallel_for(other_slots.size(), [&](std::size_t i) {
+    ids[other_slots[i]] = identify_noise(kind, phase, m_values[other_slots[i]]);
+  });
+  if (!lag1_factors.empty()) {
+    const int max_differences = difference_order(kind);
+    const std::vector<PerDifference> r1 = max_differences >= 3
+                                              ? lag1_of_many<3>(phase, lag1_factors)
+                                              : lag1_of_many<2>(phase, lag1_factors);
+    for (std::size_t i = 0; i < lag1_factors.size(); ++i) {
+      ids[lag1_slots[i]] = noise_from_lag1(r1[i], max_differences);
+    }
+  }
+  return ids;
 }
 
 }  // namespace stochnav

@@ -1,9 +1,24 @@
 #include "stochnav/stats/phase.hpp"
 
+#include <algorithm>
 #include <array>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 #include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <new>
+#include <string_view>
+#include <utility>
 
 #include "stochnav/core/huge_page_buffer.hpp"
+#include "stochnav/io/mapped_file.hpp"
+#include "stochnav/io/sample_reader.hpp"
+#include "stochnav/stats/parallel.hpp"
 
 namespace stochnav {
 namespace {
@@ -13,6 +28,8 @@ namespace {
 /// the only serial dependency is one addition per term.
 class CompensatedSum {
  public:
+  CompensatedSum() = default;
+  CompensatedSum(double high, double low) : sum_(high), compensation_(low) {}
   void add(double value) {
     const double sum = sum_ + value;
     const double value_part = sum - sum_;
@@ -39,40 +56,188 @@ struct SplitMean {
   double low = 0.0;
 };
 
-SplitMean compensated_mean(std::span<const double> values) {
-  // Four independent lanes, so the additions pipeline.
+/// Rate samples per chunk of the two parallel passes, and chunks per task. Fixed, so the
+/// result does not depend on the thread count.
+constexpr std::size_t kChunk = std::size_t{1} << 14;
+constexpr std::size_t kChunksPerTask = 4;
+
+/// Compensated sum of one chunk (or of a whole record): four independent lanes, so the
+/// additions pipeline.
+CompensatedSum chunk_sum(const double* values, std::size_t count) {
   std::array<CompensatedSum, 4> lanes;
   std::size_t i = 0;
-  for (; i + 4 <= values.size(); i += 4) {
+  for (; i + 4 <= count; i += 4) {
     for (std::size_t lane = 0; lane < 4; ++lane) lanes[lane].add(values[i + lane]);
   }
-  for (; i < values.size(); ++i) lanes[0].add(values[i]);
+  for (; i < count; ++i) lanes[0].add(values[i]);
   lanes[0].merge(lanes[1]);
   lanes[2].merge(lanes[3]);
   lanes[0].merge(lanes[2]);
-  const double n = static_cast<double>(values.size());
-  const double high = lanes[0].value() / n;
+  return lanes[0];
+}
+
+/// x[i + 1] = (sum_{j <= i} (y[j] - mean)) tau0 for the n rates y; x may be y (in place).
+/// `done(first, count)` is called once rates [first, first + count) have been read for good.
+/// Returns false, having written nothing, when the rates do not sum to a finite number (a NaN
+/// or infinite sample, or overflow).
+bool integrate(const double* rate, double* x_after_first, std::size_t n, double tau0_s,
+               const std::function<void(std::size_t, std::size_t)>& done) {
+  const std::size_t chunks = (n + kChunk - 1) / kChunk;
+  const std::size_t tasks = (chunks + kChunksPerTask - 1) / kChunksPerTask;
+  const auto chunk_size = [&](std::size_t c) { return std::min(kChunk, n - c * kChunk); };
+
+  // Pass 1: the chunk sums, hence the mean and the running sum at every chunk start.
+  std::vector<CompensatedSum> sums(chunks);
+  parallel_for(tasks, [&](std::size_t task) {
+    const std::size_t last = std::min(chunks, (task + 1) * kChunksPerTask);
+    for (std::size_t c = task * kChunksPerTask; c < last; ++c) {
+      sums[c] = chunk_sum(rate + c * kChunk, chunk_size(c));
+    }
+  });
+  CompensatedSum total;
+  for (const auto& sum : sums) total.merge(sum);
+  if (!std::isfinite(total.value())) return false;
+  const double count = static_cast<double>(n);
+  SplitMean mean;
+  mean.high = total.value() / count;
   // The remainder of the division, exact up to one rounding: sum - n * high.
-  const double remainder = std::fma(-n, high, lanes[0].high()) + lanes[0].low();
-  return {high, remainder / n};
+  mean.low = (std::fma(-count, mean.high, total.high()) + total.low()) / count;
+  // starts[c] = sum of (y - mean.high) before chunk c: the prefix of the chunk sums minus
+  // c kChunk mean.high, that product split exactly into p + e (fma).
+  std::vector<CompensatedSum> starts(chunks);
+  CompensatedSum prefix;
+  for (std::size_t c = 0; c < chunks; ++c) {
+    const double before = static_cast<double>(c * kChunk);
+    const double product = before * mean.high;
+    CompensatedSum start = prefix;
+    start.add(-product);
+    start.add(-std::fma(before, mean.high, -product));
+    starts[c] = CompensatedSum(start.high(), start.low());
+    prefix.merge(sums[c]);
+  }
+
+  // Pass 2: the running sums, each chunk from its exact start. A task runs its chunks
+  // interleaved: independent chains of additions, the same operations as one by one.
+  const auto step = [&](CompensatedSum& running, std::size_t i) {
+    running.add(rate[i] - mean.high);
+    x_after_first[i] = (running.value() - static_cast<double>(i + 1) * mean.low) * tau0_s;
+  };
+  parallel_for(tasks, [&](std::size_t task) {
+    const std::size_t first = task * kChunksPerTask;
+    const std::size_t last = std::min(chunks, first + kChunksPerTask);
+    if (last - first == kChunksPerTask && chunk_size(last - 1) == kChunk) {
+      std::array<CompensatedSum, kChunksPerTask> running;
+      for (std::size_t lane = 0; lane < kChunksPerTask; ++lane)
+        running[lane] = starts[first + lane];
+      for (std::size_t i = 0; i < kChunk; ++i) {
+        for (std::size_t lane = 0; lane < kChunksPerTask; ++lane) {
+          step(running[lane], (first + lane) * kChunk + i);
+        }
+      }
+    } else {
+      for (std::size_t c = first; c < last; ++c) {
+        CompensatedSum running = starts[c];
+        for (std::size_t i = 0; i < chunk_size(c); ++i) step(running, c * kChunk + i);
+      }
+    }
+    if (done) done(first * kChunk, (last - first) * kChunk);
+  });
+  return true;
 }
 
 }  // namespace
 
+void phase_from_rate_in_place(std::span<double> buffer, double tau0_s) {
+  if (buffer.empty()) return;
+  buffer[0] = 0.0;
+  if (buffer.size() < 2) return;
+  if (!integrate(buffer.data() + 1, buffer.data() + 1, buffer.size() - 1, tau0_s, {})) {
+    // A NaN or infinite sample (or overflow): no phase point is meaningful.
+    std::fill(buffer.begin() + 1, buffer.end(), std::numeric_limits<double>::quiet_NaN());
+  }
+}
+
 std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s) {
+  // The reference algorithm, one running sum from the start: bitwise what stochnav has always
+  // given (diagnose and fit results rest on it).
   std::vector<double> phase = huge_page_buffer(rate.size() + 1);
   phase.resize(rate.size() + 1);
   phase[0] = 0.0;
   if (rate.empty()) return phase;
-
-  const SplitMean mean = compensated_mean(rate);
+  const CompensatedSum total = chunk_sum(rate.data(), rate.size());
+  const double n = static_cast<double>(rate.size());
+  const double mean_high = total.value() / n;
+  // The remainder of the division, exact up to one rounding: sum - n * high.
+  const double mean_low = (std::fma(-n, mean_high, total.high()) + total.low()) / n;
   CompensatedSum running;
-  double* out = phase.data() + 1;
   for (std::size_t i = 0; i < rate.size(); ++i) {
-    running.add(rate[i] - mean.high);
-    out[i] = (running.value() - static_cast<double>(i + 1) * mean.low) * tau0_s;
+    running.add(rate[i] - mean_high);
+    phase[i + 1] = (running.value() - static_cast<double>(i + 1) * mean_low) * tau0_s;
   }
   return phase;
+}
+
+namespace {
+
+bool is_single_float64_channel(const ReadOptions& options) {
+  const std::string_view path = options.path;
+  return options.binary_channels == 1 && path.size() > 4 && path.substr(path.size() - 4) == ".f64";
+}
+
+}  // namespace
+
+/// Uninitialised storage for n doubles in transparent huge pages where the kernel allows: the
+/// pages are first touched, and zeroed, by the threads that fill them.
+std::shared_ptr<double[]> huge_page_array(std::size_t n) {
+  constexpr std::size_t kHugePage = std::size_t{1} << 21;
+  const std::size_t bytes = (n * sizeof(double) + kHugePage - 1) / kHugePage * kHugePage;
+  void* memory = std::aligned_alloc(kHugePage, bytes);
+  if (memory == nullptr) throw std::bad_alloc();
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  ::madvise(memory, bytes, MADV_HUGEPAGE);  // a hint only
+#endif
+  return std::shared_ptr<double[]>(static_cast<double*>(memory), [](double* p) { std::free(p); });
+}
+
+PhaseRecord read_phase_record(const ReadOptions& options) {
+  PhaseRecord result;
+  if (options.kind == DataKind::kRate && is_single_float64_channel(options)) {
+    // Raw float64 rates: integrated straight from the mapped file into the phase array, the
+    // file's pages released as they are consumed: memory holds about one copy of the data.
+    const SampleReader reader(options);  // the checks and messages of read_record
+    const MappedFile file(options.path);
+    const std::size_t n = file.bytes().size() / sizeof(double);
+    const auto* rate = reinterpret_cast<const double*>(file.bytes().data());
+    if (n >= 2) {
+      std::shared_ptr<double[]> phase = huge_page_array(n + 1);
+      phase[0] = 0.0;
+      const bool finite = integrate(rate, phase.get() + 1, n, 1.0 / reader.rate_hz(),
+                                    [&file](std::size_t first, std::size_t count) {
+                                      file.release(first * sizeof(double), count * sizeof(double));
+                                    });
+      if (finite) {
+        result.record.rate_hz = reader.rate_hz();
+        result.record.start_time_s = reader.start_time_s();
+        result.record.kind = options.kind;
+        result.record.unit = options.unit;
+        result.record.source = options.path;
+        result.record.column = reader.column_name();
+        result.samples = n;
+        result.array_ = std::move(phase);
+        result.phase_ = std::span<const double>(result.array_.get(), n + 1);
+        return result;
+      }
+    }
+    // Too short, or not finite: read_record says what is wrong (or reproduces the old result).
+  }
+  result.record = read_record(options, options.kind == DataKind::kRate ? 1 : 0);
+  result.vector_ = std::move(result.record.values);
+  result.record.values.clear();
+  result.samples = result.vector_.size() - (options.kind == DataKind::kRate ? 1 : 0);
+  if (options.kind == DataKind::kRate)
+    phase_from_rate_in_place(result.vector_, result.record.tau0());
+  result.phase_ = result.vector_;
+  return result;
 }
 
 }  // namespace stochnav

@@ -20,6 +20,11 @@ class LineReader final {
   /// Sets `line` to the next line without its line terminator ("\n" or "\r\n"). The view is
   /// valid until the next call. Returns false at the end of the file.
   bool next(std::string_view& line);
+  /// Bytes of the file consumed by the lines returned so far (uncompressed files: the file offset
+  /// where the next line starts).
+  std::size_t consumed_bytes() const { return bytes_read_ - (end_ - begin_); }
+  /// True for a plain (not gzip-compressed) file.
+  bool plain() const { return file_ != nullptr; }
   /// 1-based number of the line last returned.
   std::size_t line_number() const { return line_number_; }
   const std::string& path() const { return path_; }
@@ -35,6 +40,7 @@ class LineReader final {
   std::size_t end_ = 0;    // one past the last valid byte
   bool eof_ = false;
   std::size_t line_number_ = 0;
+  std::size_t bytes_read_ = 0;  // bytes taken from the file (after decompression)
 };
 
 }  // namespace stochnav

@@ -55,6 +55,11 @@ struct ReadOptions {
 /// and ConfigError on inconsistent options (no rate and no time column, rate <= 0).
 Record read_record(const ReadOptions& options);
 
+/// read_record with `leading_zeros` zeros before the samples in values (values.size() ==
+/// leading_zeros + samples), allocated with them: room for an in-place transform of the record
+/// (stats/phase.hpp) without a second array. The checks (two samples at least) count samples.
+Record read_record(const ReadOptions& options, std::size_t leading_zeros);
+
 /// Column names of a CSV file's header (or "0", "1", ... for headerless text), for messages.
 std::vector<std::string> list_columns(const std::string& path);
 

@@ -22,6 +22,13 @@ class SampleReader final {
   /// Throws InputError at the first malformed line or sample.
   std::size_t read_block(std::vector<double>& out, std::size_t max_samples);
 
+  /// Appends every remaining sample to `out`, growing it once; returns how many. Plain
+  /// (uncompressed) CSV and text files are memory-mapped and parsed in parallel chunks of about
+  /// 1 MB (stats/parallel.hpp), each from a line start: the samples, the derived rate and the
+  /// error (the first malformed line of the file, with its line number) are those read_block
+  /// gives, whatever the thread count. Other files: read_block until the end.
+  std::size_t read_all(std::vector<double>& out);
+
   /// Sampling rate in Hz: from the options, or from the time column once two samples are read.
   /// Valid after the first read_block that returned samples. The final, most accurate value
   /// (from the whole time span) is available after the end of the file.

@@ -12,9 +12,11 @@
 //
 // Cost: every squared second difference is computed once per m and accumulated into a running
 // (compensated) prefix sum; a window's sum is the difference of two prefixes, so the cost is
-// O(record length x number of taus) whatever the window and step. Memory: the phase of the
-// last 2 * max(m) + block samples plus the windows still open, O(window), independent of the
-// record length.
+// O(record length x number of taus) whatever the window and step. The averaging factors of each
+// pushed block are spread over the stats threads (parallel.hpp), one factor per task: the
+// result is bitwise the same for every thread count (it depends on the push block sizes).
+// Memory: the phase of the last 2 * max(m) + block samples plus the windows still open,
+// O(window), independent of the record length.
 
 #include <cstddef>
 #include <functional>

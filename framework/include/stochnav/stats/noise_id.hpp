@@ -30,6 +30,7 @@
 
 #include <cstddef>
 #include <span>
+#include <vector>
 
 #include "stochnav/stats/deviation.hpp"
 
@@ -51,6 +52,13 @@ struct NoiseId {
 /// d_max and the B1 term count). Requires m >= 1 and N >= 2m + 2 (throws std::invalid_argument
 /// otherwise). Cost O(N / m), plus O(N) when the R(n) ratio is needed.
 NoiseId identify_noise(Deviation kind, std::span<const double> phase, std::size_t m);
+
+/// identify_noise at each of `m_values` (any order), computed together: the lag-1 statistics of
+/// all factors come from two passes over the record, block by block, spread over the stats
+/// threads (parallel.hpp). Equal to identify_noise up to the rounding of the sums (the same
+/// alpha but at an exact tie), and bitwise the same for every thread count. Same throws.
+std::vector<NoiseId> identify_noises(Deviation kind, std::span<const double> phase,
+                                     std::span<const std::size_t> m_values);
 
 /// True where Stable32 reuses the noise type of the previous averaging factor of a run instead
 /// of identifying one: the B1 method would rest on fewer than 8 (overlapping and modified

@@ -1,0 +1,119 @@
+#!/usr/bin/python3
+"""Whole-process benchmark of the Allan engine against the numpy anchor, measured in one run.
+
+Usage: bench/allan_bench_whole_process.py [BUILD_DIR] [--samples N] [--repeats R]
+  BUILD_DIR   the build tree (default build/release): framework/stochnav and
+              bench/allan_bench_read_sum are taken from it.
+Needs Debian's python3-numpy (run with /usr/bin/python3).
+
+One raw little-endian float64 file of N gyro-like rate samples at 100 Hz (default 1e7, 80 MB,
+in the page cache) is the input of every process. Each process is timed from start to exit (best
+of R runs, the programs interleaved) with its peak resident memory (wait4's ru_maxrss):
+
+  read+sum        bench/allan_bench_read_sum: map the file, add every sample, print the sum.
+                  The physical limit of anything that reads the data once.
+  numpy octave    ../shared/tools/numpy_oadev.py: load, cumsum, OADEV at octave taus (allantools'
+                  estimator); prints tau, adev, n as one JSON line.
+  numpy dense     bench/allan_bench_numpy_taus.py: the same estimator at stochnav's dense set.
+  stochnav allan  --taus octave|dense --format json --output F: OADEV plus n, edf, identified
+                  noise type alpha and the Stable32 68.3 % interval at every tau, written to F.
+  stochnav davar  --window 50000 --step 5000 --format json --output F: the OADEV of every window
+                  at the window's octave taus (1991 windows x 14 taus on 1e7 samples), to F.
+
+stochnav computes more than the anchor (noise identification, edf, bounds), so the ratios are
+conservative. Other processes on the machine make single runs noisy: take the best of several.
+"""
+import argparse, json, os, subprocess, sys, tempfile, time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def run(command, stdout_path):
+    """Wall seconds and peak RSS (bytes) of one process, which must exit with 0. The peak comes
+    from GNU time (%M), whose child is a fresh, small process (a child forked from this script
+    would inherit its resident pages into ru_maxrss)."""
+    rss_path = stdout_path + ".rss"
+    with open(stdout_path, "wb") as out:
+        start = time.perf_counter()
+        result = subprocess.run(["/usr/bin/time", "-f", "%M", "-o", rss_path] + command,
+                                stdout=out, stderr=subprocess.PIPE)
+        seconds = time.perf_counter() - start
+    if result.returncode != 0:
+        sys.exit(f"failed ({result.returncode}): {' '.join(command)}\n{result.stderr.decode()}")
+    with open(rss_path) as rss:
+        return seconds, int(rss.read().split()[-1]) * 1024
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("build", nargs="?", default=os.path.join(ROOT, "build", "release"))
+    parser.add_argument("--samples", type=int, default=10_000_000)
+    parser.add_argument("--repeats", type=int, default=5)
+    args = parser.parse_args()
+
+    stochnav = os.path.join(args.build, "framework", "stochnav")
+    read_sum = os.path.join(args.build, "bench", "allan_bench_read_sum")
+    anchor = os.path.join(ROOT, "..", "shared", "tools", "numpy_oadev.py")
+    anchor_taus = os.path.join(ROOT, "bench", "allan_bench_numpy_taus.py")
+    work = tempfile.mkdtemp(prefix="stochnav_allan_whole_")
+    data = os.path.join(work, "record.f64")
+    # Generated in a child, so this process stays small (numpy never loaded here).
+    subprocess.run(["/usr/bin/python3", "-c", f"""
+import numpy as np
+rng = np.random.default_rng(42)
+walk = np.cumsum(1e-4 * rng.standard_normal({args.samples}))
+(0.4 + walk + 0.04 * rng.standard_normal({args.samples})).astype("<f8").tofile({data!r})
+"""], check=True)
+    data_bytes = os.path.getsize(data)
+    out = lambda name: os.path.join(work, name)
+
+    programs = {
+        "read+sum": [read_sum, data],
+        "numpy octave": ["/usr/bin/python3", anchor, data, "100"],
+        "stochnav allan octave": [stochnav, "allan", "--input", data, "--rate", "100", "--taus",
+                                  "octave", "--format", "json", "--output", out("octave.json")],
+        "numpy dense": ["/usr/bin/python3", anchor_taus, data, "100", "dense"],
+        "stochnav allan dense": [stochnav, "allan", "--input", data, "--rate", "100", "--taus",
+                                 "dense", "--format", "json", "--output", out("dense.json")],
+        "stochnav davar": [stochnav, "davar", "--input", data, "--rate", "100", "--window",
+                           "50000", "--step", "5000", "--format", "json", "--output",
+                           out("davar.json")],
+    }
+    best = {name: (float("inf"), 0) for name in programs}
+    for _ in range(args.repeats):
+        for name, command in programs.items():
+            seconds, rss = run(command, out(name.replace(" ", "_") + ".stdout"))
+            best[name] = (min(best[name][0], seconds), max(best[name][1], rss))
+
+    def agreement(ours, theirs):
+        a = json.load(open(out(ours)))
+        b = json.loads(open(out(theirs)).read())
+        assert a["n"] == b["n"], "n differs"
+        assert all(abs(x / y - 1.0) < 1e-12 for x, y in zip(a["tau"], b["tau"])), "tau differs"
+        return max(abs(x / y - 1.0) for x, y in zip(a["adev"], b["adev"]))
+
+    limit = best["read+sum"][0]
+    print(f"{args.samples} samples, {data_bytes / 1e6:.0f} MB raw float64; best of {args.repeats} "
+          f"whole-process runs; {os.cpu_count()} CPUs\n")
+    print(f"{'program':24} {'seconds':>8} {'x read+sum':>10} {'peak MB':>8} {'/ data':>7}")
+    for name, (seconds, rss) in best.items():
+        print(f"{name:24} {seconds:8.3f} {seconds / limit:10.1f} {rss / 1e6:8.1f} "
+              f"{rss / data_bytes:7.2f}")
+    octave = best["numpy octave"][0] / best["stochnav allan octave"][0]
+    dense = best["numpy dense"][0] / best["stochnav allan dense"][0]
+    davar = best["stochnav davar"][0] / best["stochnav allan octave"][0]
+    memory = max(best[n][1] for n in programs if n.startswith("stochnav")) / data_bytes
+    print()
+    print(f"OADEV octave, speed-up over numpy:  {octave:6.1f}x  (goal >= 20x)  "
+          f"largest relative adev difference {agreement('octave.json', 'numpy_octave.stdout'):.1e}")
+    print(f"OADEV dense,  speed-up over numpy:  {dense:6.1f}x  (goal >= 20x)  "
+          f"largest relative adev difference {agreement('dense.json', 'numpy_dense.stdout'):.1e}")
+    print(f"DAVAR 50000/5000 over one OADEV run: {davar:6.2f}x  (goal <= 1.5x)")
+    print(f"peak memory of stochnav / data size: {memory:6.2f}   (goal <= 1.2)")
+    for path in os.listdir(work):
+        os.remove(os.path.join(work, path))
+    os.rmdir(work)
+
+
+if __name__ == "__main__":
+    main()
