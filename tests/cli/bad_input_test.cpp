@@ -70,6 +70,18 @@ INSTANTIATE_TEST_SUITE_P(
                      "longer than the record"},
         BadInputCase{"step_zero", good_csv(100), "davar --window 50 --step 0 --format json",
                      "--step"},
+        // Reported by the fuzzing pass of issue #17: these crashed (an empty set of averaging
+        // factors) or wrapped a negative count into a huge one.
+        BadInputCase{"window_too_short_for_any_tau", good_csv(4),
+                     "davar --window 4 --step 1 --format json", "--window 4"},
+        BadInputCase{"phase_window_too_short", good_csv(5),
+                     "davar --window 5 --step 1 --data phase --format json", "--window 5"},
+        BadInputCase{"negative_window", good_csv(100), "davar --window -1 --step 1 --format json",
+                     "--window"},
+        BadInputCase{"negative_step", good_csv(100), "davar --window 50 --step -5 --format json",
+                     "--step"},
+        BadInputCase{"fit_window_too_short", good_csv(100), "fit --window 4 --step 1 --format json",
+                     "--window 4"},
         BadInputCase{"unknown_unit", good_csv(100), "allan --unit furlong/fortnight --format json",
                      "unknown unit"},
         BadInputCase{"unknown_format", good_csv(100), "allan --format xml", "--format"},

@@ -59,4 +59,14 @@ void write_output(const std::string& path, const std::string& content) {
   write_file_atomically(path, content);
 }
 
+CLI::Validator positive_count() {
+  return CLI::Validator(
+      [](const std::string& text) -> std::string {
+        const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        if (digits && text.find_first_not_of('0') != std::string::npos) return {};
+        return "'" + text + "' is not a whole number >= 1";
+      },
+      "COUNT >= 1");
+}
+
 }  // namespace stochnav::cli

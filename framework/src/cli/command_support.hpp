@@ -26,6 +26,9 @@ void add_input_options(CLI::App& command, InputArguments& arguments);
 
 enum class OutputFormat { kTable, kCsv, kJson };
 void add_format_option(CLI::App& command, std::string& format);
+
+/// Accepts a whole number >= 1 as typed ("-5" is refused, not wrapped into a huge count).
+CLI::Validator positive_count();
 OutputFormat parse_format(const std::string& format);
 
 /// Writes `content` to `path` through a temporary file renamed into place, so a failure never

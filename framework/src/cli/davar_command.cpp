@@ -155,8 +155,12 @@ void add_davar_command(CLI::App& app) {
   auto arguments = std::make_shared<DavarArguments>();
   CLI::App* command = app.add_subcommand("davar", "Dynamic Allan deviation over sliding windows");
   add_input_options(*command, arguments->input);
-  command->add_option("--window", arguments->window, "Samples per window")->required();
-  command->add_option("--step", arguments->step, "Samples between window starts")->required();
+  command->add_option("--window", arguments->window, "Samples per window")
+      ->required()
+      ->check(positive_count());
+  command->add_option("--step", arguments->step, "Samples between window starts")
+      ->required()
+      ->check(positive_count());
   command->add_flag("--causal", arguments->causal,
                     "Time each window at its end (trailing windows) instead of its centre");
   add_format_option(*command, arguments->format);

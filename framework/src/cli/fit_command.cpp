@@ -167,8 +167,10 @@ void add_fit_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--criterion", arguments->criterion, "Term selection: bic or aic")
       ->capture_default_str();
-  command->add_option("--window", arguments->window, "Fit every DAVAR window of N samples");
-  command->add_option("--step", arguments->step, "Samples between DAVAR windows");
+  command->add_option("--window", arguments->window, "Fit every DAVAR window of N samples")
+      ->check(positive_count());
+  command->add_option("--step", arguments->step, "Samples between DAVAR windows")
+      ->check(positive_count());
   add_format_option(*command, arguments->format);
   command->add_option("--output", arguments->output, "Write to FILE instead of standard output");
   command->callback([arguments] { run_fit(*arguments); });

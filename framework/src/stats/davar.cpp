@@ -101,6 +101,15 @@ class DavarAccumulator::Impl {
         window_points_(phase_points_per_window(options.window, kind)),
         sink_(std::move(sink)) {
     if (options_.m_values.empty()) options_.m_values = default_davar_m_values(options.window, kind);
+    if (options_.m_values.empty()) {
+      // Too few points for a single Allan deviation: say how long a window must be.
+      std::size_t shortest = 4;
+      while (shortest < 64 && default_davar_m_values(shortest, kind).empty()) ++shortest;
+      throw ConfigError("--window " + std::to_string(options.window) +
+                        ": too short for an Allan deviation (no averaging factor fits in " +
+                        std::to_string(window_points_) + " phase points); use --window " +
+                        std::to_string(shortest) + " or more");
+    }
     std::sort(options_.m_values.begin(), options_.m_values.end());
     if (options_.m_values.front() == 0 || 2 * options_.m_values.back() >= window_points_) {
       throw ConfigError("DAVAR averaging factors must satisfy 1 <= m and 2m < " +
