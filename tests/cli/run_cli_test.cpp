@@ -306,7 +306,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadRunCase{"unknown_filter_key", R"({"filter": {"gate_lockout": 3}})", "",
                    "/filter/gate_lockout: unknown key"},
         BadRunCase{"open_loop", R"({"filter": {"feedback": "open_loop"}})", "",
-                   "/filter/feedback: \"open_loop\" is not implemented"}),
+                   "/filter/feedback: found \"open_loop\"; the navigator has one mode"}),
     [](const ::testing::TestParamInfo<BadRunCase>& case_info) { return case_info.param.name; });
 
 }  // namespace

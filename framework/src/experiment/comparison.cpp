@@ -303,12 +303,12 @@ void validate_variants(const ExperimentConfig& config) {
         model_context.params_pointer = noise->params_pointer();
         model_context.config_dir = config.config_dir;
         // The seeds' scenario folders do not exist yet: a model reading its scenario (the
-        // oracle) meets a missing folder, an InputError, not a params error.
+        // oracle) says its data are missing, which is not a params error.
         model_context.scenario_dir = run.data.scenario_dir.empty()
                                          ? config.config_dir / ".scenario-not-simulated-yet"
                                          : run.data.scenario_dir;
         // Params (and fit options) are checked by the plugin itself; an InputError here only
-        // says the data are not there yet (a fit to the probe record, the oracle's scenario).
+        // says the data are not there yet (a fit to the probe record).
         try {
           if (noise->fit) {
             registry.fit_noise_model(noise->type, probe_record(group), noise->params,
@@ -318,10 +318,7 @@ void validate_variants(const ExperimentConfig& config) {
                                         noise->type_pointer());
           }
         } catch (const InputError&) {
-        } catch (const ConfigError& error) {
-          // A complaint about the placeholder folder: the model needs the scenario itself.
-          const std::string placeholder = model_context.scenario_dir.string();
-          if (std::string(error.what()).find(placeholder) == std::string::npos) throw;
+        } catch (const MissingDataError&) {
         }
       }
       // Aids are built on empty aid data: their params are checked by the plugin before it asks
@@ -334,8 +331,7 @@ void validate_variants(const ExperimentConfig& config) {
         aid_context.params_pointer = aid.params_pointer();
         try {
           registry.create_aid(aid.type, aid.params, aid_context, aid.type_pointer());
-        } catch (const ConfigError& error) {
-          if (std::string(error.what()).find("has no column") == std::string::npos) throw;
+        } catch (const MissingDataError&) {
         }
       }
     } catch (const ConfigError& error) {

@@ -44,7 +44,7 @@ std::span<const double> AidData::column(std::string_view name, std::string_view 
   if (it == names_.end()) {
     std::string known;
     for (const auto& column_name : names_) known += (known.empty() ? "" : ", ") + column_name;
-    throw ConfigError(std::string(pointer) + ": aid data " +
+    throw MissingDataError(std::string(pointer) + ": aid data " +
                       (source_.empty() ? std::string("(none given)") : source_) +
                       " has no column '" + std::string(name) +
                       "'; columns: " + (known.empty() ? std::string("(none)") : known) +

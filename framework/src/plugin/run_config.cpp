@@ -349,14 +349,10 @@ FilterConfig parse_filter_section(const nlohmann::json& json, const std::string&
   }
   if (reader.has("feedback")) {
     const nlohmann::json& feedback = reader.raw("feedback");
-    if (feedback == "open_loop") {
-      throw ConfigError(reader.pointer("feedback") +
-                        ": \"open_loop\" is not implemented (the MWD navigator feeds every "
-                        "update back into the INS); use \"closed_loop\" or leave it out");
-    }
     if (feedback != "closed_loop") {
       throw ConfigError(reader.pointer("feedback") + ": found " + feedback.dump() +
-                        "; expected \"closed_loop\"");
+                        "; the navigator has one mode, \"closed_loop\" (every update fed back "
+                        "into the INS): give it or leave the key out");
     }
   }
   reader.finish();

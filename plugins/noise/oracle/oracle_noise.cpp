@@ -254,7 +254,7 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_oracle(
       reader.number_or("fold_below_s", 0.1, stochnav::plugin::Bound::kNonNegative, "s");
   reader.finish();
   if (!std::filesystem::exists(params.scenario_dir / "scenario.json")) {
-    throw stochnav::ConfigError(reader.pointer("scenario") + ": found \"" +
+    throw stochnav::MissingDataError(reader.pointer("scenario") + ": found \"" +
                                 params.scenario_dir.string() +
                                 "\" without scenario.json; expected the folder of a scenario made "
                                 "by `stochnav simulate scenario`");

@@ -22,4 +22,13 @@ class ConfigError : public std::runtime_error {
   ~ConfigError() override;
 };
 
+/// A configuration that is valid but names data that are not there (a column of the aid data,
+/// a simulated scenario's folder). Tools that check a config before its data exist (compare
+/// validates every variant before simulating) catch this one and nothing else.
+class MissingDataError : public ConfigError {
+ public:
+  using ConfigError::ConfigError;
+  ~MissingDataError() override;
+};
+
 }  // namespace stochnav

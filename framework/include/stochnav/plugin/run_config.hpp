@@ -103,8 +103,8 @@ struct NoiseSection {
 
 /// "filter": the navigator's options, parsed into FilterOptions (whose member initialisers are
 /// the defaults) from the config's units: initial_sigma attitude in deg, gyro bias in deg/h,
-/// scale factors in ppm. "feedback" accepts only "closed_loop" (open-loop estimation is not
-/// implemented; "open_loop" is rejected here, at validation).
+/// scale factors in ppm. "feedback" has one value, "closed_loop" (the navigator feeds every
+/// update back into the INS); any other value is rejected here, at validation.
 struct FilterConfig {
   FilterOptions options;
 };

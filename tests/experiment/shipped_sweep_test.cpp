@@ -1,0 +1,60 @@
+// The shipped sweep experiment (configs/experiments/paper_random_vibration_sweep.json) runs as
+// a user runs it, shortened: one seed, and the scenario's vibration and final static phases cut
+// to 60 s (the 600-s static phase that the fitted variants calibrate on is kept), so that every
+// level and every variant of the shipped file goes through `stochnav compare`.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+
+#include "run_cli.hpp"
+#include "temp_dir.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+TEST(ShippedSweep, PaperRandomVibrationSweepRunsEveryLevelAndVariant) {
+  const fs::path experiments = fs::path(STOCHNAV_SOURCE_DIR) / "configs" / "experiments";
+  nlohmann::json experiment = read_json(experiments / "paper_random_vibration_sweep.json");
+  const stochnav::testing::TempDir dir;
+  auto& data = experiment["data"];
+  data["scenario_config"] =
+      (experiments / data["scenario_config"].get<std::string>()).lexically_normal().string();
+  data["scenario_overrides"] = {{"/vibration_table/phases/2/duration_s", 60},
+                                {"/vibration_table/phases/4/duration_s", 60}};
+  const fs::path file = dir.path() / "sweep.json";
+  std::ofstream(file) << experiment.dump();
+
+  const auto run = stochnav::testing::run_cli(
+      "compare '" + file.string() + "' --out '" + dir.file("out") + "' --seeds 1", dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+
+  std::set<std::string> expected_variants;
+  for (const auto& variant : experiment["variants"]) expected_variants.insert(variant["name"]);
+  ASSERT_TRUE(expected_variants.contains("classic_variance"));
+  const nlohmann::json sweep = read_json(dir.path() / "out" / "sweep.json");
+  ASSERT_EQ(sweep["levels"].size(), experiment["sweep"]["values"].size());
+  for (std::size_t level = 0; level < sweep["levels"].size(); ++level) {
+    const auto& results = read_json(dir.path() / "out" / ("level_" + std::to_string(level)) /
+                                    "results.json");
+    std::set<std::string> variants;
+    for (const auto& variant : results["variants"]) {
+      variants.insert(variant["name"]);
+      EXPECT_TRUE(variant["metrics"]["lat_err_m"]["mean"].is_number())
+          << "level " << level << ", " << variant["name"];
+    }
+    EXPECT_EQ(variants, expected_variants) << "level " << level;
+  }
+}
+
+}  // namespace
