@@ -1,9 +1,8 @@
 // The drilling case end to end, as a user runs it: the short drilling scenario
 // (configs/scenarios/drilling_short.json: 2 h at 100 Hz, rotary drilling at 60 rpm through a
 // kickoff, connections with ZUPT, an axial-vibration episode of 3 g at 8 Hz) is simulated for
-// four seeds, then each
-// navigated by the SHIPPED run config configs/runs/drilling_build_hold.json pointed at it with
-// --data. Every run is checked against its own 3-sigma bounds, not only its errors.
+// four seeds, each navigated by the SHIPPED run config configs/runs/drilling_build_hold.json
+// pointed at it with --data. Every run is checked against its own 3-sigma bounds, not only its errors.
 //
 // Before the ROP and pipe-length aids compared interval means (plugin::InsInterval) and the
 // filter had scale-factor states, the vibration episode left a steady vertical-velocity error of
