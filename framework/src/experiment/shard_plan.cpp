@@ -53,7 +53,10 @@ ShardSpec parse_shard_spec(std::string_view text) {
   if (!index || !count) {
     throw ConfigError(source + ": expected K/N (shard K of N, K from 0 to N-1, e.g. 0/4) or auto");
   }
-  return checked({*index, *count}, source, "e.g. 0/4 to 3/4 for four shards");
+  const std::string fix = *count == 0 ? std::string("e.g. 0/4 to 3/4 for four shards")
+                                      : fmt::format("use 0/{} to {}/{}", *count, *count - 1,
+                                                    *count);
+  return checked({*index, *count}, source, fix);
 }
 
 EnvironmentLookup process_environment() {
