@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -36,7 +38,19 @@ std::string experiment_arguments(const CompareArguments& arguments) {
   return words;
 }
 
-void run_sharded(const CompareArguments& arguments, const ExperimentConfig& config) {
+// A Slurm task runs on the CPUs it was given, not on every core of a shared node (threads do
+// not change the results).
+void use_slurm_allocation(ExperimentConfig& config) {
+  const char* cpus = std::getenv("SLURM_CPUS_PER_TASK");
+  if (config.threads != 0 || cpus == nullptr) return;
+  unsigned count = 0;
+  const std::string_view text(cpus);
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), count);
+  if (error == std::errc() && end == text.data() + text.size() && count > 0) config.threads = count;
+}
+
+void run_sharded(const CompareArguments& arguments, ExperimentConfig config) {
+  use_slurm_allocation(config);
   ShardRunOptions options;
   options.shard = arguments.shard == "auto"
                       ? shard_spec_from_environment(process_environment(), arguments.shards)
@@ -46,7 +60,7 @@ void run_sharded(const CompareArguments& arguments, const ExperimentConfig& conf
   options.experiment_arguments = experiment_arguments(arguments);
   const ShardRunSummary summary = run_shard(config, arguments.out, options);
   std::cout << fmt::format(
-      "shard {}/{}: {} job(s) run, {} already complete (--resume), in {:.1f} s; wrote {}\n"
+      "shard {}/{}: {} job(s) run, {} already complete, in {:.1f} s; wrote {}\n"
       "when every shard is done: stochnav compare merge {}\n",
       options.shard.index, options.shard.count, summary.jobs - summary.skipped, summary.skipped,
       summary.wall_seconds, summary.folder.string(), shell_quoted(arguments.out));
