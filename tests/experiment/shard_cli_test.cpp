@@ -6,10 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
-#include <cstdlib>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -75,6 +78,27 @@ nlohmann::json tiny_experiment(int seeds) {
          {"noise",
           {{"gyro", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}},
            {"accel", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}}}}}}}};
+}
+
+// Runs `env ENVIRONMENT stochnav ARGUMENTS` (ENVIRONMENT: "-u NAME" and "NAME=VALUE" words):
+// exactly the engine variables a test wants, whatever the environment ctest runs in.
+CliResult run_cli_with_environment(const std::string& environment, const std::string& arguments,
+                                   const fs::path& scratch) {
+  const fs::path err_path = scratch / "stderr_env.txt";
+  const std::string command = "env -u SLURM_ARRAY_TASK_ID -u SLURM_ARRAY_TASK_COUNT "
+                              "-u SLURM_ARRAY_TASK_MIN -u SLURM_ARRAY_TASK_MAX "
+                              "-u JOB_COMPLETION_INDEX " +
+                              environment + " '" STOCHNAV_CLI_PATH "' " + arguments + " 2> '" +
+                              err_path.string() + "'";
+  CliResult result;
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> chunk{};
+  while (std::fgets(chunk.data(), chunk.size(), pipe) != nullptr) result.out += chunk.data();
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.err = read_text(err_path);
+  return result;
 }
 
 class ShardedCompare : public ::testing::Test {
@@ -194,24 +218,29 @@ TEST_F(ShardedCompare, SweepMergedEqualsUnshardedBitForBit) {
 
 TEST_F(ShardedCompare, AutoReadsSlurmArrayAndKubernetesIndex) {
   write_experiment(tiny_experiment(3));
-  // Through env, so that the variables are exactly these (ctest may run inside an array job).
-  const std::string cli = STOCHNAV_CLI_PATH;
-  const std::string base = "compare '" + experiment_.string() + "' --out '" + dir_.file("out") +
-                           "' --shard auto";
-  ASSERT_EQ(std::system(("env -u JOB_COMPLETION_INDEX SLURM_ARRAY_TASK_ID=0 "
-                         "SLURM_ARRAY_TASK_COUNT=2 SLURM_ARRAY_TASK_MIN=0 SLURM_ARRAY_TASK_MAX=1 '" +
-                         cli + "' " + base + " > /dev/null")
-                            .c_str()),
-            0);
+  const std::string arguments = "compare '" + experiment_.string() + "' --out '" +
+                                dir_.file("out") + "' --shard auto";
+  const CliResult slurm = run_cli_with_environment(
+      "SLURM_ARRAY_TASK_ID=0 SLURM_ARRAY_TASK_COUNT=2 SLURM_ARRAY_TASK_MIN=0 "
+      "SLURM_ARRAY_TASK_MAX=1",
+      arguments, dir_.path());
+  ASSERT_EQ(slurm.exit_code, 0) << slurm.err;
   EXPECT_TRUE(fs::exists(path("out/shards/shard-0-of-2/shard.json")));
-  ASSERT_EQ(std::system(("env -u SLURM_ARRAY_TASK_ID JOB_COMPLETION_INDEX=1 '" + cli + "' " +
-                         base + " --shards 2 > /dev/null")
-                            .c_str()),
-            0);
+  const CliResult kubernetes =
+      run_cli_with_environment("JOB_COMPLETION_INDEX=1", arguments + " --shards 2", dir_.path());
+  ASSERT_EQ(kubernetes.exit_code, 0) << kubernetes.err;
   EXPECT_TRUE(fs::exists(path("out/shards/shard-1-of-2/shard.json")));
   const CliResult merged = merge("out");
   EXPECT_EQ(merged.exit_code, 0) << merged.err;
   EXPECT_EQ(read_json(path("out/results.json"))["seeds"].size(), 3u);
+  // Outside any array task, and a Kubernetes index without the count: one line, exit 2.
+  expect_error_line(run_cli_with_environment("", arguments, dir_.path()),
+                    "neither SLURM_ARRAY_TASK_ID");
+  expect_error_line(run_cli_with_environment("JOB_COMPLETION_INDEX=1", arguments, dir_.path()),
+                    "add --shards N");
+  expect_error_line(run_cli_with_environment("JOB_COMPLETION_INDEX=1", arguments + " --shards 0",
+                                             dir_.path()),
+                    "--shards");
 }
 
 TEST_F(ShardedCompare, MissingShardIsNamedWithItsRerunCommandAndNothingIsWritten) {
@@ -280,10 +309,6 @@ TEST_F(ShardedCompare, BadShardOptionsAreOneLineAndExitCode2) {
   expect_error_line(compare("out", "--shard 3/3"), "--shard 3/3: shard index 3 is not below");
   expect_error_line(compare("out", "--shard 0/0"), "--shard 0/0: the shard count N is 0");
   expect_error_line(compare("out", "--shard two/3"), "--shard two/3: expected K/N");
-  expect_error_line(
-      stochnav("compare '" + experiment_.string() + "' --out '" + dir_.file("out") +
-               "' --shard auto"),
-      "--shard auto");
   expect_error_line(compare("out", "--shard 0/2 --shards 2"), "--shards: only with --shard auto");
   expect_error_line(compare("out", "--resume"), "--resume: only with --shard");
   expect_error_line(stochnav("compare merge '" + dir_.file("nowhere") + "'"), "no shards");

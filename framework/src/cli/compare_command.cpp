@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 
+#include "command_support.hpp"
 #include "commands.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/experiment/comparison.hpp"
@@ -114,7 +115,8 @@ void add_compare_command(CLI::App& app) {
                       "from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX; then compare merge DIR");
   command->add_option("--shards", arguments->shards,
                       "With --shard auto: the shard count N (needed for JOB_COMPLETION_INDEX; "
-                      "with Slurm, the array is then numbered 0..N-1)");
+                      "with Slurm, the array is then numbered 0..N-1)")
+      ->check(positive_count());
   command->add_flag("--resume", arguments->resume,
                     "With --shard: keep the shard's jobs already complete, run only the rest");
   add_merge_command(*command);

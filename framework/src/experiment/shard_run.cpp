@@ -6,6 +6,7 @@
 #include <chrono>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <thread>
 
 #include "stochnav/core/errors.hpp"
@@ -174,7 +175,8 @@ ShardRunSummary run_shard(const ExperimentConfig& config, const fs::path& out_di
       // (the oracle's scenario folder) are the same.
       const fs::path comparison_dir =
           config.sweep ? out_dir / fmt::format("level_{}", level) : out_dir;
-      const ScenarioFolderHold hold(comparison_dir, options.shard);
+      std::optional<ScenarioFolderHold> hold;
+      if (config.scenario_config) hold.emplace(comparison_dir, options.shard);
       for (std::size_t first = 0; first < jobs.size(); first += batch_size) {
         const std::vector<ComparisonJob> batch(
             jobs.begin() + static_cast<std::ptrdiff_t>(first),
