@@ -147,7 +147,7 @@ mv "$work/out" "$work/reference"
 
 log "array job of 2 shards (sbatch --wait)"
 cd "$work" || fail "cannot enter $work"
-array=$(STOCHNAV="$stochnav" timeout 180 sbatch --wait --parsable --array=0-1 --cpus-per-task=1 \
+array=$(STOCHNAV="$stochnav" timeout 120 sbatch --wait --parsable --array=0-1 --cpus-per-task=1 \
   --output="$work/logs/shard-%A_%a.out" "$examples/compare_array.sbatch" "$experiment" \
   "$work/out" 2)
 array_status=$?
@@ -157,7 +157,7 @@ array=${array%%;*}
   fail "the array tasks did not write shard-0-of-2 and shard-1-of-2"
 
 log "merge job after array job $array (--dependency=afterok)"
-STOCHNAV="$stochnav" timeout 120 sbatch --wait --parsable --dependency="afterok:$array" \
+STOCHNAV="$stochnav" timeout 60 sbatch --wait --parsable --dependency="afterok:$array" \
   --kill-on-invalid-dep=yes --output="$work/logs/merge-%j.out" \
   "$examples/compare_merge.sbatch" "$work/out" > /dev/null ||
   fail "the merge job failed or timed out"

@@ -7,10 +7,10 @@
 //                              of a failed shard, "jobs": [job ids of the shard],
 //                              "experiment": ShardManifest (below)}
 //   shard-K-of-N/job_<id>.json   one per finished job: {"format", "experiment_hash", "job",
-//                              "level", "seed", "wall_seconds" (the job's share of its batch's
-//                              wall time), "variants": [{"name", "noise_model", "run":
-//                              experiment/run_result_json.hpp}]} (the first seed's runs keep
-//                              their error series, for the plots)
+//                              "level", "seed_index", "seed", "wall_seconds" (the job's share
+//                              of its batch's wall time), "variants": [{"name", "noise_model",
+//                              "run": experiment/run_result_json.hpp}]} (the first seed's runs
+//                              keep their error series, for the plots)
 //
 // Every file is written atomically (io/atomic_file.hpp): a job file is whole or absent.
 
