@@ -105,8 +105,9 @@ TEST(RunResultJson, DamagedJsonIsAnInputErrorNamingTheFile) {
     run_result_from_json(json, "shards/shard-0-of-2/job_4.json");
     FAIL() << "no error";
   } catch (const InputError& error) {
-    EXPECT_NE(std::string(error.what()).find("shards/shard-0-of-2/job_4.json: missing "
-                                             "\"statistics\""),
+    EXPECT_NE(std::string(error.what())
+                  .find("shards/shard-0-of-2/job_4.json: missing "
+                        "\"statistics\""),
               std::string::npos)
         << error.what();
   }

@@ -5,7 +5,6 @@
 // skips complete jobs; every bad input is one line and exit code 2.
 
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -52,32 +51,31 @@ nlohmann::json tiny_experiment(int seeds) {
   for (int i = 0; i < 5; ++i) {
     overrides["/vibration_table/phases/" + std::to_string(i) + "/duration_s"] = durations[i];
   }
-  return {
-      {"data",
-       {{"scenario_config",
-         std::string(STOCHNAV_SOURCE_DIR) + "/configs/scenarios/paper_random_vibration.json"},
-        {"seeds", seeds},
-        {"scenario_overrides", overrides}}},
-      {"baseline", "classic"},
-      {"aids",
-       {{{"plugin", "static_position"},
-         {"params",
-          {{"sigma_position_m", 0.01}, {"sigma_velocity_mps", 0.3}, {"nis_gate", false}}}}}},
-      {"variants",
-       {{{"name", "classic"},
-         {"noise",
-          {{"gyro", {{"plugin", "white"}, {"params", {{"N", 3.33e-5}}}}}, {"accel", accel}}}},
-        {{"name", "white_tuned"},
-         {"noise",
-          {{"gyro",
-            {{"plugin", "white"},
-             {"params", {{"rate_random_walk", true}}},
-             {"fit", {{"end_s", 60}}}}},
-           {"accel", accel}}}},
-        {{"name", "oracle"},
-         {"noise",
-          {{"gyro", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}},
-           {"accel", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}}}}}}}};
+  return {{"data",
+           {{"scenario_config",
+             std::string(STOCHNAV_SOURCE_DIR) + "/configs/scenarios/paper_random_vibration.json"},
+            {"seeds", seeds},
+            {"scenario_overrides", overrides}}},
+          {"baseline", "classic"},
+          {"aids",
+           {{{"plugin", "static_position"},
+             {"params",
+              {{"sigma_position_m", 0.01}, {"sigma_velocity_mps", 0.3}, {"nis_gate", false}}}}}},
+          {"variants",
+           {{{"name", "classic"},
+             {"noise",
+              {{"gyro", {{"plugin", "white"}, {"params", {{"N", 3.33e-5}}}}}, {"accel", accel}}}},
+            {{"name", "white_tuned"},
+             {"noise",
+              {{"gyro",
+                {{"plugin", "white"},
+                 {"params", {{"rate_random_walk", true}}},
+                 {"fit", {{"end_s", 60}}}}},
+               {"accel", accel}}}},
+            {{"name", "oracle"},
+             {"noise",
+              {{"gyro", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}},
+               {"accel", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}}}}}}}};
 }
 
 // Runs `env ENVIRONMENT stochnav ARGUMENTS` (ENVIRONMENT: "-u NAME" and "NAME=VALUE" words):
@@ -85,11 +83,11 @@ nlohmann::json tiny_experiment(int seeds) {
 CliResult run_cli_with_environment(const std::string& environment, const std::string& arguments,
                                    const fs::path& scratch) {
   const fs::path err_path = scratch / "stderr_env.txt";
-  const std::string command = "env -u SLURM_ARRAY_TASK_ID -u SLURM_ARRAY_TASK_COUNT "
-                              "-u SLURM_ARRAY_TASK_MIN -u SLURM_ARRAY_TASK_MAX "
-                              "-u JOB_COMPLETION_INDEX " +
-                              environment + " '" STOCHNAV_CLI_PATH "' " + arguments + " 2> '" +
-                              err_path.string() + "'";
+  const std::string command =
+      "env -u SLURM_ARRAY_TASK_ID -u SLURM_ARRAY_TASK_COUNT "
+      "-u SLURM_ARRAY_TASK_MIN -u SLURM_ARRAY_TASK_MAX "
+      "-u JOB_COMPLETION_INDEX " +
+      environment + " '" STOCHNAV_CLI_PATH "' " + arguments + " 2> '" + err_path.string() + "'";
   CliResult result;
   std::FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) return result;
@@ -126,8 +124,8 @@ class ShardedCompare : public ::testing::Test {
   }
   void run_shards(const std::string& out, std::size_t count) {
     for (std::size_t k = 0; k < count; ++k) {
-      const CliResult run = compare(out, "--shard " + std::to_string(k) + "/" +
-                                             std::to_string(count));
+      const CliResult run =
+          compare(out, "--shard " + std::to_string(k) + "/" + std::to_string(count));
       ASSERT_EQ(run.exit_code, 0) << run.err;
     }
   }
@@ -218,8 +216,8 @@ TEST_F(ShardedCompare, SweepMergedEqualsUnshardedBitForBit) {
 
 TEST_F(ShardedCompare, AutoReadsSlurmArrayAndKubernetesIndex) {
   write_experiment(tiny_experiment(3));
-  const std::string arguments = "compare '" + experiment_.string() + "' --out '" +
-                                dir_.file("out") + "' --shard auto";
+  const std::string arguments =
+      "compare '" + experiment_.string() + "' --out '" + dir_.file("out") + "' --shard auto";
   const CliResult slurm = run_cli_with_environment(
       "SLURM_ARRAY_TASK_ID=0 SLURM_ARRAY_TASK_COUNT=2 SLURM_ARRAY_TASK_MIN=0 "
       "SLURM_ARRAY_TASK_MAX=1",
@@ -238,9 +236,9 @@ TEST_F(ShardedCompare, AutoReadsSlurmArrayAndKubernetesIndex) {
                     "neither SLURM_ARRAY_TASK_ID");
   expect_error_line(run_cli_with_environment("JOB_COMPLETION_INDEX=1", arguments, dir_.path()),
                     "add --shards N");
-  expect_error_line(run_cli_with_environment("JOB_COMPLETION_INDEX=1", arguments + " --shards 0",
-                                             dir_.path()),
-                    "--shards");
+  expect_error_line(
+      run_cli_with_environment("JOB_COMPLETION_INDEX=1", arguments + " --shards 0", dir_.path()),
+      "--shards");
 }
 
 TEST_F(ShardedCompare, MissingShardIsNamedWithItsRerunCommandAndNothingIsWritten) {
@@ -294,8 +292,7 @@ TEST_F(ShardedCompare, ResumeRunsOnlyTheJobsNotComplete) {
   fs::remove(lost);
   const CliResult resumed = compare("out", "--shard 0/2 --resume");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
-  EXPECT_NE(resumed.out.find("1 job(s) run, 1 already complete"), std::string::npos)
-      << resumed.out;
+  EXPECT_NE(resumed.out.find("1 job(s) run, 1 already complete"), std::string::npos) << resumed.out;
   EXPECT_TRUE(fs::exists(lost));
   EXPECT_EQ(fs::last_write_time(kept), kept_time);
   EXPECT_EQ(read_text(kept), kept_text);
@@ -311,6 +308,9 @@ TEST_F(ShardedCompare, BadShardOptionsAreOneLineAndExitCode2) {
   expect_error_line(compare("out", "--shard two/3"), "--shard two/3: expected K/N");
   expect_error_line(compare("out", "--shard 0/2 --shards 2"), "--shards: only with --shard auto");
   expect_error_line(compare("out", "--resume"), "--resume: only with --shard");
+  expect_error_line(stochnav("compare --out '" + dir_.file("out") + "'"),
+                    "compare: missing EXPERIMENT.json");
+  expect_error_line(stochnav("compare '" + experiment_.string() + "'"), "--out DIR is required");
   expect_error_line(stochnav("compare merge '" + dir_.file("nowhere") + "'"), "no shards");
   EXPECT_FALSE(fs::exists(path("out")));
 }

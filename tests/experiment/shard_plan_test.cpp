@@ -53,40 +53,45 @@ TEST(ShardSpec, RefusesIndexNotBelowCountZeroCountAndOtherForms) {
 }
 
 TEST(ShardSpecFromEnvironment, SlurmArrayIndexAndCount) {
-  const ShardSpec shard = shard_spec_from_environment(
-      fake_environment({{"SLURM_ARRAY_TASK_ID", "3"}, {"SLURM_ARRAY_TASK_COUNT", "4"},
-                        {"SLURM_ARRAY_TASK_MIN", "0"}, {"SLURM_ARRAY_TASK_MAX", "3"}}),
-      std::nullopt);
+  const ShardSpec shard =
+      shard_spec_from_environment(fake_environment({{"SLURM_ARRAY_TASK_ID", "3"},
+                                                    {"SLURM_ARRAY_TASK_COUNT", "4"},
+                                                    {"SLURM_ARRAY_TASK_MIN", "0"},
+                                                    {"SLURM_ARRAY_TASK_MAX", "3"}}),
+                                  std::nullopt);
   EXPECT_EQ(shard.index, 3u);
   EXPECT_EQ(shard.count, 4u);
 }
 
 TEST(ShardSpecFromEnvironment, SlurmArrayFromMinAndMaxStartingAtOne) {
-  const ShardSpec shard = shard_spec_from_environment(
-      fake_environment({{"SLURM_ARRAY_TASK_ID", "1"},
-                        {"SLURM_ARRAY_TASK_MIN", "1"},
-                        {"SLURM_ARRAY_TASK_MAX", "8"}}),
-      std::nullopt);
+  const ShardSpec shard =
+      shard_spec_from_environment(fake_environment({{"SLURM_ARRAY_TASK_ID", "1"},
+                                                    {"SLURM_ARRAY_TASK_MIN", "1"},
+                                                    {"SLURM_ARRAY_TASK_MAX", "8"}}),
+                                  std::nullopt);
   EXPECT_EQ(shard.index, 0u);
   EXPECT_EQ(shard.count, 8u);
 }
 
 TEST(ShardSpecFromEnvironment, SlurmRerunOfSomeTasksKeepsCountFromShardsOption) {
   // sbatch --array=1,3 (a rerun of two lost shards of four): COUNT is 2, but --shards says 4.
-  const ShardSpec shard = shard_spec_from_environment(
-      fake_environment({{"SLURM_ARRAY_TASK_ID", "3"}, {"SLURM_ARRAY_TASK_COUNT", "2"},
-                        {"SLURM_ARRAY_TASK_MIN", "1"}, {"SLURM_ARRAY_TASK_MAX", "3"}}),
-      4);
+  const ShardSpec shard =
+      shard_spec_from_environment(fake_environment({{"SLURM_ARRAY_TASK_ID", "3"},
+                                                    {"SLURM_ARRAY_TASK_COUNT", "2"},
+                                                    {"SLURM_ARRAY_TASK_MIN", "1"},
+                                                    {"SLURM_ARRAY_TASK_MAX", "3"}}),
+                                  4);
   EXPECT_EQ(shard.index, 3u);
   EXPECT_EQ(shard.count, 4u);
 }
 
 TEST(ShardSpecFromEnvironment, SlurmArrayWithGapsNeedsShardsOption) {
   const std::string message = config_error_of([] {
-    shard_spec_from_environment(
-        fake_environment({{"SLURM_ARRAY_TASK_ID", "3"}, {"SLURM_ARRAY_TASK_COUNT", "2"},
-                          {"SLURM_ARRAY_TASK_MIN", "1"}, {"SLURM_ARRAY_TASK_MAX", "3"}}),
-        std::nullopt);
+    shard_spec_from_environment(fake_environment({{"SLURM_ARRAY_TASK_ID", "3"},
+                                                  {"SLURM_ARRAY_TASK_COUNT", "2"},
+                                                  {"SLURM_ARRAY_TASK_MIN", "1"},
+                                                  {"SLURM_ARRAY_TASK_MAX", "3"}}),
+                                std::nullopt);
   });
   EXPECT_NE(message.find("gaps"), std::string::npos) << message;
   EXPECT_NE(message.find("--shards N"), std::string::npos) << message;
@@ -115,8 +120,9 @@ TEST(ShardSpecFromEnvironment, KubernetesIndexNeedsShardsOption) {
 }
 
 TEST(ShardSpecFromEnvironment, NoEngineOrGarbageIsRefused) {
-  EXPECT_NE(config_error_of([] { shard_spec_from_environment(fake_environment({}), 4); })
-                .find("neither SLURM_ARRAY_TASK_ID"),
+  EXPECT_NE(config_error_of([] {
+              shard_spec_from_environment(fake_environment({}), 4);
+            }).find("neither SLURM_ARRAY_TASK_ID"),
             std::string::npos);
   EXPECT_NE(config_error_of([] {
               shard_spec_from_environment(fake_environment({{"SLURM_ARRAY_TASK_ID", "x"}}), 4);

@@ -34,7 +34,9 @@ struct CompareArguments {
 // The words after `stochnav compare` that rebuild this experiment (merge's rerun command).
 std::string experiment_arguments(const CompareArguments& arguments) {
   std::string words = shell_quoted(std::filesystem::absolute(arguments.experiment).string());
-  if (!arguments.seeds.empty()) words += fmt::format(" --seeds {}", fmt::join(arguments.seeds, " "));
+  if (!arguments.seeds.empty()) {
+    words += fmt::format(" --seeds {}", fmt::join(arguments.seeds, " "));
+  }
   if (arguments.full_scenario) words += " --full-scenario";
   return words;
 }
@@ -113,9 +115,10 @@ void add_compare_command(CLI::App& app) {
   command->add_option("--shard", arguments->shard,
                       "Run only shard K of N (K/N, K from 0 to N-1) into DIR/shards/, or 'auto' "
                       "from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX; then compare merge DIR");
-  command->add_option("--shards", arguments->shards,
-                      "With --shard auto: the shard count N (needed for JOB_COMPLETION_INDEX; "
-                      "with Slurm, the array is then numbered 0..N-1)")
+  command
+      ->add_option("--shards", arguments->shards,
+                   "With --shard auto: the shard count N (needed for JOB_COMPLETION_INDEX; "
+                   "with Slurm, the array is then numbered 0..N-1)")
       ->check(positive_count());
   command->add_flag("--resume", arguments->resume,
                     "With --shard: keep the shard's jobs already complete, run only the rest");
@@ -123,20 +126,23 @@ void add_compare_command(CLI::App& app) {
   command->callback([command, arguments] {
     if (command->get_subcommand("merge")->parsed()) {
       if (!arguments->experiment.empty() || !arguments->out.empty()) {
-        throw ConfigError("compare merge DIR: takes only the folder; drop the experiment and --out");
+        throw ConfigError(
+            "compare merge DIR: takes only the folder; drop the experiment and --out");
       }
       return;
     }
     if (arguments->experiment.empty()) {
-      throw ConfigError("compare: missing EXPERIMENT.json; usage: stochnav compare "
-                        "EXPERIMENT.json --out DIR, or stochnav compare merge DIR");
+      throw ConfigError(
+          "compare: missing EXPERIMENT.json; usage: stochnav compare "
+          "EXPERIMENT.json --out DIR, or stochnav compare merge DIR");
     }
     if (arguments->out.empty()) {
       throw ConfigError("compare: --out DIR is required; give the output folder");
     }
     if (arguments->shards && arguments->shard != "auto") {
-      throw ConfigError("--shards: only with --shard auto; give --shard K/N alone, or --shard "
-                        "auto --shards N");
+      throw ConfigError(
+          "--shards: only with --shard auto; give --shard K/N alone, or --shard "
+          "auto --shards N");
     }
     if (arguments->resume && arguments->shard.empty()) {
       throw ConfigError("--resume: only with --shard K/N or --shard auto (a sharded run)");

@@ -116,8 +116,7 @@ ShardRecord read_shard_record(const fs::path& shard_dir) {
   }
 }
 
-void write_job_record(const fs::path& shard_dir, const JobRecord& record,
-                      bool with_error_series) {
+void write_job_record(const fs::path& shard_dir, const JobRecord& record, bool with_error_series) {
   nlohmann::json variants = nlohmann::json::array();
   for (const auto& variant : record.variants) {
     variants.push_back({{"name", variant.name},

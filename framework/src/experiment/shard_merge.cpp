@@ -19,8 +19,8 @@ namespace fs = std::filesystem;
 struct FoundShard {
   ShardSpec shard;
   fs::path folder;
-  std::optional<ShardRecord> record;           ///< absent: the shard died before writing it
-  std::map<std::size_t, fs::path> job_files;   ///< job id -> file
+  std::optional<ShardRecord> record;          ///< absent: the shard died before writing it
+  std::map<std::size_t, fs::path> job_files;  ///< job id -> file
 };
 
 std::vector<FoundShard> find_shards(const fs::path& out_dir) {
@@ -166,8 +166,8 @@ MergeSummary merge_shards(const fs::path& out_dir) {
         "--shard K/{} --resume` for K in {} (Slurm: sbatch --array={} with --shards {}), then "
         "merge again; nothing was written",
         out_dir.string(), reasons.size(), count, fmt::join(reasons, "; "),
-        manifest.experiment_arguments, shell_quoted(out_dir.string()), count,
-        fmt::join(rerun, " "), fmt::join(rerun, ","), count));
+        manifest.experiment_arguments, shell_quoted(out_dir.string()), count, fmt::join(rerun, " "),
+        fmt::join(rerun, ","), count));
   }
 
   // The runs of every level, seed by seed, from the job files.
@@ -196,8 +196,9 @@ MergeSummary merge_shards(const fs::path& out_dir) {
         }
       }
       if (record.variants.size() != level.variants.size()) {
-        throw InputError(file.string() + ": another set of variants than the other jobs; delete "
-                                         "it and rerun its shard with --resume");
+        throw InputError(file.string() +
+                         ": another set of variants than the other jobs; delete "
+                         "it and rerun its shard with --resume");
       }
       for (std::size_t v = 0; v < record.variants.size(); ++v) {
         if (record.variants[v].name != level.variants[v].name) {

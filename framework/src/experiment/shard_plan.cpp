@@ -23,9 +23,10 @@ std::size_t environment_number(const EnvironmentLookup& environment, const std::
   const std::optional<std::string> text = environment(name);
   const std::optional<std::size_t> value = text ? whole_number(*text) : std::nullopt;
   if (!value) {
-    throw ConfigError(fmt::format("--shard auto: {}={} is not a whole number; unset it or give "
-                                  "--shard K/N",
-                                  name, text.value_or("")));
+    throw ConfigError(
+        fmt::format("--shard auto: {}={} is not a whole number; unset it or give "
+                    "--shard K/N",
+                    name, text.value_or("")));
   }
   return *value;
 }
@@ -48,14 +49,14 @@ ShardSpec parse_shard_spec(std::string_view text) {
   const std::string source = fmt::format("--shard {}", text);
   const std::size_t slash = text.find('/');
   const auto index = whole_number(text.substr(0, slash));
-  const auto count = slash == std::string_view::npos ? std::nullopt
-                                                     : whole_number(text.substr(slash + 1));
+  const auto count =
+      slash == std::string_view::npos ? std::nullopt : whole_number(text.substr(slash + 1));
   if (!index || !count) {
     throw ConfigError(source + ": expected K/N (shard K of N, K from 0 to N-1, e.g. 0/4) or auto");
   }
-  const std::string fix = *count == 0 ? std::string("e.g. 0/4 to 3/4 for four shards")
-                                      : fmt::format("use 0/{} to {}/{}", *count, *count - 1,
-                                                    *count);
+  const std::string fix = *count == 0
+                              ? std::string("e.g. 0/4 to 3/4 for four shards")
+                              : fmt::format("use 0/{} to {}/{}", *count, *count - 1, *count);
   return checked({*index, *count}, source, fix);
 }
 
