@@ -120,6 +120,34 @@ void remove_job_files(const fs::path& shard_dir) {
   }
 }
 
+// The jobs of `mine` not in `done`, by level, in job order.
+std::map<std::size_t, std::vector<ComparisonJob>> pending_jobs_by_level(
+    const std::vector<ComparisonJob>& mine, const std::vector<std::size_t>& done) {
+  std::map<std::size_t, std::vector<ComparisonJob>> pending;
+  for (const auto& job : mine) {
+    if (std::find(done.begin(), done.end(), job.id) == done.end()) {
+      pending[job.level].push_back(job);
+    }
+  }
+  return pending;
+}
+
+// One job file per seed of a batch: run_comparison's result on the batch's seeds, in order.
+void write_batch_records(const fs::path& shard_dir, const std::string& hash,
+                         const std::vector<ComparisonJob>& batch, const ComparisonResult& result) {
+  for (std::size_t b = 0; b < batch.size(); ++b) {
+    JobRecord record;
+    record.experiment_hash = hash;
+    record.job = batch[b];
+    record.wall_seconds = result.wall_seconds / static_cast<double>(batch.size());
+    for (const auto& variant : result.variants) {
+      record.variants.push_back({variant.name, variant.noise_model, variant.runs[b]});
+    }
+    // compare plots the errors over time of the first seed only.
+    write_job_record(shard_dir, record, batch[b].seed_index == 0);
+  }
+}
+
 }  // namespace
 
 ShardRunSummary run_shard(const ExperimentConfig& config, const fs::path& out_dir_given,
@@ -154,13 +182,7 @@ ShardRunSummary run_shard(const ExperimentConfig& config, const fs::path& out_di
   record.manifest = manifest_of(config, hash, options.experiment_arguments);
   write_shard_record(summary.folder, record);
 
-  // The pending jobs of each level, in job order.
-  std::map<std::size_t, std::vector<ComparisonJob>> pending;
-  for (const auto& job : mine) {
-    if (std::find(done.begin(), done.end(), job.id) == done.end()) {
-      pending[job.level].push_back(job);
-    }
-  }
+  const auto pending = pending_jobs_by_level(mine, done);
   const std::size_t batch_size =
       config.threads > 0 ? config.threads : std::max(1u, std::thread::hardware_concurrency());
   try {
@@ -185,17 +207,7 @@ ShardRunSummary run_shard(const ExperimentConfig& config, const fs::path& out_di
         part.seeds.clear();
         for (const auto& job : batch) part.seeds.push_back(job.seed);
         const ComparisonResult result = run_comparison(part, comparison_dir, options.progress);
-        for (std::size_t b = 0; b < batch.size(); ++b) {
-          JobRecord job_record;
-          job_record.experiment_hash = hash;
-          job_record.job = batch[b];
-          job_record.wall_seconds = result.wall_seconds / static_cast<double>(batch.size());
-          for (const auto& variant : result.variants) {
-            job_record.variants.push_back({variant.name, variant.noise_model, variant.runs[b]});
-          }
-          // compare plots the errors over time of the first seed only.
-          write_job_record(summary.folder, job_record, batch[b].seed_index == 0);
-        }
+        write_batch_records(summary.folder, hash, batch, result);
       }
     }
   } catch (const std::exception& failure) {
