@@ -129,27 +129,27 @@ std::string incompleteness(const FoundShard* shard, const std::vector<Comparison
   return progress + ", job files missing";
 }
 
-}  // namespace
-
-MergeSummary merge_shards(const fs::path& out_dir) {
-  const std::vector<FoundShard> found = find_shards(out_dir);
-  std::size_t count = 0;
-  const ShardManifest& manifest = agreed_manifest(found, count);
-  const std::vector<ComparisonJob> jobs = comparison_jobs(manifest.levels, manifest.seeds);
-
-  // Every job present, in the shard that owns it.
-  std::map<std::size_t, const FoundShard*> by_index;
+// Every job file in the shard that owns it (job % N), or an InputError naming the file.
+void check_job_owners(const std::vector<FoundShard>& found, std::size_t job_count,
+                      std::size_t count) {
   for (const auto& shard : found) {
-    by_index[shard.shard.index] = &shard;
     for (const auto& [id, file] : shard.job_files) {
-      if (id >= jobs.size() || shard_of_job(id, count) != shard.shard.index) {
+      if (id >= job_count || shard_of_job(id, count) != shard.shard.index) {
         throw InputError(fmt::format(
             "{}: job {} does not belong to shard {}/{} (it has {} jobs, each in shard job % {}); "
             "remove the file and merge again",
-            file.string(), id, shard.shard.index, count, jobs.size(), count));
+            file.string(), id, shard.shard.index, count, job_count, count));
       }
     }
   }
+}
+
+// Throws, naming every shard not complete and the command that reruns them.
+void check_every_shard_complete(const std::vector<FoundShard>& found,
+                                const std::vector<ComparisonJob>& jobs, std::size_t count,
+                                const ShardManifest& manifest, const fs::path& out_dir) {
+  std::map<std::size_t, const FoundShard*> by_index;
+  for (const auto& shard : found) by_index[shard.shard.index] = &shard;
   std::vector<std::string> reasons;
   std::vector<std::string> rerun;
   for (std::size_t k = 0; k < count; ++k) {
@@ -160,17 +160,20 @@ MergeSummary merge_shards(const fs::path& out_dir) {
     reasons.push_back(fmt::format("shard {} ({})", k, why));
     rerun.push_back(std::to_string(k));
   }
-  if (!reasons.empty()) {
-    throw InputError(fmt::format(
-        "{}: {} of {} shards incomplete: {}; rerun them with `stochnav compare {} --out {} "
-        "--shard K/{} --resume` for K in {} (Slurm: sbatch --array={} with --shards {}), then "
-        "merge again; nothing was written",
-        out_dir.string(), reasons.size(), count, fmt::join(reasons, "; "),
-        manifest.experiment_arguments, shell_quoted(out_dir.string()), count, fmt::join(rerun, " "),
-        fmt::join(rerun, ","), count));
-  }
+  if (reasons.empty()) return;
+  throw InputError(fmt::format(
+      "{}: {} of {} shards incomplete: {}; rerun them with `stochnav compare {} --out {} "
+      "--shard K/{} --resume` for K in {} (Slurm: sbatch --array={} with --shards {}), then "
+      "merge again; nothing was written",
+      out_dir.string(), reasons.size(), count, fmt::join(reasons, "; "),
+      manifest.experiment_arguments, shell_quoted(out_dir.string()), count, fmt::join(rerun, " "),
+      fmt::join(rerun, ","), count));
+}
 
-  // The runs of every level, seed by seed, from the job files.
+// The results of every level, each seed's runs from its job file.
+std::vector<ComparisonResult> merged_levels(const std::vector<FoundShard>& found,
+                                            const std::vector<ComparisonJob>& jobs,
+                                            const ShardManifest& manifest) {
   std::vector<ComparisonResult> levels(manifest.levels);
   for (auto& level : levels) {
     level.baseline = manifest.baseline;
@@ -197,8 +200,8 @@ MergeSummary merge_shards(const fs::path& out_dir) {
       }
       if (record.variants.size() != level.variants.size()) {
         throw InputError(file.string() +
-                         ": another set of variants than the other jobs; delete "
-                         "it and rerun its shard with --resume");
+                         ": another set of variants than the other jobs; delete it and rerun "
+                         "its shard with --resume");
       }
       for (std::size_t v = 0; v < record.variants.size(); ++v) {
         if (record.variants[v].name != level.variants[v].name) {
@@ -211,16 +214,26 @@ MergeSummary merge_shards(const fs::path& out_dir) {
       level.wall_seconds += record.wall_seconds;
     }
   }
+  return levels;
+}
 
-  // The writers take the experiment only for its file name and description.
+// What the writers (write_comparison, comparison_table) take of the experiment: its file name
+// and description.
+ExperimentConfig writers_experiment(const ShardManifest& manifest) {
   ExperimentConfig experiment;
   experiment.file = manifest.experiment_file;
   experiment.description = manifest.description;
-  MergeSummary summary{count, jobs.size(), manifest.sweep.has_value(), ""};
+  return experiment;
+}
+
+// The files of the unsharded run: run_comparison's for a plain experiment, run_sweep's for a
+// sweep.
+void write_merged(const std::vector<ComparisonResult>& levels, const ShardManifest& manifest,
+                  const fs::path& out_dir) {
+  const ExperimentConfig experiment = writers_experiment(manifest);
   if (!manifest.sweep) {
     write_comparison(levels.front(), experiment, out_dir);
-    summary.table = comparison_table(levels.front(), experiment);
-    return summary;
+    return;
   }
   nlohmann::json document = {{"name", manifest.sweep->name},
                              {"set", manifest.sweep->set},
@@ -234,6 +247,22 @@ MergeSummary merge_shards(const fs::path& out_dir) {
                                   {"results", comparison_json(levels[i])}});
   }
   write_sweep_files(document, out_dir);
+}
+
+}  // namespace
+
+MergeSummary merge_shards(const fs::path& out_dir) {
+  const std::vector<FoundShard> found = find_shards(out_dir);
+  std::size_t count = 0;
+  const ShardManifest& manifest = agreed_manifest(found, count);
+  const std::vector<ComparisonJob> jobs = comparison_jobs(manifest.levels, manifest.seeds);
+  check_job_owners(found, jobs.size(), count);
+  check_every_shard_complete(found, jobs, count, manifest, out_dir);
+  const std::vector<ComparisonResult> levels = merged_levels(found, jobs, manifest);
+  write_merged(levels, manifest, out_dir);
+  MergeSummary summary{count, jobs.size(), manifest.sweep.has_value(), ""};
+  if (!manifest.sweep)
+    summary.table = comparison_table(levels.front(), writers_experiment(manifest));
   return summary;
 }
 
