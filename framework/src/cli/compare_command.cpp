@@ -106,7 +106,7 @@ void add_compare_command(CLI::App& app) {
       "compare", "Compare filter variants (noise models) on the same data over Monte-Carlo seeds");
   // Not required() here: `compare merge DIR` has no experiment; checked in the callback.
   command->add_option("experiment", arguments->experiment, "Experiment config (JSON)");
-  command->add_option("--out", arguments->out, "Output folder");
+  command->add_option("--out", arguments->out, "Output folder (required; not with merge)");
   command->add_option("--seeds", arguments->seeds,
                       "Override the experiment's seeds (simulated data only), e.g. --seeds 1 2 3");
   command->add_flag("--full-scenario", arguments->full_scenario,
