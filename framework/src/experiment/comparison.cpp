@@ -418,8 +418,15 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
     }
   });
   progress.finish(done);
+  // Only this run's seed folders: shards of a sharded run (experiment/shard_run.hpp) simulate
+  // other seeds into the same .scenarios folder at the same time. The folder goes when empty.
   std::error_code ignored;
-  fs::remove_all(scenarios_dir, ignored);
+  if (config.scenario_config) {
+    for (const auto& seed_data : data) {
+      fs::remove_all(seed_data["scenario"].get<std::string>(), ignored);
+    }
+    fs::remove(scenarios_dir, ignored);
+  }
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -79,9 +79,9 @@ nlohmann::json pair_json(const ComparisonResult& result, const std::string& a,
 /// here. Aid params are checked when the first run builds them.
 void validate_variants(const ExperimentConfig& config);
 
-/// Runs the experiment (validate_variants first). Simulated seeds are generated under out_dir/.scenarios (removed at the
-/// end). Throws ConfigError / InputError (the first failure of any job, naming the variant and
-/// seed).
+/// Runs the experiment (validate_variants first). Simulated seeds are generated under
+/// out_dir/.scenarios/seed_<seed>/ (each removed at the end, the folder too when empty).
+/// Throws ConfigError / InputError (the first failure of any job, naming the variant and seed).
 ComparisonResult run_comparison(const ExperimentConfig& config,
                                 const std::filesystem::path& out_dir, bool progress);
 
