@@ -20,7 +20,8 @@ void InsIntervalAccumulator::add_epoch(const Eigen::Vector3d& v_start_n,
                                        const Eigen::Matrix3d& c_nb_mid,
                                        const Eigen::Vector3d& delta_v_b,
                                        const Eigen::Vector3d& delta_theta_b,
-                                       const Eigen::Matrix3d& velocity_noise, double dt_s) {
+                                       const Eigen::Matrix3d& velocity_noise,
+                                       const Eigen::Matrix3d& attitude_noise, double dt_s) {
   const double weight = duration_s_ + 0.5 * dt_s;  // u - t_prev at the epoch's midpoint
   const Eigen::Vector3d f_n_dt = c_nb_mid * delta_v_b;
   const Eigen::Matrix3d c_dt = c_nb_mid * dt_s;
@@ -34,6 +35,8 @@ void InsIntervalAccumulator::add_epoch(const Eigen::Vector3d& v_start_n,
   weighted_accel_scale_.noalias() += weight * c_nb_mid * delta_v_b.asDiagonal();
   duration_s_ += dt_s;
   v_n_dt_ += 0.5 * dt_s * (v_start_n + v_end_n);
+  const Eigen::Matrix3d f_image = skew(weighted_f_n_dt_ + (0.5 * weight) * f_n_dt);
+  attitude_noise_image_.noalias() += f_image * attitude_noise * f_image.transpose();
   weighted_f_n_dt_ += weight * f_n_dt;
   weighted_c_nb_dt_ += weight * c_dt;
   weighted_noise_ += (weight * weight) * velocity_noise;
@@ -60,7 +63,7 @@ plugin::InsInterval InsIntervalAccumulator::interval() const {
   interval.duration_s = t;
   interval.mean_v_n = v_n_dt_ / t;
   core_map(interval.mean_velocity_error_map);
-  interval.mean_velocity_noise_covariance = weighted_noise_ / (t * t);
+  interval.mean_velocity_noise_covariance = (weighted_noise_ + attitude_noise_image_) / (t * t);
   return interval;
 }
 

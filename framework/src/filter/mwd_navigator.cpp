@@ -149,6 +149,7 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   fast_.f_n_dt += c_mid * compensated.delta_v_b;
   if (gyro_scale_.offset >= 0) fast_.gyro_scale_dt += c_mid * compensated.delta_theta_b.asDiagonal();
   if (accel_scale_.offset >= 0) fast_.accel_scale_dt += c_mid * compensated.delta_v_b.asDiagonal();
+  const Eigen::Matrix3d attitude_noise_before = attitude_noise_;
   accumulate_noise(gyro_noise_, t_start, dt, c_mid, gyro_white_cache_, gyro_cached_dt_,
                    attitude_noise_);
   const Eigen::Matrix3d velocity_noise_before = velocity_noise_;
@@ -157,7 +158,8 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   const Eigen::Matrix3d epoch_velocity_noise = velocity_noise_ - velocity_noise_before;
   for (InsIntervalAccumulator& interval : aid_intervals_) {
     interval.add_epoch(v_start, ins_.state().v_n, c_mid, compensated.delta_v_b,
-                       compensated.delta_theta_b, epoch_velocity_noise, dt);
+                       compensated.delta_theta_b, epoch_velocity_noise,
+                       attitude_noise_ - attitude_noise_before, dt);
   }
 
   bool measurement_due = false;
