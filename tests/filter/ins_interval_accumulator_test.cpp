@@ -103,8 +103,15 @@ Comparison compare_over_one_second(const SensorError& error) {
     exact.update(ideal);
     erring.update(read);
     const Eigen::Matrix3d c_mid = 0.5 * (c_start + exact.state().q_nb.toRotationMatrix());
-    interval.add_epoch(exact_v0, exact.state().v_n, c_mid, ideal.delta_v_b, ideal.delta_theta_b,
-                       velocity_noise, attitude_noise, dt);
+    interval.add_epoch({.v_start_n = exact_v0,
+                        .v_end_n = exact.state().v_n,
+                        .c_nb_mid = c_mid,
+                        .delta_v_b = ideal.delta_v_b,
+                        .scale_factor_delta_v_b = ideal.delta_v_b,
+                        .delta_theta_b = ideal.delta_theta_b,
+                        .velocity_noise = velocity_noise,
+                        .attitude_noise = attitude_noise,
+                        .dt_s = dt});
     exact_sum += 0.5 * dt * (exact_v0 + exact.state().v_n);
     erring_sum += 0.5 * dt * (erring_v0 + erring.state().v_n);
   }

@@ -67,7 +67,8 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
       ins_(initial),
       filter_(initial_covariance(layout_, options, gyro_noise, accel_noise)),
       interval_start_s_(initial.t_s),
-      c_nb_(initial.q_nb.toRotationMatrix()) {
+      c_nb_(initial.q_nb.toRotationMatrix()),
+      smoothed_specific_force_n_(-gravity_n(initial.latitude_rad, initial.height_m)) {
   for (auto [group, model] :
        {std::pair{&gyro_augmented_, &gyro_noise}, std::pair{&accel_augmented_, &accel_noise}}) {
     group->model = model;
@@ -147,8 +148,18 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   fast_.interval_s += dt;
   fast_.c_nb_dt += c_mid * dt;
   fast_.f_n_dt += c_mid * compensated.delta_v_b;
+  // The accelerometer scale factors multiply the true specific force: a smoothed one from the
+  // epochs before this one, not this epoch's measurement, whose noise also drives the velocity
+  // error and would correlate the gains with the residuals (over a day of 1-s aids that biased
+  // the scale factors, hence the inclination, by -0.015 deg in the middle of the build).
+  const Eigen::Vector3d scale_factor_delta_v_b = c_mid.transpose() * smoothed_specific_force_n_ * dt;
+  if (dt > 0.0) {
+    smoothed_specific_force_n_ += (std::min(dt, kSpecificForceSmoothing_s) /
+                                   kSpecificForceSmoothing_s) *
+                                  (c_mid * compensated.delta_v_b / dt - smoothed_specific_force_n_);
+  }
   if (gyro_scale_.offset >= 0) fast_.gyro_scale_dt += c_mid * compensated.delta_theta_b.asDiagonal();
-  if (accel_scale_.offset >= 0) fast_.accel_scale_dt += c_mid * compensated.delta_v_b.asDiagonal();
+  if (accel_scale_.offset >= 0) fast_.accel_scale_dt += c_mid * scale_factor_delta_v_b.asDiagonal();
   const Eigen::Matrix3d attitude_noise_before = attitude_noise_;
   accumulate_noise(gyro_noise_, t_start, dt, c_mid, gyro_white_cache_, gyro_cached_dt_,
                    attitude_noise_);
@@ -156,11 +167,17 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   accumulate_noise(accel_noise_, t_start, dt, c_mid, accel_white_cache_, accel_cached_dt_,
                    velocity_noise_);
   const Eigen::Matrix3d epoch_velocity_noise = velocity_noise_ - velocity_noise_before;
-  for (InsIntervalAccumulator& interval : aid_intervals_) {
-    interval.add_epoch(v_start, ins_.state().v_n, c_mid, compensated.delta_v_b,
-                       compensated.delta_theta_b, epoch_velocity_noise,
-                       attitude_noise_ - attitude_noise_before, dt);
-  }
+  const InsIntervalAccumulator::Epoch interval_epoch{
+      .v_start_n = v_start,
+      .v_end_n = ins_.state().v_n,
+      .c_nb_mid = c_mid,
+      .delta_v_b = compensated.delta_v_b,
+      .scale_factor_delta_v_b = scale_factor_delta_v_b,
+      .delta_theta_b = compensated.delta_theta_b,
+      .velocity_noise = epoch_velocity_noise,
+      .attitude_noise = attitude_noise_ - attitude_noise_before,
+      .dt_s = dt};
+  for (InsIntervalAccumulator& interval : aid_intervals_) interval.add_epoch(interval_epoch);
 
   bool measurement_due = false;
   for (const plugin::AidPlugin* aid : aids_) measurement_due |= aid->has_measurement(raw.t_s);

@@ -52,13 +52,23 @@ struct IntervalMapLayout {
 
 class InsIntervalAccumulator {
  public:
-  /// Adds one IMU epoch of dt_s: the INS velocity at its start and end, the attitude at its
-  /// midpoint, the compensated increments (body), and the white noise of the epoch integrated
-  /// into the velocity (accelerometer, ENU, m^2/s^2) and into the attitude (gyro, rad^2).
-  void add_epoch(const Eigen::Vector3d& v_start_n, const Eigen::Vector3d& v_end_n,
-                 const Eigen::Matrix3d& c_nb_mid, const Eigen::Vector3d& delta_v_b,
-                 const Eigen::Vector3d& delta_theta_b, const Eigen::Matrix3d& velocity_noise,
-                 const Eigen::Matrix3d& attitude_noise, double dt_s);
+  /// One IMU epoch as the interval needs it.
+  struct Epoch {
+    Eigen::Vector3d v_start_n;   ///< INS velocity at the epoch's start, ENU (m/s)
+    Eigen::Vector3d v_end_n;     ///< and at its end
+    Eigen::Matrix3d c_nb_mid;    ///< attitude at the epoch's midpoint
+    Eigen::Vector3d delta_v_b;   ///< compensated velocity increment, body (m/s)
+    /// The increment of the specific force the scale factors multiply, free of this epoch's
+    /// noise (MwdNavigator: a smoothed specific force): the measured increment would correlate
+    /// the map with the noise of the measurement it weighs.
+    Eigen::Vector3d scale_factor_delta_v_b;
+    Eigen::Vector3d delta_theta_b;   ///< compensated angle increment, body (rad)
+    Eigen::Matrix3d velocity_noise;  ///< accelerometer white noise of the epoch, ENU (m^2/s^2)
+    Eigen::Matrix3d attitude_noise;  ///< gyro white noise of the epoch, ENU (rad^2)
+    double dt_s = 0.0;
+  };
+
+  void add_epoch(const Epoch& epoch);
 
   double duration_s() const { return duration_s_; }
 

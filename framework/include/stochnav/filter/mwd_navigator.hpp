@@ -135,6 +135,11 @@ class MwdNavigator final {
   double gyro_cached_dt_ = -1.0;
   double accel_cached_dt_ = -1.0;
   Eigen::Matrix3d c_nb_;  // attitude at the start of the current epoch
+  // The specific force the accelerometer scale-factor states multiply: ENU (m/s^2), smoothed
+  // over kSpecificForceSmoothing_s (a mean over 10 s is gravity plus the manoeuvre, with the
+  // white noise averaged out and no weight on the current aid interval's noise).
+  static constexpr double kSpecificForceSmoothing_s = 10.0;
+  Eigen::Vector3d smoothed_specific_force_n_;
 
   Eigen::MatrixXd phi_, q_d_;  // n x n scratch (D x D, the head, when structured)
   Eigen::Matrix3d bias_walk_;
