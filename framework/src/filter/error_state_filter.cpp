@@ -5,6 +5,8 @@
 #include <limits>
 #include <utility>
 
+#include "stochnav/filter/core_covariance.hpp"
+
 namespace stochnav {
 
 ErrorStateFilter::ErrorStateFilter(Eigen::MatrixXd initial_covariance)
@@ -13,13 +15,19 @@ ErrorStateFilter::ErrorStateFilter(Eigen::MatrixXd initial_covariance)
 void ErrorStateFilter::propagate(const Eigen::Ref<const Eigen::MatrixXd>& phi,
                                  const Eigen::Ref<const Eigen::MatrixXd>& q_d) {
   if (size() == kCoreSize) {
-    // The common case (no augmented states): fixed-size products, unrolled and vectorised.
-    using Fixed = Eigen::Matrix<double, kCoreSize, kCoreSize>;
-    const Eigen::Map<const Fixed, 0, Eigen::OuterStride<>> phi_fixed(
+    // The common case (no augmented states): fixed-size kernels, unrolled and vectorised.
+    const Eigen::Map<const CoreMatrix, 0, Eigen::OuterStride<>> phi_fixed(
         phi.data(), Eigen::OuterStride<>(phi.outerStride()));
-    Eigen::Map<Fixed> p(covariance_.data());
-    const Fixed phi_p = phi_fixed * p;
-    p.noalias() = phi_p * phi_fixed.transpose();
+    const Eigen::Map<const CoreMatrix, 0, Eigen::OuterStride<>> q_fixed(
+        q_d.data(), Eigen::OuterStride<>(q_d.outerStride()));
+    Eigen::Map<CoreMatrix> p(covariance_.data());
+    if (has_constant_bias_rows(phi_fixed)) {
+      propagate_core_covariance(phi_fixed, q_fixed, p);  // exactly symmetric
+      keep_healthy(Symmetrize::kNone);
+      return;
+    }
+    const CoreMatrix phi_p = phi_fixed.lazyProduct(p);
+    p.noalias() = phi_p.lazyProduct(phi_fixed.transpose());
   } else {
     // Small matrices: coefficient-wise products beat the blocked GEMM path and its packing.
     scratch_.noalias() = phi.lazyProduct(covariance_);

@@ -87,7 +87,9 @@ class ErrorStateFilter final {
   const FilterHealth& health() const { return health_; }
 
   /// P <- Phi P Phi^T + Q_d (n x n each; Phi the discrete transition, Q_d the discrete noise),
-  /// by dense products: O(n^3). The reference for propagate(const BlockTransition&).
+  /// by dense products: O(n^3). The reference for propagate(const BlockTransition&). With the
+  /// 15 core states alone and Phi of the core form [[A, B], [0, I]], the fixed-size kernel of
+  /// filter/core_covariance.hpp (same result to rounding).
   void propagate(const Eigen::Ref<const Eigen::MatrixXd>& phi,
                  const Eigen::Ref<const Eigen::MatrixXd>& q_d);
 
