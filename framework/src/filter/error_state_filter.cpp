@@ -16,10 +16,8 @@ void ErrorStateFilter::propagate(const Eigen::Ref<const Eigen::MatrixXd>& phi,
                                  const Eigen::Ref<const Eigen::MatrixXd>& q_d) {
   if (size() == kCoreSize) {
     // The common case (no augmented states): fixed-size kernels, unrolled and vectorised.
-    const Eigen::Map<const CoreMatrix, 0, Eigen::OuterStride<>> phi_fixed(
-        phi.data(), Eigen::OuterStride<>(phi.outerStride()));
-    const Eigen::Map<const CoreMatrix, 0, Eigen::OuterStride<>> q_fixed(
-        q_d.data(), Eigen::OuterStride<>(q_d.outerStride()));
+    const CoreMatrix phi_fixed = phi;
+    const CoreMatrix q_fixed = q_d;
     Eigen::Map<CoreMatrix> p(covariance_.data());
     if (has_constant_bias_rows(phi_fixed)) {
       propagate_core_covariance(phi_fixed, q_fixed, p);  // exactly symmetric

@@ -11,7 +11,9 @@
 // T = A [P_nn P_nb] + B [P_bn P_bb] (9 x 15; T_n, T_b its first 9 and last 6 columns):
 //   P'_nn = T_n A^T + T_b B^T + Q_nn,   P'_nb = T_b + Q_nb,   P'_bb = P_bb + Q_bb:
 // 9 x 15 x 24 multiply-adds instead of the 2 x 15^3 of the dense Phi P Phi^T. P' is written from
-// the lower triangles (of P'_nn, Q) and mirrored: exactly symmetric. No allocation.
+// the lower triangles (of P'_nn, Q) and mirrored: exactly symmetric. No allocation. On x86-64
+// the kernel runs 4 doubles per instruction where the CPU has AVX2, with results bit-identical
+// to the baseline code (no fused multiply-add, the same order of sums).
 
 #include <Eigen/Core>
 
@@ -25,8 +27,8 @@ bool has_constant_bias_rows(const Eigen::Ref<const CoreMatrix>& phi);
 /// P <- Phi P Phi^T + Q_d for the 15 core states (each 15 x 15; Phi dimensionless, P and Q_d in
 /// the core states' units). Preconditions: has_constant_bias_rows(phi); P and Q_d symmetric.
 /// The same result as the dense product to rounding, exactly symmetric.
-void propagate_core_covariance(const Eigen::Ref<const CoreMatrix>& phi,
-                               const Eigen::Ref<const CoreMatrix>& q_d, Eigen::Ref<CoreMatrix> p);
+void propagate_core_covariance(const CoreMatrix& phi, const CoreMatrix& q_d,
+                               Eigen::Ref<CoreMatrix> p);
 
 /// F + F^2 / 2 for the integrated core dynamics F = F_bar T (15 x 15, dimensionless; its last 6
 /// rows zero, as integrated_core_dynamics gives it): only the first 9 rows of F^2 are formed.
