@@ -60,6 +60,23 @@ STOCHNAV_SIMD_CLONES void propagate_core_kernel(const double* phi, const double*
   }
 }
 
+// out += F^2 / 2 on F's first 9 rows (F's last 6 rows are zero): column j of F^2 is
+// sum_{k < 9} F(:, k) F(k, j), over the nonzero F(k, j) only (about half: F's first column,
+// most of the position rows and the bias columns are zero). f and out column-major, 15 rows
+// per column.
+STOCHNAV_SIMD_CLONES void add_half_square(const double* f, double* out) {
+  for (int j = 0; j < kCore; ++j) {
+    double column[kPadded] = {};
+    for (int k = 0; k < kNav; ++k) {
+      const double f_kj = f[j * kCore + k];
+      if (f_kj == 0.0) continue;
+      const double* f_k = f + k * kCore;
+      for (int i = 0; i < kPadded; ++i) column[i] += f_k[i] * f_kj;
+    }
+    for (int i = 0; i < kNav; ++i) out[j * kCore + i] += 0.5 * column[i];
+  }
+}
+
 }  // namespace
 
 bool has_constant_bias_rows(const Eigen::Ref<const CoreMatrix>& phi) {
@@ -74,9 +91,7 @@ void propagate_core_covariance(const CoreMatrix& phi, const CoreMatrix& q_d,
 
 CoreMatrix second_order_transition_increment(const CoreMatrix& f) {
   CoreMatrix increment = f;
-  Eigen::Matrix<double, kNav, kCore> f_squared;
-  f_squared.noalias() = f.topLeftCorner<kNav, kNav>().lazyProduct(f.topRows<kNav>());
-  increment.topRows<kNav>() += 0.5 * f_squared;
+  add_half_square(f.data(), increment.data());
   return increment;
 }
 
