@@ -4,6 +4,8 @@
 
 #include "stochnav/filter/core_covariance.hpp"
 
+#include "stochnav/filter/error_state_filter.hpp"
+
 #include <gtest/gtest.h>
 
 #include <random>
@@ -98,6 +100,23 @@ TEST(CoreCovariance, ZeroIntervalLeavesPPlusQ) {
   for (int j = 0; j < 15; ++j) {
     for (int i = j; i < 15; ++i) EXPECT_DOUBLE_EQ(p(i, j), expected(i, j));
   }
+}
+
+TEST(CoreCovariance, FilterPropagateCoreEqualsPropagate) {
+  std::mt19937_64 engine(21);
+  const CoreMatrix p0 = random_covariance(engine);
+  ErrorStateFilter checked(p0);
+  ErrorStateFilter direct(p0);
+  for (int step = 0; step < 20; ++step) {
+    const CoreMatrix f = random_dynamics(engine);
+    CoreMatrix phi = second_order_transition_increment(f);
+    phi.diagonal().array() += 1.0;
+    const CoreMatrix q = random_covariance(engine) * 1e-4;
+    checked.propagate(phi, q);
+    direct.propagate_core(phi, q);
+  }
+  EXPECT_TRUE(checked.covariance() == direct.covariance());
+  EXPECT_TRUE(direct.health().ok());
 }
 
 }  // namespace

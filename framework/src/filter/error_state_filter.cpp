@@ -35,6 +35,12 @@ void ErrorStateFilter::propagate(const Eigen::Ref<const Eigen::MatrixXd>& phi,
   keep_healthy(Symmetrize::kAverage);
 }
 
+void ErrorStateFilter::propagate_core(const CoreMatrix& phi, const CoreMatrix& q_d) {
+  assert(size() == kCoreSize && has_constant_bias_rows(phi));
+  propagate_core_covariance(phi, q_d, Eigen::Map<CoreMatrix>(covariance_.data()));
+  keep_healthy(Symmetrize::kNone);  // the kernel's P is exactly symmetric
+}
+
 void ErrorStateFilter::propagate(const BlockTransition& transition) {
   const Eigen::Index n = size();
   const Eigen::Index d = transition.head_transition.rows();

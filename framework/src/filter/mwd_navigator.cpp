@@ -277,7 +277,7 @@ void MwdNavigator::propagate_core_states(const CoreMatrix& f_t, double interval)
   q_d.block<3, 3>(cs::kGyroBias, cs::kGyroBias) = bias_walk_;
   accel_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
   q_d.block<3, 3>(cs::kAccelBias, cs::kAccelBias) = bias_walk_;
-  filter_.propagate(phi, q_d);
+  filter_.propagate_core(phi, q_d);
   close_interval(interval);
 }
 

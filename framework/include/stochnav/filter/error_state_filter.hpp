@@ -26,6 +26,7 @@
 #include <span>
 
 #include "stochnav/filter/block_diagonal_matrix.hpp"
+#include "stochnav/filter/error_dynamics.hpp"
 #include "stochnav/filter/sparse_map.hpp"
 
 namespace stochnav {
@@ -92,6 +93,11 @@ class ErrorStateFilter final {
   /// filter/core_covariance.hpp (same result to rounding).
   void propagate(const Eigen::Ref<const Eigen::MatrixXd>& phi,
                  const Eigen::Ref<const Eigen::MatrixXd>& q_d);
+
+  /// P <- Phi P Phi^T + Q_d for a filter of the 15 core states alone, Phi of the core form
+  /// [[A, B], [0, I]] (filter/core_covariance.hpp; checked in debug builds), Q_d symmetric: the
+  /// fixed-size kernel without propagate()'s checks and copies. Same result as propagate().
+  void propagate_core(const CoreMatrix& phi, const CoreMatrix& q_d);
 
   /// P <- Phi P Phi^T + Q_d with Phi and Q_d given by blocks (BlockTransition): the same
   /// result as the dense propagate to rounding, in O(n^2 (b + c) + D^2 n). Precondition:
