@@ -4,11 +4,11 @@
 
 #include "stochnav/filter/core_covariance.hpp"
 
-#include "stochnav/filter/error_state_filter.hpp"
-
 #include <gtest/gtest.h>
 
 #include <random>
+
+#include "stochnav/filter/error_state_filter.hpp"
 
 namespace stochnav {
 namespace {

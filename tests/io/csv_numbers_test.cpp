@@ -21,15 +21,18 @@ std::string printf_form(const char* format, double value) {
 }
 
 std::vector<double> awkward_values() {
-  std::vector<double> values = {0.0, -0.0, 1.0, -1.0, 0.5, 2.5, 9.9999995, 999999.5, 1e-300,
-                                1e300, 123456789.0, 0.0001, 0.00001, 1e-5 * 0.99999999,
-                                std::numeric_limits<double>::max(),
-                                std::numeric_limits<double>::denorm_min(), 116.344800004,
-                                39.977800006, 0.0625, 1.0 / 3.0};
+  // Ties, carries into a new digit, the extremes, values of the output files; then random ones.
+  std::vector<double> values = {0.0,    -0.0,    1.0,         -1.0,          0.5,         2.5,
+                                0.0625, 1e-300,  1e300,       9.9999995,     999999.5,    0.0001,
+                                1e-5,   0.1 / 3, 123456789.0, 116.344800004, 39.977800006};
+  values.push_back(std::numeric_limits<double>::max());
+  values.push_back(std::numeric_limits<double>::denorm_min());
   std::mt19937_64 engine(7);
   std::normal_distribution<double> normal;
   std::uniform_int_distribution<int> exponent(-12, 12);
-  for (int i = 0; i < 20000; ++i) values.push_back(normal(engine) * std::pow(10.0, exponent(engine)));
+  for (int i = 0; i < 20000; ++i) {
+    values.push_back(normal(engine) * std::pow(10.0, exponent(engine)));
+  }
   return values;
 }
 

@@ -128,8 +128,8 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   const auto wall_start = std::chrono::steady_clock::now();
   plugin::check_run_start(config);
   FilterOptions filter = config.filter.options;
-  ImuStream imu = options.imu_record ? ImuStream(options.imu_record)
-                                      : ImuStream(config.data.imu.string());
+  ImuStream imu =
+      options.imu_record ? ImuStream(options.imu_record) : ImuStream(config.data.imu.string());
 
   std::optional<TruthFileReader> truth_reader;
   NavState truth;

@@ -51,8 +51,8 @@ class BackgroundImuReader final {
  private:
   struct Block {
     std::vector<ImuIncrement> epochs;
-    bool last = false;          // nothing follows
-    std::exception_ptr error;   // thrown after this block's epochs (last)
+    bool last = false;         // nothing follows
+    std::exception_ptr error;  // thrown after this block's epochs (last)
   };
   void read_blocks();  // the reader thread
   bool take_block();   // waits for the next block; false at the end (or throws its error)
