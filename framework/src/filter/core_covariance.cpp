@@ -66,14 +66,18 @@ STOCHNAV_SIMD_CLONES void propagate_core_kernel(const double* phi, const double*
 // per column.
 STOCHNAV_SIMD_CLONES void add_half_square(const double* f, double* out) {
   for (int j = 0; j < kCore; ++j) {
-    double column[kPadded] = {};
+    alignas(32) double column[kPadded] = {};
     for (int k = 0; k < kNav; ++k) {
       const double f_kj = f[j * kCore + k];
       if (f_kj == 0.0) continue;
       const double* f_k = f + k * kCore;
       for (int i = 0; i < kPadded; ++i) column[i] += f_k[i] * f_kj;
     }
-    for (int i = 0; i < kNav; ++i) out[j * kCore + i] += 0.5 * column[i];
+    // All 12 lanes stored and read back (rows 9..11 of F^2 are zero, F's bias rows being zero):
+    // with only 9 of them live the compiler would keep the sums in scalar registers.
+    double* out_j = out + j * kCore;
+    for (int i = 0; i < kNav; ++i) out_j[i] += 0.5 * column[i];
+    for (int i = kNav; i < kPadded; ++i) out_j[i] += 0.5 * column[i];
   }
 }
 
