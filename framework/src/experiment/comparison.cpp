@@ -13,6 +13,7 @@
 
 #include <boost/math/distributions/chi_squared.hpp>
 
+#include "shared_imu_records.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/progress_bar.hpp"
 #include "stochnav/experiment/run_consistency.hpp"
@@ -401,6 +402,7 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
     result.variants.push_back({variant.name, variant.gyro_plugin, {}});
     result.variants.back().runs.resize(seed_count);
   }
+  SharedImuRecords imu_records(seed_count, config.variants.size());
   run_parallel(job_count, threads, progress, done, [&](std::size_t job) {
     const std::size_t v = job / seed_count;
     const std::size_t s = job % seed_count;
@@ -410,7 +412,8 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
     try {
       const plugin::RunConfig run = plugin::parse_run_config(
           variant_run_document(config.variants[v], data[s]), config.config_dir);
-      result.variants[v].runs[s] = run_navigation(run, NavigationRunOptions{});
+      const SharedImuRecords::Lease imu = imu_records.lease(s, run.data.imu);
+      result.variants[v].runs[s] = run_navigation(run, {.imu_record = imu.record()});
     } catch (const ConfigError& error) {
       rethrow_with_context(error, context);
     } catch (const InputError& error) {

@@ -13,6 +13,7 @@
 #include "run_files.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/progress_bar.hpp"
+#include "stochnav/experiment/imu_stream.hpp"
 #include "stochnav/experiment/navigation_files.hpp"
 #include "stochnav/experiment/run_consistency.hpp"
 #include "stochnav/experiment/survey.hpp"
@@ -127,7 +128,8 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   const auto wall_start = std::chrono::steady_clock::now();
   plugin::check_run_start(config);
   FilterOptions filter = config.filter.options;
-  ImuFileReader imu(config.data.imu.string());
+  ImuStream imu =
+      options.imu_record ? ImuStream(options.imu_record) : ImuStream(config.data.imu.string());
 
   std::optional<TruthFileReader> truth_reader;
   NavState truth;

@@ -22,17 +22,18 @@ CoreMatrix integrated_core_dynamics(const NavState& state, const FastInputIntegr
   const double t = fast.interval_s;
   const double lat = state.latitude_rad;
   const double h = state.height_m;
-  const EarthRadii radii = earth_radii(lat);
+  const LatitudeTrig trig(lat);  // one sin, cos, tan for every term below
+  const EarthRadii radii = earth_radii(trig);
   const double rm = radii.meridian_m + h;
   const double rn = radii.transverse_m + h;
-  const double tan_lat = std::tan(lat);
-  const double sec_lat = 1.0 / std::cos(lat);
+  const double tan_lat = trig.tan;
+  const double sec_lat = 1.0 / trig.cos;
   const double w = wgs84::kEarthRate_radps;
   const double ve = state.v_n.x();
   const double vn = state.v_n.y();
   const double vu = state.v_n.z();
-  const Eigen::Vector3d omega_ie_n = earth_rate_n(lat);
-  const Eigen::Vector3d omega_en_n = transport_rate_n(lat, h, state.v_n);
+  const Eigen::Vector3d omega_ie_n = earth_rate_n(trig);
+  const Eigen::Vector3d omega_en_n = transport_rate_n(trig, h, state.v_n);
 
   // Partial derivatives of the rates with respect to dv and dr (dlat = dr_N / rm, dh = dr_U).
   Eigen::Matrix3d d_omega_en_dv;
@@ -40,8 +41,8 @@ CoreMatrix integrated_core_dynamics(const NavState& state, const FastInputIntegr
       1.0 / rn, 0.0, 0.0,                //
       tan_lat / rn, 0.0, 0.0;
   Eigen::Matrix3d d_omega_ie_dr = Eigen::Matrix3d::Zero();
-  d_omega_ie_dr(1, 1) = -w * std::sin(lat) / rm;
-  d_omega_ie_dr(2, 1) = w * std::cos(lat) / rm;
+  d_omega_ie_dr(1, 1) = -w * trig.sin / rm;
+  d_omega_ie_dr(2, 1) = w * trig.cos / rm;
   Eigen::Matrix3d d_omega_en_dr = Eigen::Matrix3d::Zero();
   d_omega_en_dr(0, 2) = vn / (rm * rm);
   d_omega_en_dr(1, 2) = -ve / (rn * rn);
@@ -63,7 +64,7 @@ CoreMatrix integrated_core_dynamics(const NavState& state, const FastInputIntegr
       (v_cross * d_omega_en_dv - skew(2.0 * omega_ie_n + omega_en_n)) * t;
   Eigen::Matrix3d vr = v_cross * (2.0 * d_omega_ie_dr + d_omega_en_dr);
   const double mean_radius = std::sqrt(radii.meridian_m * radii.transverse_m) + h;
-  vr(2, 2) += 2.0 * normal_gravity(lat, h) / mean_radius;
+  vr(2, 2) += 2.0 * normal_gravity(trig, h) / mean_radius;
   f_t.block<3, 3>(cs::kVelocity, cs::kPosition) = vr * t;
   f_t.block<3, 3>(cs::kVelocity, cs::kAccelBias) = -fast.c_nb_dt;
   // Attitude.

@@ -5,6 +5,8 @@
 #include <limits>
 #include <utility>
 
+#include "stochnav/filter/core_covariance.hpp"
+
 namespace stochnav {
 
 ErrorStateFilter::ErrorStateFilter(Eigen::MatrixXd initial_covariance)
@@ -13,13 +15,17 @@ ErrorStateFilter::ErrorStateFilter(Eigen::MatrixXd initial_covariance)
 void ErrorStateFilter::propagate(const Eigen::Ref<const Eigen::MatrixXd>& phi,
                                  const Eigen::Ref<const Eigen::MatrixXd>& q_d) {
   if (size() == kCoreSize) {
-    // The common case (no augmented states): fixed-size products, unrolled and vectorised.
-    using Fixed = Eigen::Matrix<double, kCoreSize, kCoreSize>;
-    const Eigen::Map<const Fixed, 0, Eigen::OuterStride<>> phi_fixed(
-        phi.data(), Eigen::OuterStride<>(phi.outerStride()));
-    Eigen::Map<Fixed> p(covariance_.data());
-    const Fixed phi_p = phi_fixed * p;
-    p.noalias() = phi_p * phi_fixed.transpose();
+    // The common case (no augmented states): fixed-size kernels, unrolled and vectorised.
+    const CoreMatrix phi_fixed = phi;
+    const CoreMatrix q_fixed = q_d;
+    Eigen::Map<CoreMatrix> p(covariance_.data());
+    if (has_constant_bias_rows(phi_fixed)) {
+      propagate_core_covariance(phi_fixed, q_fixed, p);  // exactly symmetric
+      keep_healthy(Symmetrize::kNone);
+      return;
+    }
+    const CoreMatrix phi_p = phi_fixed.lazyProduct(p);
+    p.noalias() = phi_p.lazyProduct(phi_fixed.transpose());
   } else {
     // Small matrices: coefficient-wise products beat the blocked GEMM path and its packing.
     scratch_.noalias() = phi.lazyProduct(covariance_);
@@ -27,6 +33,12 @@ void ErrorStateFilter::propagate(const Eigen::Ref<const Eigen::MatrixXd>& phi,
   }
   covariance_ += q_d;
   keep_healthy(Symmetrize::kAverage);
+}
+
+void ErrorStateFilter::propagate_core(const CoreMatrix& phi, const CoreMatrix& q_d) {
+  assert(size() == kCoreSize && has_constant_bias_rows(phi));
+  propagate_core_covariance(phi, q_d, Eigen::Map<CoreMatrix>(covariance_.data()));
+  keep_healthy(Symmetrize::kNone);  // the kernel's P is exactly symmetric
 }
 
 void ErrorStateFilter::propagate(const BlockTransition& transition) {

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <utility>
 
+#include "stochnav/filter/core_covariance.hpp"
 #include "stochnav/ins/earth.hpp"
 
 namespace stochnav {
@@ -230,9 +231,13 @@ void MwdNavigator::propagate_covariance() {
   const double interval = fast_.interval_s;
   if (interval <= 0.0) return;
   const CoreMatrix f_t = integrated_core_dynamics(ins_.state(), fast_);
+  if (layout_.size() == cs::kSize) {
+    propagate_core_states(f_t, interval);
+    return;
+  }
   phi_.setIdentity();
   if (head_size_ == cs::kSize) {
-    phi_.topLeftCorner<15, 15>() += f_t + 0.5 * f_t * f_t;
+    phi_.topLeftCorner<15, 15>() += second_order_transition_increment(f_t);
   } else {
     // The scale-factor columns couple into attitude (gyro) and velocity (accel) like the biases.
     head_f_.setZero();
@@ -279,6 +284,27 @@ void MwdNavigator::propagate_covariance() {
     filter_.propagate(phi_, q_d_);
   }
 
+  close_interval(interval);
+}
+
+// The 15 core states alone (no scale-factor or augmented states): fixed-size matrices
+// throughout, and the filter's kernel for the core transition's structure
+// (filter/core_covariance.hpp).
+void MwdNavigator::propagate_core_states(const CoreMatrix& f_t, double interval) {
+  CoreMatrix phi = second_order_transition_increment(f_t);
+  phi.diagonal().array() += 1.0;
+  CoreMatrix q_d = CoreMatrix::Zero();
+  q_d.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_;
+  q_d.block<3, 3>(cs::kVelocity, cs::kVelocity) = velocity_noise_;
+  gyro_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
+  q_d.block<3, 3>(cs::kGyroBias, cs::kGyroBias) = bias_walk_;
+  accel_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
+  q_d.block<3, 3>(cs::kAccelBias, cs::kAccelBias) = bias_walk_;
+  filter_.propagate_core(phi, q_d);
+  close_interval(interval);
+}
+
+void MwdNavigator::close_interval(double interval) {
   interval_start_s_ += interval;
   fast_ = FastInputIntegrals{};
   attitude_noise_.setZero();

@@ -45,8 +45,9 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
   // Mid-interval latitude and height extrapolated from k-1 and k-2 (they change smoothly).
   const double lat_mid = 1.5 * old.latitude_rad - 0.5 * previous_state_.latitude_rad;
   const double h_mid = 1.5 * old.height_m - 0.5 * previous_state_.height_m;
-  const Eigen::Vector3d omega_ie_mid = earth_rate_n(lat_mid);
-  const Eigen::Vector3d g_mid = gravity_n(lat_mid, h_mid);
+  const LatitudeTrig trig_mid(lat_mid);  // one sin, cos, tan for the four terms at lat_mid
+  const Eigen::Vector3d omega_ie_mid = earth_rate_n(trig_mid);
+  const Eigen::Vector3d g_mid = gravity_n(trig_mid, h_mid);
 
   // Velocity: specific force with rotation and sculling corrections, carried to the mid-interval
   // navigation frame.
@@ -64,7 +65,7 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
   const Eigen::Vector3d dv_corrected =
       dv + first * dtheta_x_dv + second * dtheta.cross(dtheta_x_dv) + sculling;
   const Eigen::Vector3d dv_body_n = old.q_nb * dv_corrected;
-  const Eigen::Vector3d omega_en_old = transport_rate_n(lat_mid, h_mid, old.v_n);
+  const Eigen::Vector3d omega_en_old = transport_rate_n(trig_mid, h_mid, old.v_n);
   const Eigen::Vector3d dv_sf_n =
       dv_body_n - 0.5 * ((omega_ie_mid + omega_en_old) * dt).cross(dv_body_n);
   // Coriolis and gravity with the trapezoid velocity of a predictor step: exact for a velocity
@@ -73,7 +74,7 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
   const Eigen::Vector3d v_predicted =
       old.v_n + dv_sf_n + (g_mid - (2.0 * omega_ie_mid + omega_en_old).cross(old.v_n)) * dt;
   const Eigen::Vector3d v_mid = 0.5 * (old.v_n + v_predicted);
-  const Eigen::Vector3d omega_en_mid = transport_rate_n(lat_mid, h_mid, v_mid);
+  const Eigen::Vector3d omega_en_mid = transport_rate_n(trig_mid, h_mid, v_mid);
   state_.v_n = old.v_n + dv_sf_n + (g_mid - (2.0 * omega_ie_mid + omega_en_mid).cross(v_mid)) * dt;
 
   // Position: trapezoid of the velocity, radii at the mid-interval height and latitude.
@@ -101,9 +102,9 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
   } else {
     phi = dtheta + dtheta_prev.cross(dtheta) / 12.0;  // two-sample form
   }
-  const double lat_new_mid = 0.5 * (old.latitude_rad + state_.latitude_rad);
+  const LatitudeTrig trig_new_mid(0.5 * (old.latitude_rad + state_.latitude_rad));
   const Eigen::Vector3d zeta =
-      (earth_rate_n(lat_new_mid) + transport_rate_n(lat_new_mid, h_average, v_average)) * dt;
+      (earth_rate_n(trig_new_mid) + transport_rate_n(trig_new_mid, h_average, v_average)) * dt;
   state_.q_nb =
       quaternion_from_rotation_vector(-zeta) * old.q_nb * quaternion_from_rotation_vector(phi);
   state_.q_nb.normalize();

@@ -1,6 +1,8 @@
 #include "stochnav/io/csv_table_reader.hpp"
 
+#include <charconv>
 #include <cmath>
+#include <cstring>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/io/text_cells.hpp"
@@ -39,6 +41,12 @@ CsvTableReader::CsvTableReader(const std::string& path, std::span<const std::str
     }
     indices_.push_back(index);
   }
+  slot_of_column_.assign(header_.size(), -1);
+  for (std::size_t i = 0; i < indices_.size(); ++i) {
+    int& slot = slot_of_column_[indices_[i]];
+    if (slot >= 0) plain_rows_ = false;  // a column asked for twice: the general path only
+    slot = static_cast<int>(i);
+  }
 }
 
 bool CsvTableReader::has_column(std::string_view name) const {
@@ -48,10 +56,34 @@ bool CsvTableReader::has_column(std::string_view name) const {
   return false;
 }
 
+bool CsvTableReader::parse_plain_row(std::string_view line, std::span<double> values) const {
+  const char* cell = line.data();
+  const char* const end = line.data() + line.size();
+  std::size_t column = 0;
+  while (true) {
+    const auto* comma = static_cast<const char*>(std::memchr(cell, ',', end - cell));
+    const char* cell_end = comma != nullptr ? comma : end;
+    if (column >= slot_of_column_.size()) return false;  // more cells than columns
+    if (const int slot = slot_of_column_[column]; slot >= 0) {
+      double value = 0.0;
+      const auto [stop, error] = std::from_chars(cell, cell_end, value);
+      if (error != std::errc() || stop != cell_end || !std::isfinite(value)) return false;
+      values[static_cast<std::size_t>(slot)] = value;
+    }
+    ++column;
+    if (comma == nullptr) break;
+    cell = comma + 1;
+  }
+  return column == header_.size();
+}
+
 bool CsvTableReader::next(std::span<double> values) {
   std::string_view line;
   while (lines_.next(line)) {
     if (trim(line).empty() || line.front() == '#') continue;
+    if (plain_rows_ && parse_plain_row(line, values)) return true;
+    // Anything else (blanks or '+' around a number, a bad cell, a short row) takes the general
+    // path, which accepts what parse_number accepts or names the problem.
     split_cells(line, ',', cells_);
     const auto where = [this] {
       return lines_.path() + ":" + std::to_string(lines_.line_number()) + ": ";

@@ -38,10 +38,12 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "stochnav/experiment/imu_record.hpp"
 #include "stochnav/experiment/navigation_errors.hpp"
 #include "stochnav/filter/error_state_filter.hpp"
 #include "stochnav/filter/filter_options.hpp"
@@ -55,6 +57,9 @@ struct NavigationRunOptions {
   bool progress = false;          ///< progress on standard error (core/progress_bar.hpp)
   bool plot = true;               ///< errors.png when out_dir is set and gnuplot exists
   std::size_t series_points = 2000;  ///< at most this many samples kept in error_series
+  /// The config's IMU file already parsed (compare's variants of one seed share it,
+  /// experiment/imu_record.hpp); null: the file is parsed on a reader thread as the run goes.
+  std::shared_ptr<const ImuRecord> imu_record;
 };
 
 /// One sample of the error time series (thinned) for plots.

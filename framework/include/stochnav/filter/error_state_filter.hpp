@@ -26,6 +26,7 @@
 #include <span>
 
 #include "stochnav/filter/block_diagonal_matrix.hpp"
+#include "stochnav/filter/error_dynamics.hpp"
 #include "stochnav/filter/sparse_map.hpp"
 
 namespace stochnav {
@@ -87,9 +88,16 @@ class ErrorStateFilter final {
   const FilterHealth& health() const { return health_; }
 
   /// P <- Phi P Phi^T + Q_d (n x n each; Phi the discrete transition, Q_d the discrete noise),
-  /// by dense products: O(n^3). The reference for propagate(const BlockTransition&).
+  /// by dense products: O(n^3). The reference for propagate(const BlockTransition&). With the
+  /// 15 core states alone and Phi of the core form [[A, B], [0, I]], the fixed-size kernel of
+  /// filter/core_covariance.hpp (same result to rounding).
   void propagate(const Eigen::Ref<const Eigen::MatrixXd>& phi,
                  const Eigen::Ref<const Eigen::MatrixXd>& q_d);
+
+  /// P <- Phi P Phi^T + Q_d for a filter of the 15 core states alone, Phi of the core form
+  /// [[A, B], [0, I]] (filter/core_covariance.hpp; checked in debug builds), Q_d symmetric: the
+  /// fixed-size kernel without propagate()'s checks and copies. Same result as propagate().
+  void propagate_core(const CoreMatrix& phi, const CoreMatrix& q_d);
 
   /// P <- Phi P Phi^T + Q_d with Phi and Q_d given by blocks (BlockTransition): the same
   /// result as the dense propagate to rounding, in O(n^2 (b + c) + D^2 n). Precondition:

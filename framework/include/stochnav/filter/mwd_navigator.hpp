@@ -101,6 +101,8 @@ class MwdNavigator final {
                         const Eigen::Matrix3d& c_nb, Eigen::Matrix3d& cache, double& cached_dt,
                         Eigen::Matrix3d& sum);
   void propagate_covariance();
+  void propagate_core_states(const CoreMatrix& f_t, double interval);
+  void close_interval(double interval);
   void update_augmented_transition(AugmentedGroup& group, double interval_s);
   void apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b, const Eigen::Vector3d& f_ib_b);
   void feed_back(const Eigen::VectorXd& correction);

@@ -51,4 +51,19 @@ Eigen::Vector3d earth_rate_n(double latitude_rad);
 /// with v_n = (v_E, v_N, v_U) the velocity relative to Earth (m/s). Singular at the poles.
 Eigen::Vector3d transport_rate_n(double latitude_rad, double height_m, const Eigen::Vector3d& v_n);
 
+/// The sine, cosine and tangent of one geodetic latitude (rad), computed once where several of
+/// the terms above are evaluated at the same latitude (the strapdown update). The overloads
+/// below give bit for bit what the latitude_rad overloads give.
+struct LatitudeTrig {
+  explicit LatitudeTrig(double latitude_rad);
+  double latitude_rad;
+  double sin, cos, tan;
+};
+EarthRadii earth_radii(const LatitudeTrig& latitude);
+double normal_gravity(const LatitudeTrig& latitude, double height_m);
+Eigen::Vector3d gravity_n(const LatitudeTrig& latitude, double height_m);
+Eigen::Vector3d earth_rate_n(const LatitudeTrig& latitude);
+Eigen::Vector3d transport_rate_n(const LatitudeTrig& latitude, double height_m,
+                                 const Eigen::Vector3d& v_n);
+
 }  // namespace stochnav

@@ -30,9 +30,16 @@ class CsvTableReader final {
   std::size_t line_number() const { return lines_.line_number(); }
 
  private:
+  // The common row (plain numbers between commas, as many cells as columns): one pass with
+  // std::from_chars, no splitting. False sends the row to the general path, which accepts
+  // exactly what this accepts (with the same values) and more, or throws.
+  bool parse_plain_row(std::string_view line, std::span<double> values) const;
+
   LineReader lines_;
   std::vector<std::string> header_;
   std::vector<std::size_t> indices_;  // header index of each requested column
+  std::vector<int> slot_of_column_;   // per header column: its place in next()'s values, or -1
+  bool plain_rows_ = true;            // parse_plain_row usable (no column requested twice)
   std::vector<std::string_view> cells_;
 };
 
