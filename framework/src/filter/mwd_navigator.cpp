@@ -96,6 +96,9 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
   accel_scale_.offset = block_offset(layout_, "accel_scale_factor");
   head_f_ = Eigen::MatrixXd::Zero(head_size_, head_size_);
   aid_intervals_.assign(aids_.size(), InsIntervalAccumulator{});
+  for (std::size_t index = 0; index < aids_.size(); ++index) {
+    if (aids_[index]->measures_interval_mean()) interval_aids_.push_back(index);
+  }
   interval_layout_ = interval_map_layout();
   interval_map_ = Eigen::MatrixXd::Zero(3, interval_layout_.width);
   const int n = layout_.size();
@@ -167,18 +170,19 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   const Eigen::Matrix3d velocity_noise_before = velocity_noise_;
   accumulate_noise(accel_noise_, t_start, dt, c_mid, accel_white_cache_, accel_cached_dt_,
                    velocity_noise_);
-  const Eigen::Matrix3d epoch_velocity_noise = velocity_noise_ - velocity_noise_before;
-  const InsIntervalAccumulator::Epoch interval_epoch{
-      .v_start_n = v_start,
-      .v_end_n = ins_.state().v_n,
-      .c_nb_mid = c_mid,
-      .delta_v_b = compensated.delta_v_b,
-      .scale_factor_delta_v_b = scale_factor_delta_v_b,
-      .delta_theta_b = compensated.delta_theta_b,
-      .velocity_noise = epoch_velocity_noise,
-      .attitude_noise = attitude_noise_ - attitude_noise_before,
-      .dt_s = dt};
-  for (InsIntervalAccumulator& interval : aid_intervals_) interval.add_epoch(interval_epoch);
+  if (!interval_aids_.empty()) {
+    const InsIntervalAccumulator::Epoch interval_epoch{
+        .v_start_n = v_start,
+        .v_end_n = ins_.state().v_n,
+        .c_nb_mid = c_mid,
+        .delta_v_b = compensated.delta_v_b,
+        .scale_factor_delta_v_b = scale_factor_delta_v_b,
+        .delta_theta_b = compensated.delta_theta_b,
+        .velocity_noise = velocity_noise_ - velocity_noise_before,
+        .attitude_noise = attitude_noise_ - attitude_noise_before,
+        .dt_s = dt};
+    for (const std::size_t index : interval_aids_) aid_intervals_[index].add_epoch(interval_epoch);
+  }
 
   bool measurement_due = false;
   for (const plugin::AidPlugin* aid : aids_) measurement_due |= aid->has_measurement(raw.t_s);
@@ -331,7 +335,7 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
   for (std::size_t index = 0; index < aids_.size(); ++index) {
     plugin::AidPlugin& aid = *aids_[index];
     if (!aid.has_measurement(t_s)) continue;
-    const InsIntervalAccumulator interval = aid_intervals_[index];
+    const InsIntervalAccumulator interval = aid_intervals_[index];  // empty unless an interval aid
     imu.interval = interval.interval();
     aid_intervals_[index] = InsIntervalAccumulator{};
     const int m = aid.measurement_size();

@@ -125,6 +125,7 @@ class MwdNavigator final {
   int head_size_ = 0;  // D: core + scale-factor states, the dense head before the augmented blocks
   Eigen::MatrixXd head_f_;  // head_size_ x head_size_ scratch
   std::vector<InsIntervalAccumulator> aid_intervals_;  // per aid, since its previous epoch
+  std::vector<std::size_t> interval_aids_;  // the aids that measure an interval mean
   IntervalMapLayout interval_layout_;
   Eigen::MatrixXd interval_map_;  // 3 x interval_layout_.width
 

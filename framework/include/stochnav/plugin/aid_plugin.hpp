@@ -90,7 +90,8 @@ struct AidContext {
 /// term alone is g 1e-4 T / 2 = 5e-4 m/s over a 1-s interval: an aid that linearised the mean
 /// on dv at the epoch would be overconfident by far. Aids project the mean with the attitude at
 /// the epoch (the hole direction does not rotate with the toolface, whereas a mean of the
-/// rotating body axes would average the lateral information away).
+/// rotating body axes would average the lateral information away). Only interval aids
+/// (AidPlugin::measures_interval_mean) get an interval; the others see duration_s = 0.
 struct InsInterval {
   double duration_s = 0.0;                             ///< T = t - t_prev (s); 0 at the start
   Eigen::Vector3d mean_v_n = Eigen::Vector3d::Zero();  ///< (1/T) int v_n dt, ENU (m/s)
@@ -147,11 +148,12 @@ class AidPlugin {
                        Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
                        Eigen::Ref<Eigen::MatrixXd> r) const = 0;
 
-  /// True when the measurement depends on the error state at the epoch only through
-  /// imu.interval's mean velocity (besides the attitude that projects it), as for ROP and the
-  /// pipe tally: the navigator then extends h beyond the 15 core states with the mean's
-  /// sensitivity to the scale-factor and augmented sensor-error states,
-  /// P * (their columns of the mean's map), P = dz / d mean_v_n being h's velocity columns.
+  /// True for an interval aid, whose measurement depends on the error state at the epoch only
+  /// through imu.interval's mean velocity (besides the attitude that projects it), as for ROP
+  /// and the pipe tally. Only interval aids get imu.interval; the navigator extends their h
+  /// beyond the 15 core states with the mean's sensitivity to the scale-factor and augmented
+  /// sensor-error states, P * (their columns of the mean's map), P = dz / d mean_v_n being h's
+  /// velocity columns.
   virtual bool measures_interval_mean() const { return false; }
 
   /// One line with the params in their units.
