@@ -199,7 +199,8 @@ TEST_P(BlockProcessFit, RecoversTheVarianceAndLagOneCorrelationOfTheBlockMean) {
   if (GetParam() == "arma") {
     // The block mean of a Gauss-Markov process plus white noise is an ARMA(1, 1) whose AR root
     // is exp(-T / tau): BIC should find it.
-    for (const auto& axis : model->params()["axes"]) {
+    const nlohmann::json params = model->params();
+    for (const auto& axis : params["axes"]) {
       ASSERT_EQ(axis["ar"].size(), 1u) << model->describe();
       EXPECT_NEAR(axis["ar"][0].get<double>(), std::exp(-interval / truth.tau), 0.01);
     }

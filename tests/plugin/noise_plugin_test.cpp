@@ -130,7 +130,12 @@ TEST(NoiseParamsErrors, NameTheJsonPointerAndTheExpectedForm) {
     return std::string("(accepted)");
   };
   EXPECT_EQ(message("white", {{"N", 0.05}, {"NN", 1}}),
-            "/noise/gyro/params/NN: unknown key; expected only K, N");
+            "/noise/gyro/params/NN: unknown key 'NN'; did you mean 'N'?");
+  EXPECT_EQ(message("white", {{"N", 0.05}, {"speed", 1}}),
+            "/noise/gyro/params/speed: unknown key; expected only K, N");
+  // A typo of a required key is named as the typo, not as the required key missing.
+  EXPECT_EQ(message("gauss_markov", {{"sigam", 1}, {"tau_c", 1}}),
+            "/noise/gyro/params/sigam: unknown key 'sigam'; did you mean 'sigma'?");
   EXPECT_NE(message("gauss_markov", {{"sigma", 1}, {"tau_c", -1}})
                 .find("/noise/gyro/params/tau_c: found -1; expected a number > 0 (s)"),
             std::string::npos);

@@ -6,8 +6,10 @@
 #include <numbers>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/nearest_name.hpp"
 #include "stochnav/model/noise_model_json.hpp"
 
 namespace stochnav {
@@ -92,7 +94,12 @@ class ObjectReader {
   void finish() const {
     for (const auto& [key, entry] : value_.items()) {
       if (key == "comments" || key == "comment") continue;  // free-text documentation
-      if (!known_.contains(key)) fail(at(key), "is an unknown key", form_);
+      if (known_.contains(key)) continue;
+      const std::vector<std::string> names(known_.begin(), known_.end());
+      if (const auto nearest = nearest_name(key, names)) {
+        throw ConfigError(at(key) + ": unknown key '" + key + "'; did you mean '" + *nearest + "'?");
+      }
+      fail(at(key), "is an unknown key", form_);
     }
   }
 
