@@ -24,7 +24,7 @@ std::string escape_pointer_token(std::string_view key) {
   return token;
 }
 
-std::string bound_text(Bound bound, std::string_view unit) {
+std::string bound_text_of(Bound bound, std::string_view unit) {
   std::string text;
   switch (bound) {
     case Bound::kAny:
@@ -65,6 +65,14 @@ std::string shown(const nlohmann::json& value) {
   return text;
 }
 
+}  // namespace
+
+std::string bound_description(Bound bound, std::string_view unit) {
+  return bound_text_of(bound, unit);
+}
+
+namespace {
+std::string bound_text(Bound bound, std::string_view unit) { return bound_text_of(bound, unit); }
 }  // namespace
 
 ParamReader::ParamReader(const nlohmann::json& params, std::string pointer)

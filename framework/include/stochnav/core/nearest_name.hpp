@@ -18,8 +18,7 @@ bool likely_typo(std::string_view typed, std::string_view name);
 
 /// The name among `known` closest to `typed` when it is a likely typo of it (the first of equal
 /// distance); nullopt otherwise.
-std::optional<std::string> nearest_name(std::string_view typed,
-                                        std::span<const std::string> known);
+std::optional<std::string> nearest_name(std::string_view typed, std::span<const std::string> known);
 
 /// "unknown key '<typed>'; did you mean '<nearest>'?" when a known name is a likely match, else
 /// "unknown key; expected only <known, comma-separated>" ("an empty object" if none); the

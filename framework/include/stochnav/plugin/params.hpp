@@ -25,6 +25,9 @@ enum class Bound {
   kOpenUnit,     ///< in (0, 1)
 };
 
+/// "a number > 0 (deg/h)": what a value within `bound` looks like, for messages and docs.
+std::string bound_description(Bound bound, std::string_view unit);
+
 class ParamReader {
  public:
   /// `params` must be an object or null (read as {}); `pointer` is its JSON pointer. Throws
