@@ -11,30 +11,41 @@
 // Exact discretisation over dt: Phi = e^(-beta dt) [[1, dt], [0, 1]],
 //   Qd = q int_0^dt e^(-2 beta s) [[s^2, s], [s, 1]] ds.
 
+#include <fmt/format.h>
+
 #include <array>
 #include <cmath>
 #include <memory>
-#include <numbers>
-#include <sstream>
 
-#include "stochnav/core/errors.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
-#include "stochnav/plugin/params.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 
 namespace {
 
+using stochnav::ParameterDimension;
+using stochnav::plugin::Bound;
+using stochnav::plugin::ParamUnit;
 using stochnav::plugin::SensorGroup;
 using Axes = std::array<double, 3>;
 
-/// Natural units (rad/s or m/s^2) per reporting unit (deg/h or m/s/h) of a rate.
-double natural_per_reported_rate(SensorGroup group) {
-  return group == SensorGroup::kGyro ? std::numbers::pi / 180.0 / 3600.0 : 1.0 / 3600.0;
-}
+struct SecondOrderParams {
+  Axes sigma{};  ///< stationary standard deviation of the sensor error per axis, rad/s or m/s^2
+  Axes tau_c{};  ///< correlation time per axis, s
+};
 
-class SecondOrderGaussMarkov final : public stochnav::plugin::NoiseModelPlugin {
+// Each parameter declared once: parsing (with deg/h -> rad/s), params(), describe(), equals().
+const stochnav::plugin::ParamTable<SecondOrderParams> kTable{
+    per_axis(&SecondOrderParams::sigma, "sigma", ParamUnit::of(ParameterDimension::kRate),
+             Bound::kPositive, stochnav::plugin::kRequired, "stationary standard deviation of x1"),
+    per_axis(&SecondOrderParams::tau_c, "tau_c", ParamUnit::of(ParameterDimension::kTime),
+             Bound::kPositive, stochnav::plugin::kRequired, "correlation time 1 / beta"),
+};
+
+class SecondOrderGaussMarkov final
+    : public stochnav::plugin::TabulatedNoiseModel<SecondOrderParams> {
  public:
-  SecondOrderGaussMarkov(SensorGroup group, Axes sigma, Axes tau_c)
-      : NoiseModelPlugin(group), sigma_(sigma), tau_c_(tau_c) {}
+  SecondOrderGaussMarkov(SensorGroup group, const SecondOrderParams& params)
+      : TabulatedNoiseModel(group, kTable, params) {}
 
   std::string_view type() const override { return "second_order_gauss_markov"; }
   int augmented_size() const override { return 6; }
@@ -48,8 +59,8 @@ class SecondOrderGaussMarkov final : public stochnav::plugin::NoiseModelPlugin {
     phi.setZero();
     q_d.setZero();
     for (int i = 0; i < 3; ++i) {
-      const double beta = 1.0 / tau_c_[i];
-      const double q = 4.0 * beta * beta * beta * sigma_[i] * sigma_[i];
+      const double beta = 1.0 / parameters().tau_c[i];
+      const double q = driving_psd(i);
       const double decay = std::exp(-beta * dt);
       const int k = 2 * i;
       phi(k, k) = decay;
@@ -68,10 +79,10 @@ class SecondOrderGaussMarkov final : public stochnav::plugin::NoiseModelPlugin {
   void augmented_initial_covariance(Eigen::Ref<Eigen::MatrixXd> p0) const override {
     p0.setZero();
     for (int i = 0; i < 3; ++i) {
-      const double beta = 1.0 / tau_c_[i];
-      const double q = 4.0 * beta * beta * beta * sigma_[i] * sigma_[i];
+      const double beta = 1.0 / parameters().tau_c[i];
+      const double q = driving_psd(i);
       const int k = 2 * i;
-      p0(k, k) = sigma_[i] * sigma_[i];
+      p0(k, k) = parameters().sigma[i] * parameters().sigma[i];
       p0(k, k + 1) = p0(k + 1, k) = q / (4.0 * beta * beta);
       p0(k + 1, k + 1) = q / (2.0 * beta);
     }
@@ -82,53 +93,24 @@ class SecondOrderGaussMarkov final : public stochnav::plugin::NoiseModelPlugin {
     for (int i = 0; i < 3; ++i) map(i, 2 * i) = 1.0;
   }
 
-  nlohmann::json params() const override {
-    nlohmann::json sigma = nlohmann::json::array(), tau = nlohmann::json::array();
-    for (int i = 0; i < 3; ++i) {
-      sigma.push_back(sigma_[i] / natural_per_reported_rate(group()));
-      tau.push_back(tau_c_[i]);
-    }
-    return {{"sigma", sigma}, {"tau_c", tau}};
-  }
-
+  // The table's describe() plus a derived quantity (fmt comes with stochnav::framework).
   std::string describe() const override {
-    std::ostringstream text;
-    text << "second_order_gauss_markov (" << stochnav::plugin::sensor_group_name(group()) << "):";
-    for (int i = 0; i < 3; ++i) {
-      text << " axis " << i << ": sigma = " << sigma_[i] / natural_per_reported_rate(group())
-           << (group() == SensorGroup::kGyro ? " deg/h" : " m/s/h") << ", tau_c = " << tau_c_[i]
-           << " s" << (i < 2 ? ";" : "");
-    }
-    return text.str();
-  }
-
-  bool equals(const NoiseModelPlugin& other, double rel_tol) const override {
-    const auto* that = dynamic_cast<const SecondOrderGaussMarkov*>(&other);
-    if (that == nullptr || that->group() != group()) return false;
-    const auto close = [rel_tol](double a, double b) {
-      return std::abs(a - b) <= rel_tol * std::max(std::abs(a), std::abs(b));
-    };
-    for (int i = 0; i < 3; ++i) {
-      if (!close(sigma_[i], that->sigma_[i]) || !close(tau_c_[i], that->tau_c_[i])) return false;
-    }
-    return true;
+    return TabulatedNoiseModel::describe() +
+           fmt::format("; driving PSD q = {:.3g} (natural units^2/s^3, x axis)", driving_psd(0));
   }
 
  private:
-  Axes sigma_;  ///< stationary standard deviation of the sensor error per axis, rad/s or m/s^2
-  Axes tau_c_;  ///< correlation time per axis, s
+  /// q = 4 beta^3 sigma^2, natural units.
+  double driving_psd(int axis) const {
+    const double beta = 1.0 / parameters().tau_c[axis];
+    return 4.0 * beta * beta * beta * parameters().sigma[axis] * parameters().sigma[axis];
+  }
 };
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make(
     const nlohmann::json& json, const stochnav::plugin::NoiseModelContext& context) {
-  using stochnav::plugin::Bound;
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  Axes sigma = reader.axes("sigma", Bound::kPositive,
-                           context.group == SensorGroup::kGyro ? "deg/h" : "m/s/h");
-  for (double& value : sigma) value *= natural_per_reported_rate(context.group);
-  const Axes tau_c = reader.axes("tau_c", Bound::kPositive, "s");
-  reader.finish();
-  return std::make_unique<SecondOrderGaussMarkov>(context.group, sigma, tau_c);
+  return std::make_unique<SecondOrderGaussMarkov>(
+      context.group, stochnav::plugin::parse_params(kTable, json, context));
 }
 
 }  // namespace
