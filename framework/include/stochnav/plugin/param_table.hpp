@@ -20,6 +20,7 @@
 // number for all three axes or [x, y, z]; params() writes it as [x, y, z]. Defaults are in
 // reporting units. A table must outlive the models that use it (a namespace-scope constant).
 
+#include <algorithm>
 #include <array>
 #include <initializer_list>
 #include <limits>
@@ -102,6 +103,13 @@ class ParamTable {
   ParamTable(std::initializer_list<ParamEntry<Params>> entries) : entries_(entries) {}
 
   std::span<const ParamEntry<Params>> entries() const { return entries_; }
+
+  /// The table without the entry `name`, e.g. for a fitter that sets that parameter itself.
+  ParamTable without(std::string_view name) const {
+    ParamTable rest = *this;
+    std::erase_if(rest.entries_, [name](const auto& entry) { return entry.name == name; });
+    return rest;
+  }
 
   /// Reads every entry into `params` (natural units), leaving other keys to the caller, who
   /// calls reader.finish() after reading them. Throws ConfigError naming the JSON pointer.
