@@ -130,6 +130,9 @@ class ParamTable {
     }
   }
 
+  /// read() of a table whose units are all fixed (aids): no sensor quantity to convert for.
+  void read(ParamReader& reader, Params& params) const { read(reader, Quantity::kPlain, params); }
+
   /// read() of a whole params object, then ParamReader::finish().
   Params parse(const nlohmann::json& json, std::string pointer, Quantity quantity) const {
     ParamReader reader(json, std::move(pointer));
