@@ -9,7 +9,9 @@
 // Stationary covariance (Lyapunov F P + P F^T + G q G^T = 0):
 //   var x1 = q / (4 beta^3) = sigma^2, cov(x1, x2) = q / (4 beta^2), var x2 = q / (2 beta).
 // Exact discretisation over dt: Phi = e^(-beta dt) [[1, dt], [0, 1]],
-//   Qd = q int_0^dt e^(-2 beta s) [[s^2, s], [s, 1]] ds.
+//   Qd = q int_0^dt e^(-2 beta s) [[s^2, s], [s, 1]] ds
+//      = q [[2 r2 / (8 beta^3), r1 / (4 beta^2)], [., r0 / (2 beta)]],
+//   r_n = 1 - e^(-2 beta dt) sum_{k <= n} (2 beta dt)^k / k!   (exp_remainder).
 
 #include <fmt/format.h>
 
@@ -41,6 +43,25 @@ const stochnav::plugin::ParamTable<SecondOrderParams> kTable{
              Bound::kPositive, stochnav::plugin::kRequired, "correlation time 1 / beta"),
 };
 
+/// 1 - e^-x (1 + x + ... + x^n / n!) for x >= 0. For x < 1 summed as its series
+/// e^-x (x^(n+1) / (n+1)! + ...): the difference cancels to nothing at small steps (the
+/// property suite caught Qd losing positive semi-definiteness at dt = 1e-4 s).
+double exp_remainder(int n, double x) {
+  double term = 1.0, partial = 1.0;  // x^k / k! and the sum up to k = n
+  for (int k = 1; k <= n; ++k) {
+    term *= x / k;
+    partial += term;
+  }
+  if (x >= 1.0) return 1.0 - std::exp(-x) * partial;
+  double tail = 0.0;
+  for (int k = n + 1; k <= n + 40; ++k) {
+    term *= x / k;
+    tail += term;
+    if (term <= 1e-17 * tail) break;
+  }
+  return std::exp(-x) * tail;
+}
+
 class SecondOrderGaussMarkov final
     : public stochnav::plugin::TabulatedNoiseModel<SecondOrderParams> {
  public:
@@ -66,10 +87,10 @@ class SecondOrderGaussMarkov final
       phi(k, k) = decay;
       phi(k, k + 1) = decay * dt;
       phi(k + 1, k + 1) = decay;
-      const double b2 = 2.0 * beta * dt, e2 = std::exp(-b2);
-      const double i0 = -std::expm1(-b2) / (2.0 * beta);
-      const double i1 = (1.0 - e2 * (1.0 + b2)) / (4.0 * beta * beta);
-      const double i2 = (2.0 - e2 * (2.0 + 2.0 * b2 + b2 * b2)) / (8.0 * beta * beta * beta);
+      const double b2 = 2.0 * beta * dt;
+      const double i0 = exp_remainder(0, b2) / (2.0 * beta);
+      const double i1 = exp_remainder(1, b2) / (4.0 * beta * beta);
+      const double i2 = 2.0 * exp_remainder(2, b2) / (8.0 * beta * beta * beta);
       q_d(k, k) = q * i2;
       q_d(k, k + 1) = q_d(k + 1, k) = q * i1;
       q_d(k + 1, k + 1) = q * i0;
