@@ -53,7 +53,7 @@ struct ParamEntry {
   ParamUnit unit = ParamUnit::fixed("");
   Bound bound = Bound::kAny;
   std::optional<double> fallback;  ///< default, reporting units (flags: 0 or 1); kRequired
-  std::string_view doc;            ///< what it is, for documentation and `plugins check`
+  std::string_view doc;            ///< what it is, for ParamTable::documentation()
 };
 
 /// A number.
@@ -71,14 +71,14 @@ ParamEntry<Params> per_axis(std::array<double, 3> Params::*member, std::string_v
   return {member, name, unit, bound, fallback, doc};
 }
 
-/// true or false.
+/// true or false. Call it qualified (stochnav::plugin::flag): no argument brings it in by ADL.
 template <class Params>
 ParamEntry<Params> flag(bool Params::*member, std::string_view name, bool fallback,
                         std::string_view doc) {
   return {member, name, ParamUnit::fixed(""), Bound::kAny, fallback ? 1.0 : 0.0, doc};
 }
 
-/// The non-template work of ParamTable (params_table.cpp).
+/// The non-template work of ParamTable (param_table.cpp).
 namespace param_table_detail {
 using Axes = std::array<double, 3>;
 double read_scalar(ParamReader& reader, std::string_view name, const ParamUnit& unit, Bound bound,
@@ -197,7 +197,7 @@ class ParamTable {
     return true;
   }
 
-  /// One line per parameter: "N: angle random walk; deg/sqrt(h), >= 0, per axis, required".
+  /// One line per parameter, e.g. "tau_c: correlation time; a number > 0 (s), default 10 s".
   std::vector<std::string> documentation(Quantity quantity) const {
     std::vector<std::string> lines;
     for (const auto& entry : entries_) {
