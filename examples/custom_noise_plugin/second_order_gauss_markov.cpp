@@ -9,32 +9,64 @@
 // Stationary covariance (Lyapunov F P + P F^T + G q G^T = 0):
 //   var x1 = q / (4 beta^3) = sigma^2, cov(x1, x2) = q / (4 beta^2), var x2 = q / (2 beta).
 // Exact discretisation over dt: Phi = e^(-beta dt) [[1, dt], [0, 1]],
-//   Qd = q int_0^dt e^(-2 beta s) [[s^2, s], [s, 1]] ds.
+//   Qd = q int_0^dt e^(-2 beta s) [[s^2, s], [s, 1]] ds
+//      = q [[2 r2 / (8 beta^3), r1 / (4 beta^2)], [., r0 / (2 beta)]],
+//   r_n = 1 - e^(-2 beta dt) sum_{k <= n} (2 beta dt)^k / k!   (exp_remainder).
+
+#include <fmt/format.h>
 
 #include <array>
 #include <cmath>
 #include <memory>
-#include <numbers>
-#include <sstream>
 
-#include "stochnav/core/errors.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
-#include "stochnav/plugin/params.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 
 namespace {
 
+using stochnav::ParameterDimension;
+using stochnav::plugin::Bound;
+using stochnav::plugin::ParamUnit;
 using stochnav::plugin::SensorGroup;
 using Axes = std::array<double, 3>;
 
-/// Natural units (rad/s or m/s^2) per reporting unit (deg/h or m/s/h) of a rate.
-double natural_per_reported_rate(SensorGroup group) {
-  return group == SensorGroup::kGyro ? std::numbers::pi / 180.0 / 3600.0 : 1.0 / 3600.0;
+struct SecondOrderParams {
+  Axes sigma{};  ///< stationary standard deviation of the sensor error per axis, rad/s or m/s^2
+  Axes tau_c{};  ///< correlation time per axis, s
+};
+
+// Each parameter declared once: parsing (with deg/h -> rad/s), params(), describe(), equals().
+const stochnav::plugin::ParamTable<SecondOrderParams> kTable{
+    per_axis(&SecondOrderParams::sigma, "sigma", ParamUnit::of(ParameterDimension::kRate),
+             Bound::kPositive, stochnav::plugin::kRequired, "stationary standard deviation of x1"),
+    per_axis(&SecondOrderParams::tau_c, "tau_c", ParamUnit::of(ParameterDimension::kTime),
+             Bound::kPositive, stochnav::plugin::kRequired, "correlation time 1 / beta"),
+};
+
+/// 1 - e^-x (1 + x + ... + x^n / n!) for x >= 0. For x < 1 summed as its series
+/// e^-x (x^(n+1) / (n+1)! + ...): the difference cancels to nothing at small steps (the
+/// property suite caught Qd losing positive semi-definiteness at dt = 1e-4 s).
+double exp_remainder(int n, double x) {
+  double term = 1.0, partial = 1.0;  // x^k / k! and the sum up to k = n
+  for (int k = 1; k <= n; ++k) {
+    term *= x / k;
+    partial += term;
+  }
+  if (x >= 1.0) return 1.0 - std::exp(-x) * partial;
+  double tail = 0.0;
+  for (int k = n + 1; k <= n + 40; ++k) {
+    term *= x / k;
+    tail += term;
+    if (term <= 1e-17 * tail) break;
+  }
+  return std::exp(-x) * tail;
 }
 
-class SecondOrderGaussMarkov final : public stochnav::plugin::NoiseModelPlugin {
+class SecondOrderGaussMarkov final
+    : public stochnav::plugin::TabulatedNoiseModel<SecondOrderParams> {
  public:
-  SecondOrderGaussMarkov(SensorGroup group, Axes sigma, Axes tau_c)
-      : NoiseModelPlugin(group), sigma_(sigma), tau_c_(tau_c) {}
+  SecondOrderGaussMarkov(SensorGroup group, const SecondOrderParams& params)
+      : TabulatedNoiseModel(group, kTable, params) {}
 
   std::string_view type() const override { return "second_order_gauss_markov"; }
   int augmented_size() const override { return 6; }
@@ -48,17 +80,17 @@ class SecondOrderGaussMarkov final : public stochnav::plugin::NoiseModelPlugin {
     phi.setZero();
     q_d.setZero();
     for (int i = 0; i < 3; ++i) {
-      const double beta = 1.0 / tau_c_[i];
-      const double q = 4.0 * beta * beta * beta * sigma_[i] * sigma_[i];
+      const double beta = 1.0 / parameters().tau_c[i];
+      const double q = driving_psd(i);
       const double decay = std::exp(-beta * dt);
       const int k = 2 * i;
       phi(k, k) = decay;
       phi(k, k + 1) = decay * dt;
       phi(k + 1, k + 1) = decay;
-      const double b2 = 2.0 * beta * dt, e2 = std::exp(-b2);
-      const double i0 = -std::expm1(-b2) / (2.0 * beta);
-      const double i1 = (1.0 - e2 * (1.0 + b2)) / (4.0 * beta * beta);
-      const double i2 = (2.0 - e2 * (2.0 + 2.0 * b2 + b2 * b2)) / (8.0 * beta * beta * beta);
+      const double b2 = 2.0 * beta * dt;
+      const double i0 = exp_remainder(0, b2) / (2.0 * beta);
+      const double i1 = exp_remainder(1, b2) / (4.0 * beta * beta);
+      const double i2 = 2.0 * exp_remainder(2, b2) / (8.0 * beta * beta * beta);
       q_d(k, k) = q * i2;
       q_d(k, k + 1) = q_d(k + 1, k) = q * i1;
       q_d(k + 1, k + 1) = q * i0;
@@ -68,10 +100,10 @@ class SecondOrderGaussMarkov final : public stochnav::plugin::NoiseModelPlugin {
   void augmented_initial_covariance(Eigen::Ref<Eigen::MatrixXd> p0) const override {
     p0.setZero();
     for (int i = 0; i < 3; ++i) {
-      const double beta = 1.0 / tau_c_[i];
-      const double q = 4.0 * beta * beta * beta * sigma_[i] * sigma_[i];
+      const double beta = 1.0 / parameters().tau_c[i];
+      const double q = driving_psd(i);
       const int k = 2 * i;
-      p0(k, k) = sigma_[i] * sigma_[i];
+      p0(k, k) = parameters().sigma[i] * parameters().sigma[i];
       p0(k, k + 1) = p0(k + 1, k) = q / (4.0 * beta * beta);
       p0(k + 1, k + 1) = q / (2.0 * beta);
     }
@@ -82,53 +114,24 @@ class SecondOrderGaussMarkov final : public stochnav::plugin::NoiseModelPlugin {
     for (int i = 0; i < 3; ++i) map(i, 2 * i) = 1.0;
   }
 
-  nlohmann::json params() const override {
-    nlohmann::json sigma = nlohmann::json::array(), tau = nlohmann::json::array();
-    for (int i = 0; i < 3; ++i) {
-      sigma.push_back(sigma_[i] / natural_per_reported_rate(group()));
-      tau.push_back(tau_c_[i]);
-    }
-    return {{"sigma", sigma}, {"tau_c", tau}};
-  }
-
+  // The table's describe() plus a derived quantity (fmt comes with stochnav::framework).
   std::string describe() const override {
-    std::ostringstream text;
-    text << "second_order_gauss_markov (" << stochnav::plugin::sensor_group_name(group()) << "):";
-    for (int i = 0; i < 3; ++i) {
-      text << " axis " << i << ": sigma = " << sigma_[i] / natural_per_reported_rate(group())
-           << (group() == SensorGroup::kGyro ? " deg/h" : " m/s/h") << ", tau_c = " << tau_c_[i]
-           << " s" << (i < 2 ? ";" : "");
-    }
-    return text.str();
-  }
-
-  bool equals(const NoiseModelPlugin& other, double rel_tol) const override {
-    const auto* that = dynamic_cast<const SecondOrderGaussMarkov*>(&other);
-    if (that == nullptr || that->group() != group()) return false;
-    const auto close = [rel_tol](double a, double b) {
-      return std::abs(a - b) <= rel_tol * std::max(std::abs(a), std::abs(b));
-    };
-    for (int i = 0; i < 3; ++i) {
-      if (!close(sigma_[i], that->sigma_[i]) || !close(tau_c_[i], that->tau_c_[i])) return false;
-    }
-    return true;
+    return TabulatedNoiseModel::describe() +
+           fmt::format("; driving PSD q = {:.3g} (natural units^2/s^3, x axis)", driving_psd(0));
   }
 
  private:
-  Axes sigma_;  ///< stationary standard deviation of the sensor error per axis, rad/s or m/s^2
-  Axes tau_c_;  ///< correlation time per axis, s
+  /// q = 4 beta^3 sigma^2, natural units.
+  double driving_psd(int axis) const {
+    const double beta = 1.0 / parameters().tau_c[axis];
+    return 4.0 * beta * beta * beta * parameters().sigma[axis] * parameters().sigma[axis];
+  }
 };
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make(
     const nlohmann::json& json, const stochnav::plugin::NoiseModelContext& context) {
-  using stochnav::plugin::Bound;
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  Axes sigma = reader.axes("sigma", Bound::kPositive,
-                           context.group == SensorGroup::kGyro ? "deg/h" : "m/s/h");
-  for (double& value : sigma) value *= natural_per_reported_rate(context.group);
-  const Axes tau_c = reader.axes("tau_c", Bound::kPositive, "s");
-  reader.finish();
-  return std::make_unique<SecondOrderGaussMarkov>(context.group, sigma, tau_c);
+  return std::make_unique<SecondOrderGaussMarkov>(
+      context.group, stochnav::plugin::parse_params(kTable, json, context));
 }
 
 }  // namespace

@@ -5,8 +5,9 @@
 //
 //   embed_runtime                      gyro: "gauss_markov" fitted to a simulated 10-minute
 //                                      static calibration record; accel: "white" from params
-//   embed_runtime RUN_CONFIG.json      the noise models of a run config (plugins found in the
-//                                      config's folder, $STOCHNAV_PLUGIN_PATH, the package)
+//   embed_runtime RUN_CONFIG.json      the noise models and the filter section (with its
+//                                      initial error, if any) of a run config (plugins found in
+//                                      the config's folder, $STOCHNAV_PLUGIN_PATH, the package)
 //   --check                            exit 1 unless every augmented block keeps its stationary
 //                                      covariance, the filter stays healthy (P positive
 //                                      definite, no rejected update) and the navigation errors
@@ -21,10 +22,12 @@
 #include <cstdio>
 #include <exception>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <string>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/experiment/initial_state.hpp"
 #include "stochnav/filter/mwd_navigator.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/model/noise_model.hpp"
@@ -98,13 +101,14 @@ int run(int argc, char** argv) {
               sp::kPluginApiVersion);
 
   sp::RunPlugins plugins;
+  std::optional<sp::RunConfig> config;
   if (config_path.empty()) {
     const sp::PluginRegistry registry(sp::default_search_path());
     plugins = demo_plugins(registry);
   } else {
-    const sp::RunConfig config = sp::read_run_config(config_path);
-    const sp::PluginRegistry registry(sp::default_search_path(config.config_dir));
-    plugins = sp::build_run_plugins(config, registry, sp::AidData(), stochnav::NavState(), 100.0);
+    config = sp::read_run_config(config_path);
+    const sp::PluginRegistry registry(sp::default_search_path(config->config_dir));
+    plugins = sp::build_run_plugins(*config, registry, sp::AidData(), stochnav::NavState(), 100.0);
   }
   std::printf("gyro:  %s\naccel: %s\nerror state: %d states\n", plugins.gyro->describe().c_str(),
               plugins.accel->describe().c_str(), plugins.layout.size());
@@ -129,8 +133,13 @@ int run(int argc, char** argv) {
                                        {{"sigma_position_m", 0.01}, {"sigma_velocity_mps", 0.001}},
                                        aid_context, "/aids/0/plugin");
 
-  stochnav::FilterOptions options;  // documented defaults: P propagated every 0.1 s
-  stochnav::MwdNavigator navigator(truth, *plugins.gyro, *plugins.accel, {aid.get()}, options);
+  // The config's filter section and initial error as `stochnav run` applies them; without a
+  // config the documented defaults (P propagated every 0.1 s) from the true state.
+  const stochnav::FilterStart start =
+      config ? stochnav::filter_start(*config, truth, config->filter.options)
+             : stochnav::FilterStart{truth, stochnav::FilterOptions{}};
+  stochnav::MwdNavigator navigator(start.estimate, *plugins.gyro, *plugins.accel, {aid.get()},
+                                   start.options);
   std::mt19937_64 rng(42);
   std::normal_distribution<double> normal;
   const long epochs = std::lround(duration_s * rate_hz);

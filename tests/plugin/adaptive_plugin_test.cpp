@@ -12,7 +12,7 @@
 #include <random>
 #include <string>
 
-#include "noise_model_properties.hpp"
+#include "noise_plugin_support.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 

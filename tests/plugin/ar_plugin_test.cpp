@@ -9,7 +9,7 @@
 #include <numbers>
 #include <string>
 
-#include "noise_model_properties.hpp"
+#include "noise_plugin_support.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/noise_model.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
@@ -23,6 +23,7 @@ using testing::case_name;
 using testing::context_for;
 using testing::make;
 using testing::NoiseModelProperties;
+using testing::on_grid;
 using testing::registry;
 
 const nlohmann::json kArParams = {{"axes",
@@ -44,9 +45,9 @@ const nlohmann::json kArmaParams = {
 // block) still add noise, as the fixture's positivity check asks.
 INSTANTIATE_TEST_SUITE_P(
     ArArma, NoiseModelProperties,
-    ::testing::Values(Case{"ar", kArParams, SensorGroup::kGyro, 0.3, 1.9, 0.1},
-                      Case{"arma", kArmaParams, SensorGroup::kAccel, 0.4, 1.8, 0.2},
-                      Case{"arma", kArmaParams, SensorGroup::kGyro, 0.2, 0.2, 0.2}),
+    ::testing::Values(Case{"ar", kArParams, SensorGroup::kGyro, on_grid(0.3, 1.9, 0.1)},
+                      Case{"arma", kArmaParams, SensorGroup::kAccel, on_grid(0.4, 1.8, 0.2)},
+                      Case{"arma", kArmaParams, SensorGroup::kGyro, on_grid(0.2, 0.2, 0.2)}),
     case_name);
 
 TEST(ArNoise, StatesFollowTheBlockModel) {
@@ -199,7 +200,8 @@ TEST_P(BlockProcessFit, RecoversTheVarianceAndLagOneCorrelationOfTheBlockMean) {
   if (GetParam() == "arma") {
     // The block mean of a Gauss-Markov process plus white noise is an ARMA(1, 1) whose AR root
     // is exp(-T / tau): BIC should find it.
-    for (const auto& axis : model->params()["axes"]) {
+    const nlohmann::json params = model->params();
+    for (const auto& axis : params["axes"]) {
       ASSERT_EQ(axis["ar"].size(), 1u) << model->describe();
       EXPECT_NEAR(axis["ar"][0].get<double>(), std::exp(-interval / truth.tau), 0.01);
     }

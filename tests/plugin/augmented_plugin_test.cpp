@@ -12,7 +12,7 @@
 #include <variant>
 #include <vector>
 
-#include "noise_model_properties.hpp"
+#include "noise_plugin_support.hpp"
 #include "fit_recovery.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/noise_model.hpp"

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "noise_model_properties.hpp"
+#include "noise_plugin_support.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/noise_model.hpp"
 #include "stochnav/sim/noise_generator.hpp"
@@ -37,10 +37,15 @@ const nlohmann::json kCausal = {{"mode", "causal"},
                                 {"t", {1.0, 5.5, 6.0}},
                                 {"N", {{0.02, 0.2, 0.04}, {0.03, 0.01, 0.02}, {0.5, 0.05, 0.05}}}};
 
-INSTANTIATE_TEST_SUITE_P(Davar, NoiseModelProperties,
-                         ::testing::Values(Case{"davar", kOffline, SensorGroup::kGyro},
-                                           Case{"davar", kCausal, SensorGroup::kAccel}),
-                         case_name);
+// Start times around every analysis time of both models, before the first and after the last:
+// the composed steps (0.37 s, then 1.9 s) cross each change of slope or level.
+const PropertyCheckOptions kAroundAnalysisTimes{.times_s = {-1.0, 0.8, 1.8, 4.2, 5.3, 5.9, 9.5}};
+
+INSTANTIATE_TEST_SUITE_P(
+    Davar, NoiseModelProperties,
+    ::testing::Values(Case{"davar", kOffline, SensorGroup::kGyro, kAroundAnalysisTimes},
+                      Case{"davar", kCausal, SensorGroup::kAccel, kAroundAnalysisTimes}),
+    case_name);
 
 /// int_a^b of N(t)^2 for the gyro model {"t": [0, 10], "N": [n0, n1]} by the closed form of a
 /// linear (offline) or held (causal) N^2, in rad^2.

@@ -1,5 +1,6 @@
 // The in-tree noise plugins, loaded through the runtime like the filter will: the properties
-// every noise model must have, params round trips, clear errors, and fitting from data.
+// every noise model must have (the installed suite stochnav/testing/noise_model_properties.hpp,
+// whose TEST_Ps this file compiles for the whole binary), clear errors, and fitting from data.
 
 #include <gtest/gtest.h>
 
@@ -16,7 +17,8 @@
 #include "stochnav/plugin/plugin_registry.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 #include "stochnav/sim/noise_generator.hpp"
-#include "noise_model_properties.hpp"
+#include "noise_plugin_support.hpp"
+#include "stochnav/testing/noise_model_properties.hpp"  // the TEST_Ps, once per binary
 #include "fit_recovery.hpp"
 #include "run_cli.hpp"
 #include "temp_dir.hpp"
@@ -35,65 +37,6 @@ using testing::NoiseModelProperties;
 using testing::registry;
 using testing::simulated_record;
 
-
-TEST_P(NoiseModelProperties, CovariancesAreSymmetricPositiveSemiDefinite) {
-  for (double dt : {1e-4, 0.01, 1.0, 100.0}) {
-    const Step s = step(3.0, dt);
-    expect_symmetric_psd(s.q_white, "q_white");
-    expect_symmetric_psd(s.q_bias, "q_bias");
-    expect_symmetric_psd(s.q_d, "q_d");
-    EXPECT_GT(s.q_white.trace() + s.q_bias.trace() + s.q_d.trace(), 0.0);
-  }
-  Eigen::MatrixXd p0(n_, n_);
-  model_->augmented_initial_covariance(p0);
-  expect_symmetric_psd(p0, "p0");
-}
-
-TEST_P(NoiseModelProperties, ZeroStepGivesZeroNoiseAndIdentityTransition) {
-  const Step s = step(7.0, 0.0);
-  EXPECT_EQ(s.q_white.cwiseAbs().maxCoeff(), 0.0);
-  EXPECT_EQ(s.q_bias.cwiseAbs().maxCoeff(), 0.0);
-  if (n_ > 0) {
-    EXPECT_EQ(s.q_d.cwiseAbs().maxCoeff(), 0.0);
-    EXPECT_TRUE(s.phi.isIdentity(0.0));
-  }
-}
-
-TEST_P(NoiseModelProperties, ConsecutiveStepsComposeIntoOne) {
-  const double t = 5.0, dt1 = GetParam().dt1, dt2 = GetParam().dt2;
-  const Step first = step(t, dt1), second = step(t + dt1, dt2), whole = step(t, dt1 + dt2);
-  expect_close(first.q_white + second.q_white, whole.q_white, 1e-12, "q_white");
-  expect_close(first.q_bias + second.q_bias, whole.q_bias, 1e-12, "q_bias");
-  if (n_ > 0) {
-    expect_close(second.phi * first.phi, whole.phi, 1e-12, "phi");
-    expect_close(second.phi * first.q_d * second.phi.transpose() + second.q_d, whole.q_d, 1e-12,
-                 "q_d");
-  }
-}
-
-TEST_P(NoiseModelProperties, StationaryCovarianceIsPreservedOverManySteps) {
-  if (n_ == 0) GTEST_SKIP() << "no augmented states";
-  Eigen::MatrixXd p0(n_, n_), p(n_, n_), phi(n_, n_), q_d(n_, n_);
-  model_->augmented_initial_covariance(p0);
-  p = p0;
-  for (int k = 0; k < 100000; ++k) {
-    model_->augmented_transition(k * GetParam().step_s, GetParam().step_s, phi, q_d);
-    p = phi * p * phi.transpose() + q_d;
-  }
-  expect_close(p, p0, 1e-9, "P after 1e5 steps");
-}
-
-TEST_P(NoiseModelProperties, ParamsRebuildAnEqualModel) {
-  const auto rebuilt = make(GetParam().type, model_->params(), GetParam().group);
-  EXPECT_TRUE(model_->equals(*rebuilt, 1e-12)) << model_->describe() << "\n" << rebuilt->describe();
-  EXPECT_TRUE(rebuilt->equals(*model_, 1e-12));
-  EXPECT_NE(model_->describe().find(GetParam().type), std::string::npos);
-  Eigen::MatrixXd map(3, n_);
-  model_->augmented_sensor_map(map);
-  if (n_ > 0) {
-    EXPECT_GT(map.cwiseAbs().maxCoeff(), 0.0);
-  }
-}
 
 INSTANTIATE_TEST_SUITE_P(
     InTree, NoiseModelProperties,
@@ -130,7 +73,12 @@ TEST(NoiseParamsErrors, NameTheJsonPointerAndTheExpectedForm) {
     return std::string("(accepted)");
   };
   EXPECT_EQ(message("white", {{"N", 0.05}, {"NN", 1}}),
-            "/noise/gyro/params/NN: unknown key; expected only K, N");
+            "/noise/gyro/params/NN: unknown key 'NN'; did you mean 'N'?");
+  EXPECT_EQ(message("white", {{"N", 0.05}, {"speed", 1}}),
+            "/noise/gyro/params/speed: unknown key; expected only K, N");
+  // A typo of a required key is named as the typo, not as the required key missing.
+  EXPECT_EQ(message("gauss_markov", {{"sigam", 1}, {"tau_c", 1}}),
+            "/noise/gyro/params/sigam: unknown key 'sigam'; did you mean 'sigma'?");
   EXPECT_NE(message("gauss_markov", {{"sigma", 1}, {"tau_c", -1}})
                 .find("/noise/gyro/params/tau_c: found -1; expected a number > 0 (s)"),
             std::string::npos);

@@ -11,7 +11,7 @@
 #include <random>
 #include <string>
 
-#include "noise_model_properties.hpp"
+#include "noise_plugin_support.hpp"
 #include "scenario_builders.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/scenario/scenario_writer.hpp"
@@ -69,10 +69,15 @@ class ScenarioEnvironment : public ::testing::Environment {
 [[maybe_unused]] const auto* const kScenario =
     ::testing::AddGlobalTestEnvironment(new ScenarioEnvironment);
 
+// The phases change at 20 s and 30 s: composed steps (0.37 s, then 1.9 s) cross both.
+const PropertyCheckOptions kAcrossPhaseChanges{.times_s = {3.0, 19.5, 29.5}};
+
 INSTANTIATE_TEST_SUITE_P(
     Oracle, NoiseModelProperties,
-    ::testing::Values(Case{"oracle", {{"scenario", scenario_dir().string()}}, SensorGroup::kGyro},
-                      Case{"oracle", {{"scenario", scenario_dir().string()}}, SensorGroup::kAccel}),
+    ::testing::Values(Case{"oracle", {{"scenario", scenario_dir().string()}}, SensorGroup::kGyro,
+                           kAcrossPhaseChanges},
+                      Case{"oracle", {{"scenario", scenario_dir().string()}}, SensorGroup::kAccel,
+                           kAcrossPhaseChanges}),
     case_name);
 
 // The flicker bank's components faster than the 0.1 s folding time, as white PSD (rad^2/s).

@@ -58,6 +58,19 @@ set(plugin "${WORK_DIR}/custom_noise_plugin/stochnav_second_order_gauss_markov.s
 run(COMMAND "${stochnav}" plugins check "${plugin}" ENV ${clean_env} OUTPUT checked)
 expect_match("${checked}" "noise +second_order_gauss_markov +${API_VERSION} +no")
 
+# The plugin formats with fmt (it linked with --no-undefined against stochnav::framework alone)
+# and passes the property checks, through the CLI and through the installed GoogleTest suite.
+run(COMMAND "${stochnav}" plugins check "${plugin}" --params "{\"sigma\": 0.5, \"tau_c\": 30}"
+    ENV ${clean_env} OUTPUT properties)
+expect_match("${properties}" "second_order_gauss_markov \\(gyro\\): sigma = 0.5 deg/h, tau_c = 30 s; driving PSD")
+expect_match("${properties}" "properties: .* hold")
+run(COMMAND "${stochnav}" plugins check "${plugin}" --params "{\"sigma\": 0.5, \"tauc\": 30}"
+    EXPECT 2 ENV ${clean_env} OUTPUT typo)
+expect_match("${typo}" "--params/tauc: unknown key 'tauc'; did you mean 'tau_c'\\?")
+run(COMMAND "${WORK_DIR}/custom_noise_plugin/second_order_gauss_markov_properties"
+    ENV ${clean_env} OUTPUT suite)
+expect_match("${suite}" "PASSED.* 10 tests")
+
 # Found through STOCHNAV_PLUGIN_PATH, and through the config's folder.
 run(COMMAND "${stochnav}" plugins list ENV "STOCHNAV_PLUGIN_PATH=${WORK_DIR}/custom_noise_plugin"
     OUTPUT listing)

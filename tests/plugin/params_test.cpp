@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <type_traits>
+
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/nearest_name.hpp"
 #include "stochnav/plugin/aid_plugin.hpp"
 
 namespace stochnav::plugin {
@@ -33,6 +36,10 @@ TEST(ParamReader, ReadsNumbersAxesChoicesAndRejectsUnknownKeys) {
   EXPECT_NO_THROW(reader.finish());
 }
 
+// A reader refers to its params: a temporary would dangle, so it does not compile.
+static_assert(!std::is_constructible_v<ParamReader, nlohmann::json&&, std::string>);
+static_assert(std::is_constructible_v<ParamReader, const nlohmann::json&, std::string>);
+
 TEST(ParamReader, ErrorsNameThePointerAndTheExpectedForm) {
   const nlohmann::json params = {{"p", 1.5}, {"s", 3}, {"a/b", -1}};
   ParamReader reader(params, "/x");
@@ -41,7 +48,8 @@ TEST(ParamReader, ErrorsNameThePointerAndTheExpectedForm) {
   EXPECT_EQ(error_of([&] { reader.text("s"); }), "/x/s: found 3; expected a non-empty string");
   EXPECT_EQ(error_of([&] { reader.number("a/b", Bound::kNonNegative, "s"); }),
             "/x/a~1b: found -1; expected a number >= 0 (s)");
-  EXPECT_EQ(error_of([] { ParamReader bad(nlohmann::json::array(), "/y"); }),
+  const nlohmann::json array = nlohmann::json::array();
+  EXPECT_EQ(error_of([&] { ParamReader bad(array, "/y"); }),
             "/y: found []; expected an object of parameters");
   const nlohmann::json null_params;
   ParamReader empty(null_params, "/z");
@@ -50,7 +58,8 @@ TEST(ParamReader, ErrorsNameThePointerAndTheExpectedForm) {
 }
 
 TEST(NisGate, DefaultsToTheChiSquareQuantileAndCanBeOverridden) {
-  ParamReader defaults(nlohmann::json::object(), "/g");
+  const nlohmann::json no_params = nlohmann::json::object();
+  ParamReader defaults(no_params, "/g");
   const NisGate gate = read_nis_gate(defaults, 1);
   EXPECT_TRUE(gate.enabled);
   EXPECT_NEAR(gate.threshold, 10.8276, 1e-3);  // chi2(1) at 99.9 %
@@ -78,3 +87,37 @@ TEST(AidData, ColumnsByNameWithClearErrors) {
 
 }  // namespace
 }  // namespace stochnav::plugin
+
+namespace stochnav {
+namespace {
+
+TEST(NearestName, SuggestsLikelyTyposOnly) {
+  EXPECT_EQ(typo_distance("sigam", "sigma"), 1u);  // a swap counts once
+  EXPECT_EQ(typo_distance("Tau_C", "tau_c"), 0u);
+  const std::vector<std::string> known = {"K", "N", "sigma", "tau_c"};
+  EXPECT_EQ(nearest_name("sigam", known), "sigma");
+  EXPECT_EQ(nearest_name("tauc", known), "tau_c");
+  EXPECT_EQ(nearest_name("x", known), std::nullopt);      // one letter is no typo of another
+  EXPECT_EQ(nearest_name("speed", known), std::nullopt);  // too far from every name
+  EXPECT_EQ(unknown_key_problem("sigam", known), "unknown key 'sigam'; did you mean 'sigma'?");
+  EXPECT_EQ(unknown_key_problem("speed", known), "unknown key; expected only K, N, sigma, tau_c");
+}
+
+TEST(ParamReader, TypoOfARequiredKeyIsReportedAsTheTypo) {
+  const nlohmann::json params = {{"sigam", 1.0}, {"N", 2.0}};
+  plugin::ParamReader reader(params, "/p");
+  EXPECT_EQ(plugin::error_of([&] { reader.number("sigma", plugin::Bound::kPositive, "deg/h"); }),
+            "/p/sigam: unknown key 'sigam'; did you mean 'sigma'?");
+  // A declared key is never taken for a typo of another: "max_q" is one edit from "max_p".
+  const nlohmann::json orders = {{"max_q", 1}};
+  plugin::ParamReader undeclared(orders, "/p");
+  EXPECT_EQ(plugin::error_of([&] { undeclared.number("max_p", plugin::Bound::kAny, ""); }),
+            "/p/max_q: unknown key 'max_q'; did you mean 'max_p'?");
+  plugin::ParamReader declared(orders, "/p");
+  declared.expect("max_q");
+  EXPECT_EQ(plugin::error_of([&] { declared.number("max_p", plugin::Bound::kAny, ""); }),
+            "/p/max_p: missing; expected a finite number");
+}
+
+}  // namespace
+}  // namespace stochnav

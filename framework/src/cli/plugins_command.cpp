@@ -1,5 +1,7 @@
-// stochnav plugins list | check LIB | show CONFIG: what the plugin search path offers, whether one
-// library loads (exit code 2 with the real reason when it does not), and the plugins a run config
+// stochnav plugins list | check LIB [--params JSON] | show CONFIG: what the plugin search path
+// offers, whether one library loads (exit code 2 with the real reason when it does not) and, with
+// --params, whether its factory builds a noise model that has every property of
+// plugin/noise_model_checks.hpp (exit code 2, one line per failure), and the plugins a run config
 // builds (validated, fitted where asked) with the error-state layout they give.
 
 #include <fmt/format.h>
@@ -10,6 +12,7 @@
 
 #include "commands.hpp"
 #include "stochnav/core/errors.hpp"
+#include "stochnav/plugin/noise_model_checks.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
 #include "stochnav/plugin/run_config.hpp"
 #include "stochnav/plugin/runtime.hpp"
@@ -21,6 +24,10 @@ struct PluginsArguments {
   std::string config;                // a config file: its folder leads the search path
   std::vector<std::string> folders;  // extra folders, searched first
   std::string library;               // check: the library file
+  std::string params;                // check: params of the factory (JSON text), "" for none
+  std::string group = "gyro";        // check: sensor group of the model
+  double imu_rate_hz = 100.0;        // check: NoiseModelContext::imu_rate_hz
+  plugin::PropertyCheckOptions checks;
 };
 
 std::string row(const plugin::PluginDescriptor& plugin) {
@@ -60,10 +67,60 @@ void run_list(const PluginsArguments& arguments) {
   throw ConfigError(message);
 }
 
+nlohmann::json parse_params_option(const std::string& text) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& error) {
+    throw ConfigError("--params: not valid JSON (" + std::string(error.what()) +
+                      "); give the params object, e.g. --params '{\"sigma\": 0.5}'");
+  }
+}
+
+// Builds the model with the library's factory and runs the property checks. Every failure is
+// one line on stderr; the last is thrown, so the CLI exits with code 2.
+void check_noise_model_properties(const PluginsArguments& arguments,
+                                  const plugin::PluginDescriptor& descriptor) {
+  const auto group = plugin::parse_sensor_group(arguments.group);
+  if (!group) {
+    throw ConfigError("--group: found '" + arguments.group + "'; expected gyro or accel");
+  }
+  if (const std::string reason = arguments.checks.invalid_reason(); !reason.empty()) {
+    throw ConfigError("--times/--dt1/--dt2/--step: " + reason + "; give positive steps and times");
+  }
+  const plugin::PluginRegistry registry = plugin::PluginRegistry::of_file(arguments.library);
+  plugin::NoiseModelContext context;
+  context.group = *group;
+  context.imu_rate_hz = arguments.imu_rate_hz;
+  context.params_pointer = "--params";
+  const auto build = [&](const nlohmann::json& params) {
+    return registry.create_noise_model(descriptor.type, params, context, "--params");
+  };
+  const auto model = build(parse_params_option(arguments.params));
+  const std::vector<std::string> failures =
+      plugin::check_noise_model(*model, build, arguments.checks);
+  const std::string where = fmt::format("{} ({}): ", arguments.library, arguments.group);
+  for (std::size_t i = 0; i + 1 < failures.size(); ++i) {
+    std::cerr << "stochnav: error: " << where << failures[i] << '\n';
+  }
+  if (!failures.empty()) throw ConfigError(where + failures.back());
+  std::string times;
+  for (double t : arguments.checks.times_s)
+    times += (times.empty() ? "" : ", ") + fmt::format("{}", t);
+  std::cout << "model: " << model->describe() << "\nproperties: covariances, zero step, "
+            << "composition, stationarity, params round trip hold at t = " << times << " s\n";
+}
+
 void run_check(const PluginsArguments& arguments) {
   const auto descriptor = plugin::check_plugin_file(arguments.library);
   std::cout << kHeader << row(descriptor) << "description: " << descriptor.description
-            << "\nbuilt against stochnav " << descriptor.framework_version << '\n';
+            << "\nbuilt against stochnav " << descriptor.framework_version << '\n'
+            << std::flush;
+  if (arguments.params.empty()) return;
+  if (descriptor.kind != plugin::PluginKind::kNoiseModel) {
+    throw ConfigError("--params: " + arguments.library +
+                      " is an aid plugin; the property checks are for noise-model plugins");
+  }
+  check_noise_model_properties(arguments, descriptor);
 }
 
 void run_show(const PluginsArguments& arguments) {
@@ -97,6 +154,26 @@ void add_plugins_command(CLI::App& app) {
   list->callback([arguments] { run_list(*arguments); });
   CLI::App* check = command->add_subcommand("check", "Load one plugin library and report it");
   check->add_option("library", arguments->library, "Plugin library file (.so)")->required();
+  check->add_option("--params", arguments->params,
+                    "Build a noise model with these params (JSON) and check its properties");
+  check->add_option("--group", arguments->group, "Sensor group of the model: gyro or accel")
+      ->capture_default_str();
+  check->add_option("--imu-rate", arguments->imu_rate_hz, "IMU rate given to the factory (Hz)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  check
+      ->add_option("--times", arguments->checks.times_s,
+                   "Start times of the checks (s); put a time-varying model's changes among them")
+      ->delimiter(',')
+      ->capture_default_str();
+  check->add_option("--dt1", arguments->checks.dt1_s, "First of two composed steps (s)")
+      ->capture_default_str();
+  check->add_option("--dt2", arguments->checks.dt2_s, "Second composed step (s)")
+      ->capture_default_str();
+  check
+      ->add_option("--step", arguments->checks.stationary_step_s,
+                   "Step of the stationarity run (s); models on a grid (ar, arma) need a multiple")
+      ->capture_default_str();
   check->callback([arguments] { run_check(*arguments); });
   CLI::App* show = command->add_subcommand(
       "show", "Validate a run config, build its plugins and print them and the state layout");

@@ -139,8 +139,7 @@ struct ScenarioArguments {
 };
 
 void run_simulate_scenario(const ScenarioArguments& arguments) {
-  const nlohmann::json document = read_json_file(arguments.config_path, "CONFIG");
-  const ScenarioConfig config = scenario_config_from_json(document, arguments.config_path);
+  const ScenarioConfig config = read_scenario_config(arguments.config_path);
   ScenarioOutputOptions options;
   options.out_dir = arguments.out;
   options.seed = arguments.seed.value_or(config.seed);

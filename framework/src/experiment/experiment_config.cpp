@@ -6,6 +6,7 @@
 #include <set>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/nearest_name.hpp"
 #include "stochnav/plugin/run_config.hpp"
 
 namespace stochnav {
@@ -21,6 +22,11 @@ void reject_unknown_keys(const nlohmann::json& object, const std::string& pointe
     bool found = false;
     for (auto name : known) found |= key == name;
     if (!found) {
+      const std::vector<std::string> names(known.begin(), known.end());
+      if (const auto nearest = nearest_name(key, names)) {
+        throw ConfigError(fmt::format("{}/{}: unknown key '{}'; did you mean '{}'?", pointer, key,
+                                      key, *nearest));
+      }
       std::string list;
       for (auto name : known) list += (list.empty() ? "" : ", ") + std::string(name);
       throw ConfigError(fmt::format("{}/{}: unknown key; expected one of {}", pointer, key, list));

@@ -1,4 +1,4 @@
-#include "initial_state.hpp"
+#include "stochnav/experiment/initial_state.hpp"
 
 #include <fmt/format.h>
 
@@ -186,6 +186,15 @@ void apply_initial_error(const plugin::InitialErrorConfig& error, NavState& stat
   }
   options.initial_gyro_bias_radps += gyro_bias;
   options.initial_accel_bias_mps2 += accel_bias;
+}
+
+FilterStart filter_start(const plugin::RunConfig& config, const NavState& start,
+                         const FilterOptions& options) {
+  FilterStart result{start, options};
+  if (config.initial_error) {
+    apply_initial_error(*config.initial_error, result.estimate, result.options);
+  }
+  return result;
 }
 
 }  // namespace stochnav

@@ -12,8 +12,6 @@ constexpr std::array<std::string_view, 7> kIncrementColumns = {
     "t", "dtheta_x", "dtheta_y", "dtheta_z", "dv_x", "dv_y", "dv_z"};
 constexpr std::array<std::string_view, 7> kRateColumns = {"t",       "gyro_x",  "gyro_y", "gyro_z",
                                                           "accel_x", "accel_y", "accel_z"};
-constexpr std::array<std::string_view, 10> kTruthColumns = {
-    "t", "lat", "lon", "h", "ve", "vn", "vu", "inclination", "toolface", "azimuth"};
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 bool has_all(const CsvTableReader& table, std::span<const std::string_view> names) {
@@ -77,6 +75,12 @@ TruthFileReader::TruthFileReader(const std::string& path) : table_(path, kTruthC
 bool TruthFileReader::next(NavState& truth) {
   std::array<double, 10> row{};
   if (!table_.next(row)) return false;
+  truth = nav_state_from_truth_row(row);
+  return true;
+}
+
+NavState nav_state_from_truth_row(std::span<const double, 10> row) {
+  NavState truth;
   truth.t_s = row[0];
   truth.latitude_rad = row[1] * kRadPerDeg;
   truth.longitude_rad = row[2] * kRadPerDeg;
@@ -85,7 +89,7 @@ bool TruthFileReader::next(NavState& truth) {
   truth.q_nb = quaternion_from_mwd({.inclination_rad = row[7] * kRadPerDeg,
                                     .toolface_rad = row[8] * kRadPerDeg,
                                     .azimuth_rad = row[9] * kRadPerDeg});
-  return true;
+  return truth;
 }
 
 }  // namespace stochnav

@@ -9,11 +9,11 @@
 #include <numbers>
 #include <optional>
 
-#include "initial_state.hpp"
 #include "run_files.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/progress_bar.hpp"
 #include "stochnav/experiment/imu_stream.hpp"
+#include "stochnav/experiment/initial_state.hpp"
 #include "stochnav/experiment/navigation_files.hpp"
 #include "stochnav/experiment/run_consistency.hpp"
 #include "stochnav/experiment/survey.hpp"
@@ -80,8 +80,8 @@ std::uint64_t estimated_rows(const std::filesystem::path& path) {
   std::string chunk(1 << 16, '\0');
   in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
   const auto bytes = static_cast<std::size_t>(in.gcount());
-  const auto lines = static_cast<std::size_t>(std::count(chunk.begin(), chunk.begin() +
-                                                          static_cast<std::ptrdiff_t>(bytes), '\n'));
+  const auto lines = static_cast<std::size_t>(
+      std::count(chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(bytes), '\n'));
   if (lines < 2 || path.extension() == ".gz") return 0;
   return std::filesystem::file_size(path) * lines / bytes;
 }
@@ -179,7 +179,9 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   }
   NavigationRunResult result;
   result.start = initial;
-  if (config.initial_error) apply_initial_error(*config.initial_error, initial, filter);
+  const FilterStart start = filter_start(config, initial, filter);
+  initial = start.estimate;
+  filter = start.options;
   result.filter_options = filter;
 
   std::vector<plugin::AidPlugin*> aids;

@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/nearest_name.hpp"
 #include "stochnav/model/reporting_units.hpp"
 
 namespace stochnav {
@@ -181,7 +183,14 @@ NoiseTerm noise_term_from_json(const json& value, Unit unit, std::string_view po
         }
       }
     }
-    if (!known) fail(at, "is an unknown key", form);
+    if (!known) {
+      std::vector<std::string> names = {"type"};
+      for (const auto& spec : specs) names.emplace_back(spec.name);
+      if (const auto nearest = nearest_name(key, names)) {
+        fail(at, "is an unknown key (did you mean '" + *nearest + "'?)", form);
+      }
+      fail(at, "is an unknown key", form);
+    }
   }
   for (std::size_t j = 0; j < specs.size(); ++j) {
     const std::string key(specs[j].name);

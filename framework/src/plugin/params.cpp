@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/nearest_name.hpp"
 
 namespace stochnav::plugin {
 namespace {
@@ -22,7 +24,7 @@ std::string escape_pointer_token(std::string_view key) {
   return token;
 }
 
-std::string bound_text(Bound bound, std::string_view unit) {
+std::string bound_text_of(Bound bound, std::string_view unit) {
   std::string text;
   switch (bound) {
     case Bound::kAny:
@@ -65,12 +67,35 @@ std::string shown(const nlohmann::json& value) {
 
 }  // namespace
 
+std::string bound_description(Bound bound, std::string_view unit) {
+  return bound_text_of(bound, unit);
+}
+
+namespace {
+std::string bound_text(Bound bound, std::string_view unit) { return bound_text_of(bound, unit); }
+}  // namespace
+
 ParamReader::ParamReader(const nlohmann::json& params, std::string pointer)
     : params_(params), pointer_(std::move(pointer)) {
   if (!params_.is_object() && !params_.is_null()) {
     throw ConfigError((pointer_.empty() ? std::string("/") : pointer_) + ": found " +
                       shown(params_) + "; expected an object of parameters");
   }
+}
+
+void ParamReader::expect(std::string_view key) { expected_.emplace(key); }
+
+void ParamReader::throw_missing(std::string_view key, const std::string& expected) const {
+  if (params_.is_object()) {
+    for (const auto& [name, value] : params_.items()) {
+      if (known_.count(name) != 0 || expected_.count(name) != 0) continue;
+      if (likely_typo(name, key)) {
+        throw ConfigError(pointer(name) + ": unknown key '" + name + "'; did you mean '" +
+                          std::string(key) + "'?");
+      }
+    }
+  }
+  throw ConfigError(pointer(key) + ": missing; expected " + expected);
 }
 
 const nlohmann::json* ParamReader::find(std::string_view key) {
@@ -88,9 +113,7 @@ std::string ParamReader::pointer(std::string_view key) const {
 
 double ParamReader::number(std::string_view key, Bound bound, std::string_view unit) {
   const nlohmann::json* value = find(key);
-  if (value == nullptr) {
-    throw ConfigError(pointer(key) + ": missing; expected " + bound_text(bound, unit));
-  }
+  if (value == nullptr) throw_missing(key, bound_text(bound, unit));
   if (!value->is_number() || !within(bound, value->get<double>())) {
     throw ConfigError(pointer(key) + ": found " + shown(*value) + "; expected " +
                       bound_text(bound, unit));
@@ -107,7 +130,7 @@ std::array<double, 3> ParamReader::axes(std::string_view key, Bound bound, std::
   const nlohmann::json* value = find(key);
   const std::string expected =
       bound_text(bound, unit) + " for all axes, or an array of 3 such numbers [x, y, z]";
-  if (value == nullptr) throw ConfigError(pointer(key) + ": missing; expected " + expected);
+  if (value == nullptr) throw_missing(key, expected);
   if (value->is_number()) {
     if (!within(bound, value->get<double>())) {
       throw ConfigError(pointer(key) + ": found " + shown(*value) + "; expected " + expected);
@@ -146,7 +169,7 @@ bool ParamReader::boolean_or(std::string_view key, bool fallback) {
 
 std::string ParamReader::text(std::string_view key) {
   const nlohmann::json* value = find(key);
-  if (value == nullptr) throw ConfigError(pointer(key) + ": missing; expected a non-empty string");
+  if (value == nullptr) throw_missing(key, "a non-empty string");
   if (!value->is_string() || value->get<std::string>().empty()) {
     throw ConfigError(pointer(key) + ": found " + shown(*value) + "; expected a non-empty string");
   }
@@ -184,10 +207,8 @@ void ParamReader::finish() const {
   if (!params_.is_object()) return;
   for (const auto& [key, value] : params_.items()) {
     if (known_.count(key) != 0) continue;
-    std::string names;
-    for (const auto& name : known_) names += (names.empty() ? "" : ", ") + name;
-    throw ConfigError(pointer(key) + ": unknown key; expected only " +
-                      (names.empty() ? std::string("an empty object") : names));
+    const std::vector<std::string> names(known_.begin(), known_.end());
+    throw ConfigError(pointer(key) + ": " + unknown_key_problem(key, names));
   }
 }
 

@@ -232,6 +232,14 @@ PluginRegistry::PluginRegistry(std::vector<fs::path> search_path)
   }
 }
 
+PluginRegistry PluginRegistry::of_file(const fs::path& file) {
+  LoadedPlugin plugin = load_plugin(file);
+  PluginRegistry registry({});
+  registry.impl_->search_path = {file.parent_path()};
+  registry.impl_->loaded.push_back(std::move(plugin));
+  return registry;
+}
+
 PluginRegistry::~PluginRegistry() = default;
 PluginRegistry::PluginRegistry(PluginRegistry&&) noexcept = default;
 PluginRegistry& PluginRegistry::operator=(PluginRegistry&&) noexcept = default;

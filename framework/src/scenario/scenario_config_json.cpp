@@ -6,8 +6,11 @@
 #include <numbers>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/json_file.hpp"
+#include "stochnav/core/nearest_name.hpp"
 #include "stochnav/model/noise_model_json.hpp"
 
 namespace stochnav {
@@ -51,7 +54,7 @@ class ObjectReader {
   }
 
   const json& get(std::string_view key) {
-    if (!has(key)) fail(at(key), "is missing", form_);
+    if (!has(key)) fail_missing(key, form_);
     return value_.at(std::string(key));
   }
 
@@ -59,7 +62,7 @@ class ObjectReader {
                 std::optional<double> fallback = std::nullopt) {
     if (!has(key)) {
       if (fallback) return *fallback;
-      fail(at(key), "is missing", expected);
+      fail_missing(key, expected);
     }
     return check_number(value_.at(std::string(key)), at(key), expected, range);
   }
@@ -82,17 +85,33 @@ class ObjectReader {
                      std::optional<std::string> fallback = std::nullopt) {
     if (!has(key)) {
       if (fallback) return *fallback;
-      fail(at(key), "is missing", expected);
+      fail_missing(key, expected);
     }
     const json& v = value_.at(std::string(key));
     if (!v.is_string()) fail(at(key), describe_type(v) + ", not a string", expected);
     return v.get<std::string>();
   }
 
+  // A likely typo of the missing key among the keys not read is reported as the typo.
+  [[noreturn]] void fail_missing(std::string_view key, std::string_view expected) const {
+    for (const auto& [name, entry] : value_.items()) {
+      if (known_.contains(name) || !likely_typo(name, key)) continue;
+      throw ConfigError(at(name) + ": unknown key '" + name + "'; did you mean '" +
+                        std::string(key) + "'?");
+    }
+    fail(at(key), "is missing", expected);
+  }
+
   void finish() const {
     for (const auto& [key, entry] : value_.items()) {
       if (key == "comments" || key == "comment") continue;  // free-text documentation
-      if (!known_.contains(key)) fail(at(key), "is an unknown key", form_);
+      if (known_.contains(key)) continue;
+      const std::vector<std::string> names(known_.begin(), known_.end());
+      if (const auto nearest = nearest_name(key, names)) {
+        throw ConfigError(at(key) + ": unknown key '" + key + "'; did you mean '" + *nearest +
+                          "'?");
+      }
+      fail(at(key), "is an unknown key", form_);
     }
   }
 
@@ -638,6 +657,10 @@ json to_json(const ScenarioConfig& config) {
                          {"vibration", scales(d.vibration_noise)}}}};
   }
   return out;
+}
+
+ScenarioConfig read_scenario_config(const std::filesystem::path& file) {
+  return scenario_config_from_json(read_json_file(file, "scenario config"), file.string());
 }
 
 }  // namespace stochnav

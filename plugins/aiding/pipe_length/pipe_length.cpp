@@ -31,6 +31,7 @@
 
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/aid_schedule.hpp"
+#include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/params.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 
@@ -38,11 +39,21 @@ namespace {
 
 namespace cs = stochnav::plugin::core_state;
 using stochnav::plugin::Bound;
+using stochnav::plugin::ParamUnit;
 
 struct PipeLengthParams {
-  double sigma_scale = 1e-3;
-  double sigma_random_m = 0.05;
-  double sigma_displacement_m = 0.0;
+  double sigma_scale;           ///< relative
+  double sigma_random_m;        ///< m
+  double sigma_displacement_m;  ///< m
+};
+
+const stochnav::plugin::ParamTable<PipeLengthParams> kPipeLengthTable{
+    scalar(&PipeLengthParams::sigma_scale, "sigma_scale", ParamUnit::fixed(""), Bound::kNonNegative,
+           1e-3, "relative 1-sigma of the tally (scale error)"),
+    scalar(&PipeLengthParams::sigma_random_m, "sigma_random_m", ParamUnit::fixed("m"),
+           Bound::kPositive, 0.05, "1-sigma of the random depth error"),
+    scalar(&PipeLengthParams::sigma_displacement_m, "sigma_displacement_m", ParamUnit::fixed("m"),
+           Bound::kNonNegative, 0.0, "1-sigma of the displacement since the last update"),
 };
 
 class PipeLengthAid final : public stochnav::plugin::AidPlugin {
@@ -63,8 +74,7 @@ class PipeLengthAid final : public stochnav::plugin::AidPlugin {
   // the first gives no measurement.
   bool has_measurement(double t_s) const override { return schedule_.due(t_s); }
 
-  bool measure(double t_s, const stochnav::NavState& state,
-               const stochnav::plugin::ImuSample& imu,
+  bool measure(double t_s, const stochnav::NavState& state, const stochnav::plugin::ImuSample& imu,
                Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
                Eigen::Ref<Eigen::MatrixXd> r) const override {
     const auto row = schedule_.row_at(t_s);
@@ -82,10 +92,9 @@ class PipeLengthAid final : public stochnav::plugin::AidPlugin {
     h.block<1, 3>(0, cs::kAttitude) += interval.mean_v_n.cross(axis_n).transpose();
     const double scale_part = params_.sigma_scale * depth_change;
     r(0, 0) = axis_n.dot(interval.mean_velocity_noise_covariance * axis_n) +
-              (scale_part * scale_part +
-               2.0 * params_.sigma_random_m * params_.sigma_random_m +
+              (scale_part * scale_part + 2.0 * params_.sigma_random_m * params_.sigma_random_m +
                2.0 * params_.sigma_displacement_m * params_.sigma_displacement_m) /
-              (dt * dt);
+                  (dt * dt);
     return true;
   }
 
@@ -107,12 +116,7 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_pipe_length(
     const nlohmann::json& json, const stochnav::plugin::AidContext& context) {
   stochnav::plugin::ParamReader reader(json, context.params_pointer);
   PipeLengthParams params;
-  params.sigma_scale = reader.number_or("sigma_scale", params.sigma_scale, Bound::kNonNegative, "");
-  params.sigma_random_m =
-      reader.number_or("sigma_random_m", params.sigma_random_m, Bound::kPositive, "m");
-  params.sigma_displacement_m = reader.number_or("sigma_displacement_m",
-                                                 params.sigma_displacement_m,
-                                                 Bound::kNonNegative, "m");
+  kPipeLengthTable.read(reader, params);
   const auto gate = stochnav::plugin::read_nis_gate(reader, 1);
   reader.finish();
   return std::make_unique<PipeLengthAid>(

@@ -35,6 +35,7 @@
 
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/aid_schedule.hpp"
+#include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/params.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 
@@ -42,6 +43,7 @@ namespace {
 
 namespace cs = stochnav::plugin::core_state;
 using stochnav::plugin::Bound;
+using stochnav::plugin::ParamUnit;
 
 Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   Eigen::Matrix3d m;
@@ -50,15 +52,24 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
 }
 
 struct RopParams {
-  double sigma_rop_mps = 1.0 / 3600.0;
-  double sigma_lateral_mps = 1e-3;
-  double sigma_displacement_m = 0.0;
+  double sigma_rop_mps;         ///< m/s
+  double sigma_lateral_mps;     ///< m/s
+  double sigma_displacement_m;  ///< m
+};
+
+const stochnav::plugin::ParamTable<RopParams> kRopTable{
+    scalar(&RopParams::sigma_rop_mps, "sigma_rop_mps", ParamUnit::fixed("m/s"), Bound::kPositive,
+           1.0 / 3600.0, "1-sigma of the measured rate of penetration"),
+    scalar(&RopParams::sigma_lateral_mps, "sigma_lateral_mps", ParamUnit::fixed("m/s"),
+           Bound::kPositive, 1e-3, "1-sigma of the zero lateral velocity"),
+    scalar(&RopParams::sigma_displacement_m, "sigma_displacement_m", ParamUnit::fixed("m"),
+           Bound::kNonNegative, 0.0, "1-sigma of the displacement since the last update"),
 };
 
 class RopAid final : public stochnav::plugin::AidPlugin {
  public:
-  RopAid(const RopParams& params, stochnav::plugin::NisGate gate,
-         std::span<const double> times_s, std::span<const double> rop_mph)
+  RopAid(const RopParams& params, stochnav::plugin::NisGate gate, std::span<const double> times_s,
+         std::span<const double> rop_mph)
       : AidPlugin(gate),
         params_(params),
         schedule_(stochnav::plugin::AidSchedule::at_rows(times_s)),
@@ -70,8 +81,7 @@ class RopAid final : public stochnav::plugin::AidPlugin {
   bool measures_interval_mean() const override { return true; }
   bool has_measurement(double t_s) const override { return schedule_.due(t_s); }
 
-  bool measure(double t_s, const stochnav::NavState& state,
-               const stochnav::plugin::ImuSample& imu,
+  bool measure(double t_s, const stochnav::NavState& state, const stochnav::plugin::ImuSample& imu,
                Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
                Eigen::Ref<Eigen::MatrixXd> r) const override {
     const auto row = schedule_.row_at(t_s);
@@ -91,8 +101,8 @@ class RopAid final : public stochnav::plugin::AidPlugin {
     r(0, 0) += params_.sigma_lateral_mps * params_.sigma_lateral_mps;
     r(1, 1) += params_.sigma_lateral_mps * params_.sigma_lateral_mps;
     const double displacement_rate = params_.sigma_displacement_m / interval.duration_s;
-    r(2, 2) += params_.sigma_rop_mps * params_.sigma_rop_mps +
-               2.0 * displacement_rate * displacement_rate;
+    r(2, 2) +=
+        params_.sigma_rop_mps * params_.sigma_rop_mps + 2.0 * displacement_rate * displacement_rate;
     return true;
   }
 
@@ -114,13 +124,7 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_rop(const nlohmann::json& json
                                                       const stochnav::plugin::AidContext& context) {
   stochnav::plugin::ParamReader reader(json, context.params_pointer);
   RopParams params;
-  params.sigma_rop_mps =
-      reader.number_or("sigma_rop_mps", params.sigma_rop_mps, Bound::kPositive, "m/s");
-  params.sigma_lateral_mps =
-      reader.number_or("sigma_lateral_mps", params.sigma_lateral_mps, Bound::kPositive, "m/s");
-  params.sigma_displacement_m = reader.number_or("sigma_displacement_m",
-                                                 params.sigma_displacement_m,
-                                                 Bound::kNonNegative, "m");
+  kRopTable.read(reader, params);
   const auto gate = stochnav::plugin::read_nis_gate(reader, 3);
   reader.finish();
   return std::make_unique<RopAid>(params, gate, context.data->time_s(),

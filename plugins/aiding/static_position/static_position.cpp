@@ -25,6 +25,7 @@
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/aid_schedule.hpp"
+#include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/params.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 
@@ -32,17 +33,29 @@ namespace {
 
 namespace cs = stochnav::plugin::core_state;
 using stochnav::plugin::Bound;
+using stochnav::plugin::ParamUnit;
 
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 struct StaticPositionParams {
-  double rate_hz = 1.0;
-  double sigma_position_m = 0.01;
-  bool zero_velocity = true;
-  double sigma_velocity_mps = 0.001;
+  double rate_hz;             ///< Hz
+  double sigma_position_m;    ///< m
+  bool zero_velocity;         ///< also measure the velocity against zero
+  double sigma_velocity_mps;  ///< m/s
   double latitude_rad = 0.0;
   double longitude_rad = 0.0;
   double height_m = 0.0;
+};
+
+const stochnav::plugin::ParamTable<StaticPositionParams> kStaticPositionTable{
+    scalar(&StaticPositionParams::rate_hz, "rate_hz", ParamUnit::fixed("Hz"), Bound::kPositive, 1.0,
+           "measurement rate"),
+    scalar(&StaticPositionParams::sigma_position_m, "sigma_position_m", ParamUnit::fixed("m"),
+           Bound::kPositive, 0.01, "1-sigma of the site position"),
+    stochnav::plugin::flag(&StaticPositionParams::zero_velocity, "zero_velocity", true,
+                           "also measure the velocity against zero"),
+    scalar(&StaticPositionParams::sigma_velocity_mps, "sigma_velocity_mps", ParamUnit::fixed("m/s"),
+           Bound::kPositive, 0.001, "1-sigma of the zero velocity"),
 };
 
 class StaticPositionAid final : public stochnav::plugin::AidPlugin {
@@ -98,12 +111,7 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_static_position(
     const nlohmann::json& json, const stochnav::plugin::AidContext& context) {
   stochnav::plugin::ParamReader reader(json, context.params_pointer);
   StaticPositionParams params;
-  params.rate_hz = reader.number_or("rate_hz", params.rate_hz, Bound::kPositive, "Hz");
-  params.sigma_position_m =
-      reader.number_or("sigma_position_m", params.sigma_position_m, Bound::kPositive, "m");
-  params.zero_velocity = reader.boolean_or("zero_velocity", params.zero_velocity);
-  params.sigma_velocity_mps =
-      reader.number_or("sigma_velocity_mps", params.sigma_velocity_mps, Bound::kPositive, "m/s");
+  kStaticPositionTable.read(reader, params);
   params.latitude_rad = context.initial_state.latitude_rad;
   params.longitude_rad = context.initial_state.longitude_rad;
   params.height_m = context.initial_state.height_m;

@@ -19,6 +19,7 @@
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/aid_schedule.hpp"
+#include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/params.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 
@@ -26,13 +27,25 @@ namespace {
 
 namespace cs = stochnav::plugin::core_state;
 using stochnav::plugin::Bound;
+using stochnav::plugin::ParamUnit;
 
 struct ZuptParams {
-  bool detector = false;
-  double rate_hz = 1.0;
-  double accel_threshold_mps2 = 0.05;
-  double gyro_threshold_radps = 1e-3;
-  double sigma_velocity_mps = 0.001;
+  bool detector = false;        ///< "source": "detector" (else "flags")
+  double rate_hz;               ///< Hz
+  double accel_threshold_mps2;  ///< m/s^2
+  double gyro_threshold_radps;  ///< rad/s
+  double sigma_velocity_mps;    ///< m/s
+};
+
+const stochnav::plugin::ParamTable<ZuptParams> kZuptTable{
+    scalar(&ZuptParams::rate_hz, "rate_hz", ParamUnit::fixed("Hz"), Bound::kPositive, 1.0,
+           "detector: update rate"),
+    scalar(&ZuptParams::accel_threshold_mps2, "accel_threshold_mps2", ParamUnit::fixed("m/s^2"),
+           Bound::kPositive, 0.05, "detector: largest specific-force deviation at rest"),
+    scalar(&ZuptParams::gyro_threshold_radps, "gyro_threshold_radps", ParamUnit::fixed("rad/s"),
+           Bound::kPositive, 1e-3, "detector: largest angular rate at rest"),
+    scalar(&ZuptParams::sigma_velocity_mps, "sigma_velocity_mps", ParamUnit::fixed("m/s"),
+           Bound::kPositive, 0.001, "1-sigma of the zero velocity"),
 };
 
 class ZuptAid final : public stochnav::plugin::AidPlugin {
@@ -70,10 +83,11 @@ class ZuptAid final : public stochnav::plugin::AidPlugin {
 
   std::string describe() const override {
     return params_.detector
-               ? fmt::format("zupt: detector at {} Hz (|f|-g < {} m/s^2, |w| < {} rad/s); "
-                             "sigma {} m/s",
-                             params_.rate_hz, params_.accel_threshold_mps2,
-                             params_.gyro_threshold_radps, params_.sigma_velocity_mps)
+               ? fmt::format(
+                     "zupt: detector at {} Hz (|f|-g < {} m/s^2, |w| < {} rad/s); "
+                     "sigma {} m/s",
+                     params_.rate_hz, params_.accel_threshold_mps2, params_.gyro_threshold_radps,
+                     params_.sigma_velocity_mps)
                : fmt::format("zupt: aid-data flags; sigma {} m/s", params_.sigma_velocity_mps);
   }
 
@@ -89,15 +103,7 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_zupt(
   ZuptParams params;
   constexpr std::string_view kSources[] = {"flags", "detector"};
   params.detector = reader.choice_or("source", "flags", kSources) == "detector";
-  params.rate_hz = reader.number_or("rate_hz", params.rate_hz, Bound::kPositive, "Hz");
-  params.accel_threshold_mps2 = reader.number_or("accel_threshold_mps2",
-                                                 params.accel_threshold_mps2, Bound::kPositive,
-                                                 "m/s^2");
-  params.gyro_threshold_radps = reader.number_or("gyro_threshold_radps",
-                                                 params.gyro_threshold_radps, Bound::kPositive,
-                                                 "rad/s");
-  params.sigma_velocity_mps =
-      reader.number_or("sigma_velocity_mps", params.sigma_velocity_mps, Bound::kPositive, "m/s");
+  kZuptTable.read(reader, params);
   const auto gate = stochnav::plugin::read_nis_gate(reader, 3);
   reader.finish();
   if (params.detector) {

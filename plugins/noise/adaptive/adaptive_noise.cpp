@@ -39,15 +39,16 @@
 #include <memory>
 
 #include "stochnav/core/errors.hpp"
-#include "stochnav/model/reporting_units.hpp"
 #include "stochnav/plugin/calibration_fit.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
-#include "stochnav/plugin/params.hpp"
 #include "stochnav/plugin/state_layout.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 
 namespace {
 
 using stochnav::ParameterDimension;
+using stochnav::plugin::Bound;
+using stochnav::plugin::ParamUnit;
 using stochnav::plugin::SensorGroup;
 
 struct AdaptiveParams {
@@ -57,13 +58,23 @@ struct AdaptiveParams {
   double forgetting = 0.98;  ///< fading-memory factor b, (0, 1)
 };
 
-using stochnav::plugin::parameters_close;
+const ParamUnit kLevelUnit = ParamUnit::of(ParameterDimension::kAnglePerRootTime);
 
-class AdaptiveNoise final : public stochnav::plugin::NoiseModelPlugin {
+const stochnav::plugin::ParamTable<AdaptiveParams> kAdaptiveTable{
+    scalar(&AdaptiveParams::n_initial, "N_initial", kLevelUnit, Bound::kPositive,
+           stochnav::plugin::kRequired, "starting level (fitters: fitted)"),
+    scalar(&AdaptiveParams::n_min, "N_min", kLevelUnit, Bound::kNonNegative,
+           stochnav::plugin::kDerived, "lower clamp, at most N_initial; default N_initial / 10"),
+    scalar(&AdaptiveParams::n_max, "N_max", kLevelUnit, Bound::kPositive,
+           stochnav::plugin::kDerived, "upper clamp, at least N_initial; default 100 N_initial"),
+    scalar(&AdaptiveParams::forgetting, "forgetting", ParamUnit::fixed(""), Bound::kOpenUnit, 0.98,
+           "fading-memory factor b"),
+};
+
+class AdaptiveNoise final : public stochnav::plugin::TabulatedNoiseModel<AdaptiveParams> {
  public:
   AdaptiveNoise(SensorGroup group, const AdaptiveParams& params)
-      : NoiseModelPlugin(group),
-        params_(params),
+      : TabulatedNoiseModel(group, kAdaptiveTable, params),
         psd_(params.n_initial * params.n_initial),
         interval_start_psd_(psd_) {}
 
@@ -95,17 +106,11 @@ class AdaptiveNoise final : public stochnav::plugin::NoiseModelPlugin {
     interval_dq_trace_ += explained - predicted;
 
     const double sample = interval_start_psd_ + interval_dq_trace_ / (3.0 * interval_s_);
-    const double b = params_.forgetting;
+    const double b = parameters().forgetting;
     const double weight = (1.0 - b) / (1.0 - std::pow(b, static_cast<double>(updates_ + 1)));
     psd_ = std::clamp((1.0 - weight) * interval_start_psd_ + weight * sample,
-                      params_.n_min * params_.n_min, params_.n_max * params_.n_max);
-  }
-
-  nlohmann::json params() const override {
-    return {{"N_initial", reported(params_.n_initial)},
-            {"N_min", reported(params_.n_min)},
-            {"N_max", reported(params_.n_max)},
-            {"forgetting", params_.forgetting}};
+                      parameters().n_min * parameters().n_min,
+                      parameters().n_max * parameters().n_max);
   }
 
   std::string describe() const override {
@@ -114,18 +119,9 @@ class AdaptiveNoise final : public stochnav::plugin::NoiseModelPlugin {
     return fmt::format(
         "adaptive ({}): Sage-Husa, forgetting {:.6g}; N = {:.6g} {} now (initial {:.6g}, "
         "clamps [{:.6g}, {:.6g}]) after {} update times",
-        stochnav::plugin::sensor_group_name(group()), params_.forgetting, reported(std::sqrt(psd_)),
-        unit, reported(params_.n_initial), reported(params_.n_min), reported(params_.n_max),
-        updates_);
-  }
-
-  bool equals(const NoiseModelPlugin& other, double rel_tol) const override {
-    const auto* that = dynamic_cast<const AdaptiveNoise*>(&other);
-    if (that == nullptr || that->group() != group()) return false;
-    return parameters_close(params_.n_initial, that->params_.n_initial, rel_tol) &&
-           parameters_close(params_.n_min, that->params_.n_min, rel_tol) &&
-           parameters_close(params_.n_max, that->params_.n_max, rel_tol) &&
-           parameters_close(params_.forgetting, that->params_.forgetting, rel_tol);
+        stochnav::plugin::sensor_group_name(group()), parameters().forgetting,
+        reported(std::sqrt(psd_)), unit, reported(parameters().n_initial),
+        reported(parameters().n_min), reported(parameters().n_max), updates_);
   }
 
  private:
@@ -134,7 +130,6 @@ class AdaptiveNoise final : public stochnav::plugin::NoiseModelPlugin {
                                  ParameterDimension::kAnglePerRootTime, natural);
   }
 
-  AdaptiveParams params_;
   double psd_;                      ///< current N^2, rad^2/s or (m/s)^2/s
   double interval_start_psd_;       ///< N^2 before the updates of the current update time
   double interval_dq_trace_ = 0.0;  ///< sum of trace(dQ) over the current update time's aids
@@ -143,46 +138,39 @@ class AdaptiveNoise final : public stochnav::plugin::NoiseModelPlugin {
   long updates_ = 0;  ///< update times with a known interval so far
 };
 
-/// Reads N_min, N_max and forgetting around a known N_initial (natural units) and validates.
-AdaptiveParams read_adaptive(stochnav::plugin::ParamReader& reader, SensorGroup group,
-                             double n_initial) {
-  using stochnav::plugin::Bound;
+/// Fills the clamps left to their defaults around N_initial (in reporting units, as given) and
+/// checks N_min <= N_initial <= N_max. `reader` only names the keys in messages.
+AdaptiveParams complete(AdaptiveParams params, SensorGroup group,
+                        const stochnav::plugin::ParamReader& reader) {
   const auto quantity = stochnav::plugin::sensor_quantity(group);
-  const auto dimension = ParameterDimension::kAnglePerRootTime;
-  const std::string unit = stochnav::reported_unit_name(quantity, dimension);
-  const double initial_reported = stochnav::to_reported(quantity, dimension, n_initial);
-  AdaptiveParams params;
-  params.n_initial = n_initial;
-  const double n_min =
-      reader.number_or("N_min", initial_reported / 10.0, Bound::kNonNegative, unit);
-  const double n_max = reader.number_or("N_max", initial_reported * 100.0, Bound::kPositive, unit);
-  params.forgetting = reader.number_or("forgetting", 0.98, Bound::kOpenUnit, "");
-  if (n_min > initial_reported) {
-    throw stochnav::ConfigError(fmt::format("{}: found {}; expected at most N_initial = {} {}",
-                                            reader.pointer("N_min"), n_min, initial_reported,
-                                            unit));
+  const double initial_reported = kLevelUnit.to_reported(quantity, params.n_initial);
+  if (std::isnan(params.n_min)) {
+    params.n_min = kLevelUnit.to_natural(quantity, initial_reported / 10.0);
   }
-  if (n_max < initial_reported) {
-    throw stochnav::ConfigError(fmt::format("{}: found {}; expected at least N_initial = {} {}",
-                                            reader.pointer("N_max"), n_max, initial_reported,
-                                            unit));
+  if (std::isnan(params.n_max)) {
+    params.n_max = kLevelUnit.to_natural(quantity, initial_reported * 100.0);
   }
-  params.n_min = stochnav::to_natural(quantity, dimension, n_min);
-  params.n_max = stochnav::to_natural(quantity, dimension, n_max);
+  const std::string unit = kLevelUnit.name(quantity);
+  if (params.n_min > params.n_initial) {
+    throw stochnav::ConfigError(
+        fmt::format("{}: found {:.6g}; expected at most N_initial = {} {}", reader.pointer("N_min"),
+                    kLevelUnit.to_reported(quantity, params.n_min), initial_reported, unit));
+  }
+  if (params.n_max < params.n_initial) {
+    throw stochnav::ConfigError(fmt::format(
+        "{}: found {:.6g}; expected at least N_initial = {} {}", reader.pointer("N_max"),
+        kLevelUnit.to_reported(quantity, params.n_max), initial_reported, unit));
+  }
   return params;
 }
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_adaptive(
     const nlohmann::json& json, const stochnav::plugin::NoiseModelContext& context) {
-  const auto quantity = stochnav::plugin::sensor_quantity(context.group);
-  const auto dimension = ParameterDimension::kAnglePerRootTime;
   stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  const double n_initial = reader.number("N_initial", stochnav::plugin::Bound::kPositive,
-                                         stochnav::reported_unit_name(quantity, dimension));
-  const AdaptiveParams params =
-      read_adaptive(reader, context.group, stochnav::to_natural(quantity, dimension, n_initial));
+  AdaptiveParams params;
+  kAdaptiveTable.read(reader, stochnav::plugin::sensor_quantity(context.group), params);
   reader.finish();
-  return std::make_unique<AdaptiveNoise>(context.group, params);
+  return std::make_unique<AdaptiveNoise>(context.group, complete(params, context.group, reader));
 }
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_adaptive(
@@ -205,9 +193,14 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_adaptive(
                                ": no angle random walk could be fitted to start the adaptive "
                                "estimator; give N_initial with the factory instead");
   }
+  // The factory's keys but N_initial, which the fit gives.
+  static const auto kFitTable = kAdaptiveTable.without("N_initial");
   stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  const AdaptiveParams params = read_adaptive(reader, record.group, n_initial);
+  AdaptiveParams params;
+  kFitTable.read(reader, stochnav::plugin::sensor_quantity(record.group), params);
   reader.finish();
+  params.n_initial = n_initial;
+  params = complete(params, record.group, reader);
   auto model = std::make_unique<AdaptiveNoise>(record.group, params);
   model->set_fit_quality(stochnav::plugin::calibration_fit_quality(fits));
   return model;

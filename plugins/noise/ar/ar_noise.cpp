@@ -36,14 +36,13 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_ar(
   using stochnav::plugin::Bound;
   stochnav::plugin::ParamReader reader(json, context.params_pointer);
   an::ArmaNoiseParams params;
-  params.interval_s = reader.number_or("interval_s", 0.1, Bound::kPositive, "s");
+  an::constant_params_table().read(reader, stochnav::plugin::sensor_quantity(record.group), params);
   static constexpr std::string_view kMethods[] = {"burg", "yule_walker"};
   const auto method = reader.choice_or("method", "burg", kMethods) == "burg"
                           ? stochnav::ArMethod::kBurg
                           : stochnav::ArMethod::kYuleWalker;
   const int max_order = an::read_integer_or(reader, "max_order", 8, 1, 20);
   const auto criterion = an::read_criterion(reader);
-  params.k = an::read_rate_random_walk(reader, record.group);
   reader.finish();
   const auto series = an::block_averaged_axes(record, params.interval_s, 10 * (max_order + 1),
                                               reader.pointer("interval_s"));

@@ -38,7 +38,7 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_arma(
   using stochnav::plugin::Bound;
   stochnav::plugin::ParamReader reader(json, context.params_pointer);
   an::ArmaNoiseParams params;
-  params.interval_s = reader.number_or("interval_s", 0.1, Bound::kPositive, "s");
+  an::constant_params_table().read(reader, stochnav::plugin::sensor_quantity(record.group), params);
   const int max_p = an::read_integer_or(reader, "max_p", 3, 0, 3);
   const int max_q = an::read_integer_or(reader, "max_q", 2, 0, 2);
   if (max_p + max_q < 1) {
@@ -46,7 +46,6 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_arma(
                                 ": found max_p = max_q = 0; expected max_p + max_q >= 1");
   }
   const auto criterion = an::read_criterion(reader);
-  params.k = an::read_rate_random_walk(reader, record.group);
   reader.finish();
   const auto series = an::block_averaged_axes(
       record, params.interval_s, max_p + 10 * (max_p + max_q + 1), reader.pointer("interval_s"));

@@ -112,14 +112,13 @@ class ArmaNoise final : public NoiseModelPlugin {
   bool equals(const NoiseModelPlugin& other, double rel_tol) const override {
     const auto* that = dynamic_cast<const ArmaNoise*>(&other);
     if (that == nullptr || that->kind_ != kind_ || that->group() != group() ||
-        !parameters_close(params_.interval_s, that->params_.interval_s, rel_tol)) {
+        !constant_params_table().equal(params_, that->params_, rel_tol)) {
       return false;
     }
     for (int axis = 0; axis < 3; ++axis) {
       const ArmaModel &a = params_.axes[axis], &b = that->params_.axes[axis];
       if (!parameters_close(a.ar, b.ar, rel_tol) || !parameters_close(a.ma, b.ma, rel_tol) ||
-          !parameters_close(a.sigma, b.sigma, rel_tol) ||
-          !parameters_close(params_.k[axis], that->params_.k[axis], rel_tol)) {
+          !parameters_close(a.sigma, b.sigma, rel_tol)) {
         return false;
       }
     }
@@ -199,13 +198,15 @@ int samples_per_block(double interval_s, double rate_hz, const std::string& poin
   return static_cast<int>(whole);
 }
 
-std::array<double, 3> read_rate_random_walk(ParamReader& reader, SensorGroup group) {
-  const auto quantity = sensor_quantity(group);
-  std::array<double, 3> k =
-      reader.axes_or("K", {0.0, 0.0, 0.0}, Bound::kNonNegative,
-                     reported_unit_name(quantity, ParameterDimension::kRatePerRootTime));
-  for (double& value : k) value = to_natural(quantity, ParameterDimension::kRatePerRootTime, value);
-  return k;
+const ParamTable<ArmaNoiseParams>& constant_params_table() {
+  static const ParamTable<ArmaNoiseParams> table{
+      scalar(&ArmaNoiseParams::interval_s, "interval_s", ParamUnit::fixed("s"), Bound::kPositive,
+             0.1,
+             "block length T of the modelled series; keep it the filter's covariance interval"),
+      per_axis(&ArmaNoiseParams::k, "K", ParamUnit::of(ParameterDimension::kRatePerRootTime),
+               Bound::kNonNegative, 0.0, "rate random walk of the core bias (not fitted)"),
+  };
+  return table;
 }
 
 InformationCriterion read_criterion(ParamReader& reader) {
@@ -229,7 +230,7 @@ ArmaNoiseParams read_model_params(Kind kind, const nlohmann::json& json,
                                   const NoiseModelContext& context) {
   ParamReader reader(json, context.params_pointer);
   ArmaNoiseParams params;
-  params.interval_s = reader.number_or("interval_s", 0.1, Bound::kPositive, "s");
+  constant_params_table().read(reader, sensor_quantity(context.group), params);
   if (context.imu_rate_hz > 0.0) {
     samples_per_block(params.interval_s, context.imu_rate_hz, reader.pointer("interval_s"));
   }
@@ -248,22 +249,22 @@ ArmaNoiseParams read_model_params(Kind kind, const nlohmann::json& json,
     params.axes[axis] =
         read_axis(kind, axes[axis], axes_pointer + "/" + std::to_string(axis), context.group);
   }
-  params.k = read_rate_random_walk(reader, context.group);
   reader.finish();
   return params;
 }
 
 nlohmann::json write_model_params(Kind kind, SensorGroup group, const ArmaNoiseParams& params) {
-  nlohmann::json axes = nlohmann::json::array(), k = nlohmann::json::array();
+  nlohmann::json axes = nlohmann::json::array();
   for (int axis = 0; axis < 3; ++axis) {
     const ArmaModel& model = params.axes[axis];
     nlohmann::json entry = {{"ar", model.ar},
                             {"sigma", reported(group, ParameterDimension::kRate, model.sigma)}};
     if (kind == Kind::kArma) entry["ma"] = model.ma;
     axes.push_back(entry);
-    k.push_back(reported(group, ParameterDimension::kRatePerRootTime, params.k[axis]));
   }
-  return {{"interval_s", params.interval_s}, {"axes", axes}, {"K", k}};
+  nlohmann::json out = constant_params_table().to_json(params, sensor_quantity(group));
+  out["axes"] = std::move(axes);
+  return out;
 }
 
 std::array<std::vector<double>, 3> block_averaged_axes(const CalibrationRecord& record,

@@ -23,6 +23,7 @@
 
 #include "stochnav/model/arma.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
+#include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/params.hpp"
 
 namespace stochnav::plugin::arma_noise {
@@ -63,8 +64,9 @@ std::array<std::vector<double>, 3> block_averaged_axes(const CalibrationRecord& 
                                                        double interval_s, int min_blocks,
                                                        const std::string& interval_pointer);
 
-/// Reads "K" (optional, reporting units) into natural units.
-std::array<double, 3> read_rate_random_walk(ParamReader& reader, SensorGroup group);
+/// The constant parameters of both plugins' factories and fitters: "interval_s" (s, default 0.1)
+/// and "K" (rate random walk of the core bias, reporting units, default 0).
+const ParamTable<ArmaNoiseParams>& constant_params_table();
 
 /// Reads "criterion": "aic" | "bic" (default "bic").
 InformationCriterion read_criterion(ParamReader& reader);

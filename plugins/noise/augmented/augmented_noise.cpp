@@ -34,6 +34,7 @@
 #include "stochnav/model/sensor_shaping.hpp"
 #include "stochnav/plugin/calibration_fit.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
+#include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/params.hpp"
 
 namespace {
@@ -51,7 +52,18 @@ struct AugmentedParams {
   double fold_below_s = 0.1;
 };
 
-using stochnav::plugin::parameters_close;
+using stochnav::plugin::Bound;
+using stochnav::plugin::ParamUnit;
+
+// The constant parameters; the noise models are read below.
+const stochnav::plugin::ParamTable<AugmentedParams> kConstantTable{
+    scalar(&AugmentedParams::flicker_band_max_s, "flicker_band_max_s", ParamUnit::fixed("s"),
+           Bound::kPositive, 3600.0, "upper end of the bias-instability band"),
+    scalar(&AugmentedParams::flicker_components_per_decade, "flicker_components_per_decade",
+           ParamUnit::fixed(""), Bound::kPositive, 2.0, "flicker bank density"),
+    scalar(&AugmentedParams::fold_below_s, "fold_below_s", ParamUnit::fixed("s"),
+           Bound::kNonNegative, 0.1, "first-order states faster than this become white noise"),
+};
 
 std::array<ShapingFilter, 3> shaping_filters(const AugmentedParams& params) {
   std::array<ShapingFilter, 3> filters;
@@ -96,10 +108,10 @@ class AugmentedNoise final : public stochnav::plugin::NoiseModelPlugin {
   nlohmann::json params() const override {
     nlohmann::json models = nlohmann::json::array();
     for (const NoiseModel& model : params_.models) models.push_back(stochnav::to_json(model));
-    return {{"models", models},
-            {"flicker_band_max_s", params_.flicker_band_max_s},
-            {"flicker_components_per_decade", params_.flicker_components_per_decade},
-            {"fold_below_s", params_.fold_below_s}};
+    nlohmann::json out =
+        kConstantTable.to_json(params_, stochnav::plugin::sensor_quantity(group()));
+    out["models"] = std::move(models);
+    return out;
   }
 
   std::string describe() const override {
@@ -125,11 +137,7 @@ class AugmentedNoise final : public stochnav::plugin::NoiseModelPlugin {
     for (std::size_t i = 0; i < 3; ++i) {
       if (!stochnav::equals(params_.models[i], that->params_.models[i], rel_tol)) return false;
     }
-    return parameters_close(params_.flicker_band_max_s, that->params_.flicker_band_max_s,
-                            rel_tol) &&
-           parameters_close(params_.flicker_components_per_decade,
-                            that->params_.flicker_components_per_decade, rel_tol) &&
-           parameters_close(params_.fold_below_s, that->params_.fold_below_s, rel_tol);
+    return kConstantTable.equal(params_, that->params_, rel_tol);
   }
 
  private:
@@ -183,10 +191,7 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_augmented(
           read_model(models[i], reader.pointer("models") + "/" + std::to_string(i), context.group);
     }
   }
-  params.flicker_band_max_s = reader.number_or("flicker_band_max_s", 3600.0, Bound::kPositive, "s");
-  params.flicker_components_per_decade =
-      reader.number_or("flicker_components_per_decade", 2.0, Bound::kPositive, "");
-  params.fold_below_s = reader.number_or("fold_below_s", 0.1, Bound::kNonNegative, "s");
+  kConstantTable.read(reader, stochnav::plugin::sensor_quantity(context.group), params);
   reader.finish();
   return std::make_unique<AugmentedNoise>(context.group, params);
 }

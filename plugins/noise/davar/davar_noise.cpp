@@ -58,6 +58,7 @@
 #include "stochnav/model/reporting_units.hpp"
 #include "stochnav/plugin/calibration_fit.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
+#include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/params.hpp"
 #include "windowed_term_fit.hpp"
 
@@ -80,6 +81,13 @@ struct DavarParams {
 };
 
 using stochnav::plugin::parameters_close;
+
+// The constant parameters; the analysis times and N(t) are series, read below.
+const stochnav::plugin::ParamTable<DavarParams> kConstantTable{
+    per_axis(&DavarParams::k, "K",
+             stochnav::plugin::ParamUnit::of(ParameterDimension::kRatePerRootTime),
+             stochnav::plugin::Bound::kNonNegative, 0.0, "rate random walk of the core bias"),
+};
 
 NoiseLevelSeries level_series(const DavarParams& params) {
   AxisSeries psd;
@@ -111,19 +119,20 @@ class DavarNoise final : public stochnav::plugin::NoiseModelPlugin {
   }
 
   nlohmann::json params() const override {
-    nlohmann::json n = nlohmann::json::array(), k = nlohmann::json::array();
+    nlohmann::json n = nlohmann::json::array();
     for (std::size_t axis = 0; axis < 3; ++axis) {
       nlohmann::json values = nlohmann::json::array();
       for (double value : params_.n[axis]) {
         values.push_back(reported(ParameterDimension::kAnglePerRootTime, value));
       }
       n.push_back(std::move(values));
-      k.push_back(reported(ParameterDimension::kRatePerRootTime, params_.k[axis]));
     }
-    return {{"mode", params_.causal ? "causal" : "offline"},
-            {"t", params_.time_s},
-            {"N", std::move(n)},
-            {"K", std::move(k)}};
+    nlohmann::json out =
+        kConstantTable.to_json(params_, stochnav::plugin::sensor_quantity(group()));
+    out["mode"] = params_.causal ? "causal" : "offline";
+    out["t"] = params_.time_s;
+    out["N"] = std::move(n);
+    return out;
   }
 
   std::string describe() const override {
@@ -157,10 +166,7 @@ class DavarNoise final : public stochnav::plugin::NoiseModelPlugin {
         if (!parameters_close(a.n[axis][j], b.n[axis][j], rel_tol)) return false;
       }
     }
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-      if (!parameters_close(a.k[axis], b.k[axis], rel_tol)) return false;
-    }
-    return true;
+    return kConstantTable.equal(a, b, rel_tol);
   }
 
  private:
@@ -226,17 +232,6 @@ AxisSeries read_levels(stochnav::plugin::ParamReader& reader, SensorGroup group,
   return levels;
 }
 
-Axes read_rate_random_walk(stochnav::plugin::ParamReader& reader, SensorGroup group) {
-  const auto quantity = stochnav::plugin::sensor_quantity(group);
-  Axes k =
-      reader.axes_or("K", {0.0, 0.0, 0.0}, stochnav::plugin::Bound::kNonNegative,
-                     stochnav::reported_unit_name(quantity, ParameterDimension::kRatePerRootTime));
-  for (double& value : k) {
-    value = stochnav::to_natural(quantity, ParameterDimension::kRatePerRootTime, value);
-  }
-  return k;
-}
-
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_davar(
     const nlohmann::json& json, const stochnav::plugin::NoiseModelContext& context) {
   stochnav::plugin::ParamReader reader(json, context.params_pointer);
@@ -244,7 +239,7 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_davar(
   params.causal = reader.choice_or("mode", "offline", kModes) == "causal";
   params.time_s = read_times(reader);
   params.n = read_levels(reader, context.group, params.time_s.size());
-  params.k = read_rate_random_walk(reader, context.group);
+  kConstantTable.read(reader, stochnav::plugin::sensor_quantity(context.group), params);
   reader.finish();
   return std::make_unique<DavarNoise>(context.group, std::move(params));
 }

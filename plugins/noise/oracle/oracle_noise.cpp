@@ -36,6 +36,7 @@
 #include "stochnav/model/noise_model.hpp"
 #include "stochnav/model/sensor_shaping.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
+#include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/params.hpp"
 #include "white_noise_schedule.hpp"
 
@@ -132,7 +133,14 @@ WhiteNoiseSchedule white_schedule(const std::array<AxisNoise, 3>& axes) {
 
 struct OracleParams {
   std::filesystem::path scenario_dir;
-  double fold_below_s = 0.1;
+  double fold_below_s = 0.1;  ///< s
+};
+
+// The constant parameters; the scenario folder is read below.
+const stochnav::plugin::ParamTable<OracleParams> kConstantTable{
+    scalar(&OracleParams::fold_below_s, "fold_below_s", stochnav::plugin::ParamUnit::fixed("s"),
+           stochnav::plugin::Bound::kNonNegative, 0.1,
+           "first-order states faster than this become white noise"),
 };
 
 struct OracleModel {
@@ -195,7 +203,10 @@ class OracleNoise final : public stochnav::plugin::NoiseModelPlugin {
   }
 
   nlohmann::json params() const override {
-    return {{"scenario", params_.scenario_dir.string()}, {"fold_below_s", params_.fold_below_s}};
+    nlohmann::json out =
+        kConstantTable.to_json(params_, stochnav::plugin::sensor_quantity(group()));
+    out["scenario"] = params_.scenario_dir.string();
+    return out;
   }
 
   std::string describe() const override {
@@ -226,7 +237,7 @@ class OracleNoise final : public stochnav::plugin::NoiseModelPlugin {
     }
     return close(model_.truth.rate_hz, that->model_.truth.rate_hz) &&
            close(model_.truth.duration_s, that->model_.truth.duration_s) &&
-           close(params_.fold_below_s, that->params_.fold_below_s);
+           kConstantTable.equal(params_, that->params_, rel_tol);
   }
 
  private:
@@ -250,14 +261,13 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_oracle(
         ": missing, and the run has no simulated scenario; expected the folder of a scenario "
         "made by `stochnav simulate scenario` (the oracle knows only simulated noise)");
   }
-  params.fold_below_s =
-      reader.number_or("fold_below_s", 0.1, stochnav::plugin::Bound::kNonNegative, "s");
+  kConstantTable.read(reader, stochnav::plugin::sensor_quantity(context.group), params);
   reader.finish();
   if (!std::filesystem::exists(params.scenario_dir / "scenario.json")) {
-    throw stochnav::MissingDataError(reader.pointer("scenario") + ": found \"" +
-                                params.scenario_dir.string() +
-                                "\" without scenario.json; expected the folder of a scenario made "
-                                "by `stochnav simulate scenario`");
+    throw stochnav::MissingDataError(
+        reader.pointer("scenario") + ": found \"" + params.scenario_dir.string() +
+        "\" without scenario.json; expected the folder of a scenario made "
+        "by `stochnav simulate scenario`");
   }
   params.scenario_dir = std::filesystem::absolute(params.scenario_dir).lexically_normal();
   return std::make_unique<OracleNoise>(context.group, params, build_oracle(params, context.group));

@@ -11,20 +11,18 @@
 // chi-square far beyond its dof) uses the floor-matched rule of plugin/calibration_fit.hpp
 // (fit_white_walk), reported in fit_quality().
 
-#include <fmt/format.h>
-
 #include <array>
-#include <cmath>
 #include <memory>
 
-#include "stochnav/model/reporting_units.hpp"
 #include "stochnav/plugin/calibration_fit.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
-#include "stochnav/plugin/params.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 
 namespace {
 
 using stochnav::ParameterDimension;
+using stochnav::plugin::Bound;
+using stochnav::plugin::ParamUnit;
 using stochnav::plugin::SensorGroup;
 using Axes = std::array<double, 3>;
 
@@ -33,87 +31,37 @@ struct WhiteParams {
   Axes k{};  ///< rate random walk per axis, rad/s/sqrt(s) or m/s^2/sqrt(s)
 };
 
-using stochnav::plugin::parameters_close;
+const stochnav::plugin::ParamTable<WhiteParams> kWhiteTable{
+    per_axis(&WhiteParams::n, "N", ParamUnit::of(ParameterDimension::kAnglePerRootTime),
+             Bound::kNonNegative, stochnav::plugin::kRequired, "angle random walk"),
+    per_axis(&WhiteParams::k, "K", ParamUnit::of(ParameterDimension::kRatePerRootTime),
+             Bound::kNonNegative, 0.0, "rate random walk of the core bias"),
+};
 
-class WhiteNoise final : public stochnav::plugin::NoiseModelPlugin {
+class WhiteNoise final : public stochnav::plugin::TabulatedNoiseModel<WhiteParams> {
  public:
   WhiteNoise(SensorGroup group, const WhiteParams& params)
-      : NoiseModelPlugin(group), params_(params) {}
+      : TabulatedNoiseModel(group, kWhiteTable, params) {}
 
   std::string_view type() const override { return "white"; }
 
   void white_noise_covariance(double, double dt_s,
                               Eigen::Ref<Eigen::MatrixXd> q_white) const override {
     q_white.setZero();
-    for (int i = 0; i < 3; ++i) q_white(i, i) = params_.n[i] * params_.n[i] * dt_s;
+    for (int i = 0; i < 3; ++i) q_white(i, i) = parameters().n[i] * parameters().n[i] * dt_s;
   }
 
   void bias_walk_covariance(double, double dt_s,
                             Eigen::Ref<Eigen::MatrixXd> q_bias) const override {
     q_bias.setZero();
-    for (int i = 0; i < 3; ++i) q_bias(i, i) = params_.k[i] * params_.k[i] * dt_s;
+    for (int i = 0; i < 3; ++i) q_bias(i, i) = parameters().k[i] * parameters().k[i] * dt_s;
   }
-
-  nlohmann::json params() const override {
-    nlohmann::json n = nlohmann::json::array(), k = nlohmann::json::array();
-    for (int i = 0; i < 3; ++i) {
-      n.push_back(reported(ParameterDimension::kAnglePerRootTime, params_.n[i]));
-      k.push_back(reported(ParameterDimension::kRatePerRootTime, params_.k[i]));
-    }
-    return {{"N", n}, {"K", k}};
-  }
-
-  std::string describe() const override {
-    std::string text = fmt::format("white ({}):", stochnav::plugin::sensor_group_name(group()));
-    const char* axis_names[] = {"x", "y", "z"};
-    for (int i = 0; i < 3; ++i) {
-      text += fmt::format(" {}: N = {:.6g} {}, K = {:.6g} {};", axis_names[i],
-                          reported(ParameterDimension::kAnglePerRootTime, params_.n[i]),
-                          reported_unit(ParameterDimension::kAnglePerRootTime),
-                          reported(ParameterDimension::kRatePerRootTime, params_.k[i]),
-                          reported_unit(ParameterDimension::kRatePerRootTime));
-    }
-    text.pop_back();
-    return text;
-  }
-
-  bool equals(const NoiseModelPlugin& other, double rel_tol) const override {
-    const auto* that = dynamic_cast<const WhiteNoise*>(&other);
-    if (that == nullptr || that->group() != group()) return false;
-    for (int i = 0; i < 3; ++i) {
-      if (!parameters_close(params_.n[i], that->params_.n[i], rel_tol)) return false;
-      if (!parameters_close(params_.k[i], that->params_.k[i], rel_tol)) return false;
-    }
-    return true;
-  }
-
- private:
-  WhiteParams params_;
 };
-
-Axes to_natural(SensorGroup group, ParameterDimension dimension, Axes reported) {
-  for (double& value : reported) {
-    value = stochnav::to_natural(stochnav::plugin::sensor_quantity(group), dimension, value);
-  }
-  return reported;
-}
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_white(
     const nlohmann::json& json, const stochnav::plugin::NoiseModelContext& context) {
-  using stochnav::plugin::Bound;
-  const auto quantity = stochnav::plugin::sensor_quantity(context.group);
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  WhiteParams params;
-  params.n = to_natural(
-      context.group, ParameterDimension::kAnglePerRootTime,
-      reader.axes("N", Bound::kNonNegative,
-                  stochnav::reported_unit_name(quantity, ParameterDimension::kAnglePerRootTime)));
-  params.k = to_natural(
-      context.group, ParameterDimension::kRatePerRootTime,
-      reader.axes_or("K", {0.0, 0.0, 0.0}, Bound::kNonNegative,
-                     stochnav::reported_unit_name(quantity, ParameterDimension::kRatePerRootTime)));
-  reader.finish();
-  return std::make_unique<WhiteNoise>(context.group, params);
+  return std::make_unique<WhiteNoise>(context.group,
+                                      stochnav::plugin::parse_params(kWhiteTable, json, context));
 }
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_white(

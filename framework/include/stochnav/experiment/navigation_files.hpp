@@ -11,13 +11,23 @@
 
 #include <array>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
 
 #include "stochnav/ins/nav_state.hpp"
 #include "stochnav/ins/strapdown.hpp"
 #include "stochnav/io/csv_table_reader.hpp"
 
 namespace stochnav {
+
+/// The columns of a truth file, in the order of a truth row.
+inline constexpr std::array<std::string_view, 10> kTruthColumns = {
+    "t", "lat", "lon", "h", "ve", "vn", "vu", "inclination", "toolface", "azimuth"};
+
+/// One truth row (kTruthColumns: t s, lat, lon deg, h m, ve, vn, vu m/s, inclination, toolface,
+/// azimuth deg) as a NavState (radians, v_n east-north-up, q_nb from the MWD angles).
+NavState nav_state_from_truth_row(std::span<const double, 10> row);
 
 class ImuFileReader final {
  public:

@@ -66,6 +66,10 @@ class PluginRegistry {
   PluginRegistry(PluginRegistry&&) noexcept;
   PluginRegistry& operator=(PluginRegistry&&) noexcept;
 
+  /// A registry of the one library `file` (e.g. `stochnav plugins check`), whatever its folder
+  /// holds besides. Throws ConfigError when the library does not load (check_plugin_file).
+  static PluginRegistry of_file(const std::filesystem::path& file);
+
   const std::vector<std::filesystem::path>& search_path() const;
   /// Every plugin loaded, in search-path order.
   std::vector<PluginDescriptor> plugins() const;

@@ -36,6 +36,7 @@
 //
 // MODEL is a noise model of model/noise_model_json.hpp. Unknown keys are rejected everywhere.
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string_view>
 
@@ -47,6 +48,11 @@ namespace stochnav {
 /// expected <form>" (source is typically the file name) on any unknown key, wrong type, missing
 /// required value or value out of range.
 ScenarioConfig scenario_config_from_json(const nlohmann::json& json, std::string_view source);
+
+/// Reads and validates the scenario config file (`stochnav simulate scenario CONFIG`). Throws
+/// InputError (unreadable, a folder, not JSON) or ConfigError "<file>: <JSON pointer>: ..." as
+/// scenario_config_from_json.
+ScenarioConfig read_scenario_config(const std::filesystem::path& file);
 
 /// The complete configuration (defaults filled in) in the JSON form above.
 nlohmann::json to_json(const ScenarioConfig& config);

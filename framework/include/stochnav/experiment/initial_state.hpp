@@ -1,7 +1,13 @@
 #pragma once
 // The start of a navigation run from the run config's "initial_state" and "initial_error"
 // sections (plugin/run_config.hpp): the known state at the tie-on, the static alignment, and
-// the deliberate initial error.
+// the deliberate initial error. `stochnav run` starts this way; an embedder driving MwdNavigator
+// from its own loop calls the same functions:
+//   start = state_from_initial_config(*config.initial_state, t0)   (or truth's first row,
+//                                                                   nav_state_from_truth_row)
+//   [aligned = align_at_rest(span, start, alignment, config.filter.options, gyro, accel)]
+//   filter = filter_start(config, start or aligned.state, options or aligned.options)
+//   MwdNavigator navigator(filter.estimate, gyro, accel, aids, filter.options);
 
 #include <span>
 
@@ -43,5 +49,16 @@ AlignedStart align_at_rest(std::span<const ImuIncrement> span, const NavState& s
 /// part uses the options' initial sigmas as they are on entry.
 void apply_initial_error(const plugin::InitialErrorConfig& error, NavState& state,
                          FilterOptions& options);
+
+/// What MwdNavigator starts from: the initial estimate and the filter options.
+struct FilterStart {
+  NavState estimate;      ///< the start with the configured initial error
+  FilterOptions options;  ///< with the error's initial bias estimates
+};
+
+/// A run config's filter start from a known start state and its options (config.filter.options,
+/// or align_at_rest's): the configured "initial_error" applied (apply_initial_error), if any.
+FilterStart filter_start(const plugin::RunConfig& config, const NavState& start,
+                         const FilterOptions& options);
 
 }  // namespace stochnav
