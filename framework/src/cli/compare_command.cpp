@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 
+#include "command_support.hpp"
 #include "commands.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/experiment/comparison.hpp"
@@ -24,7 +25,8 @@ void add_compare_command(CLI::App& app) {
       ->required();
   command->add_option("--out", arguments->out, "Output folder")->required();
   command->add_option("--seeds", arguments->seeds,
-                      "Override the experiment's seeds (simulated data only), e.g. --seeds 1 2 3");
+                      "Override the experiment's seeds (simulated data only), e.g. --seeds 1 2 3")
+      ->check(whole_number());
   command->add_flag("--full-scenario", arguments->full_scenario,
                     "Simulate the scenario as its config says, ignoring the experiment's "
                     "data/scenario_overrides (e.g. the whole 36 h drilling run)");
@@ -37,6 +39,7 @@ void add_compare_command(CLI::App& app) {
       }
       config.seeds = arguments->seeds;
     }
+    check_work_limits(config);
     if (config.sweep) {
       const nlohmann::json sweep = run_sweep(config, arguments->out, true);
       std::cout << "wrote " << arguments->out << "/sweep.json, sweep.png, sweep_pairs.png and "

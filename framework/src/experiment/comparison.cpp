@@ -9,11 +9,16 @@
 #include <fstream>
 #include <functional>
 #include <mutex>
+#include <set>
+#include <optional>
 #include <thread>
 
 #include <boost/math/distributions/chi_squared.hpp>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/work_limits.hpp"
+#include "stochnav/io/atomic_file.hpp"
+#include "stochnav/io/json_document.hpp"
 #include "stochnav/core/progress_bar.hpp"
 #include "stochnav/experiment/run_consistency.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
@@ -340,12 +345,34 @@ void validate_variants(const ExperimentConfig& config) {
   }
 }
 
+void check_work_limits(const ExperimentConfig& config) {
+  if (config.seeds.size() > limits::kMaxCompareSeeds) {
+    throw ConfigError(fmt::format("{}: {} seeds, above the limit of {} per comparison; use fewer "
+                                  "seeds (README.md, Limits on work)",
+                                  config.file.string(), config.seeds.size(),
+                                  limits::kMaxCompareSeeds));
+  }
+  const std::uint64_t runs = config.seeds.size() * config.variants.size();
+  if (runs > limits::kMaxCompareRuns) {
+    throw ConfigError(fmt::format("{}: {} variants x {} seeds = {} filter runs, above the limit "
+                                  "of {} per comparison; use fewer seeds or variants (README.md, "
+                                  "Limits on work)",
+                                  config.file.string(), config.variants.size(),
+                                  config.seeds.size(), runs, limits::kMaxCompareRuns));
+  }
+  std::set<std::uint64_t> distinct(config.seeds.begin(), config.seeds.end());
+  if (distinct.size() != config.seeds.size()) {
+    throw ConfigError(config.file.string() + ": a seed is given twice; give distinct seeds");
+  }
+}
+
 ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& out_dir_given,
                                 bool progress_bar) {
   const auto start = std::chrono::steady_clock::now();
   // Absolute: the seeds' folders are handed to run configs that resolve relative paths
   // against the experiment's folder, not the working directory.
   const fs::path out_dir = fs::absolute(out_dir_given);
+  check_work_limits(config);
   validate_variants(config);
   const unsigned threads =
       config.threads > 0 ? config.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -358,15 +385,17 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
   // 1. The data of every seed: simulated folders, or the fixed data section.
   std::vector<nlohmann::json> data(seed_count, config.fixed_data);
   const fs::path scenarios_dir = out_dir / ".scenarios";
+  // The output folder goes again if the comparison fails; the seeds' scenarios always go
+  // (never kept), on success, failure or a fatal signal.
+  std::optional<OutputFolder> out_folder;
+  std::optional<OutputFolder> scenarios_folder;
   if (config.scenario_config) {
-    std::ifstream in(*config.scenario_config);
-    nlohmann::json scenario_json;
-    try {
-      scenario_json = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& error) {
-      throw InputError(config.scenario_config->string() + ": not valid JSON (" + error.what() +
-                       ")");
-    }
+    out_folder.emplace(out_dir);
+    std::error_code stale;
+    fs::remove_all(scenarios_dir, stale);
+    scenarios_folder.emplace(scenarios_dir);
+    nlohmann::json scenario_json =
+        read_json_document(*config.scenario_config, "the experiment's data/scenario_config");
     apply_scenario_overrides(config.scenario_overrides, *config.scenario_config, scenario_json);
     for (const auto& [text, value] : config.scenario_sweep_values.items()) {
       try {
@@ -418,8 +447,8 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
     }
   });
   progress.finish(done);
-  std::error_code ignored;
-  fs::remove_all(scenarios_dir, ignored);
+  scenarios_folder.reset();
+  if (out_folder) out_folder->keep();
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -60,6 +60,17 @@ std::size_t LineReader::fill() {
   return got;
 }
 
+namespace {
+
+// A UTF-8 byte-order mark (what some Windows editors put first) is not part of the first line.
+std::string_view without_bom(std::string_view line, std::size_t line_number) {
+  constexpr std::string_view kBom = "\xEF\xBB\xBF";
+  if (line_number == 1 && line.substr(0, kBom.size()) == kBom) line.remove_prefix(kBom.size());
+  return line;
+}
+
+}  // namespace
+
 bool LineReader::next(std::string_view& line) {
   while (true) {
     const char* start = buffer_.data() + begin_;
@@ -69,8 +80,8 @@ bool LineReader::next(std::string_view& line) {
       std::size_t length = static_cast<std::size_t>(newline - start);
       begin_ += length + 1;
       if (length > 0 && start[length - 1] == '\r') --length;
-      line = std::string_view(start, length);
       ++line_number_;
+      line = without_bom(std::string_view(start, length), line_number_);
       return true;
     }
     if (eof_ || fill() == 0) {
@@ -79,9 +90,9 @@ bool LineReader::next(std::string_view& line) {
       const char* rest = buffer_.data() + begin_;
       std::size_t length = end_ - begin_;
       if (rest[length - 1] == '\r') --length;
-      line = std::string_view(rest, length);
       begin_ = end_;
       ++line_number_;
+      line = without_bom(std::string_view(rest, length), line_number_);
       return true;
     }
   }

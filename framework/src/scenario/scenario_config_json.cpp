@@ -8,6 +8,7 @@
 #include <string>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/work_limits.hpp"
 #include "stochnav/model/noise_model_json.hpp"
 
 namespace stochnav {
@@ -486,10 +487,12 @@ ScenarioConfig parse(const json& value) {
   }
   r.finish();
   const double epochs = scenario_duration_s(config) * config.imu.rate_hz;
-  if (epochs < 2.0 || epochs > 1e12) {
+  if (epochs < 2.0 || epochs > limits::kMaxScenarioEpochs) {
     fail(
         config.kind == ScenarioKind::kDrilling ? "/drilling/duration_s" : "/vibration_table/phases",
-        fmt::format("gives {} IMU epochs", epochs), "a duration of at least 2 epochs");
+        fmt::format("gives {:.3g} IMU epochs", epochs),
+        fmt::format("a duration of 2 to {:.3g} epochs at imu/rate_hz (the limit on work, "
+                    "README.md)", limits::kMaxScenarioEpochs));
   }
   return config;
 }

@@ -79,6 +79,10 @@ nlohmann::json pair_json(const ComparisonResult& result, const std::string& a,
 /// here. Aid params are checked when the first run builds them.
 void validate_variants(const ExperimentConfig& config);
 
+/// Refuses a comparison beyond the limits on work (core/work_limits.hpp: seeds, variants x
+/// seeds) or with a seed given twice, before anything runs: ConfigError naming the limit.
+void check_work_limits(const ExperimentConfig& config);
+
 /// Runs the experiment (validate_variants first). Simulated seeds are generated under out_dir/.scenarios (removed at the
 /// end). Throws ConfigError / InputError (the first failure of any job, naming the variant and
 /// seed).
