@@ -33,12 +33,16 @@ void remove_all_locked(Registry& r) {
   r.paths.clear();
 }
 
+// SIGINT, SIGTERM and SIGHUP, except those the process was started with ignored (nohup, a
+// background job without job control): they stay ignored.
 sigset_t cleanup_signals() {
   sigset_t set;
   sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
-  sigaddset(&set, SIGHUP);
+  for (const int number : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction current {};
+    if (sigaction(number, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
+    sigaddset(&set, number);
+  }
   return set;
 }
 

@@ -20,6 +20,7 @@
 #include "stochnav/io/atomic_file.hpp"
 #include "stochnav/io/json_document.hpp"
 #include "stochnav/core/progress_bar.hpp"
+#include "stochnav/experiment/parallel_jobs.hpp"
 #include "stochnav/experiment/run_consistency.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
 #include "stochnav/plugin/run_config.hpp"
@@ -31,44 +32,6 @@ namespace stochnav {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Runs jobs 0..count-1 on `threads` workers; rethrows the first failure after all stopped.
-void run_parallel(std::size_t count, unsigned threads, ProgressBar& progress,
-                  std::atomic<std::uint64_t>& done, const std::function<void(std::size_t)>& job) {
-  std::atomic<std::size_t> next{0};
-  std::atomic<std::size_t> finished{0};
-  std::atomic<bool> failed{false};
-  std::exception_ptr first_failure;
-  std::mutex failure_mutex;
-  const auto worker = [&] {
-    for (std::size_t i = next++; i < count && !failed; i = next++) {
-      try {
-        job(i);
-      } catch (...) {
-        const std::lock_guard lock(failure_mutex);
-        if (!first_failure) first_failure = std::current_exception();
-        failed = true;
-      }
-      ++done;
-      ++finished;
-    }
-  };
-  std::vector<std::thread> pool;
-  const unsigned workers = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(count)));
-  for (unsigned t = 1; t < workers; ++t) pool.emplace_back(worker);
-  // A drawer thread keeps the progress up to date until the last job has finished (the last
-  // jobs can run for a long time after the last one started).
-  std::thread drawer([&] {
-    while (finished < count && !failed) {
-      progress.show(done);
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-  });
-  worker();
-  for (auto& thread : pool) thread.join();
-  drawer.join();
-  if (first_failure) std::rethrow_exception(first_failure);
-}
 
 template <typename Error>
 [[noreturn]] void rethrow_with_context(const Error& error, const std::string& context) {

@@ -62,10 +62,16 @@ std::size_t LineReader::fill() {
 
 namespace {
 
-// A UTF-8 byte-order mark (what some Windows editors put first) is not part of the first line.
-std::string_view without_bom(std::string_view line, std::size_t line_number) {
+// The first line: a UTF-8 byte-order mark (what some Windows editors put first) is not part of
+// it, and a carriage return inside it means old Mac line endings (CR alone), which would make
+// the whole file one line. CRLF endings are handled in next().
+std::string_view checked_first_line(std::string_view line, const std::string& path) {
   constexpr std::string_view kBom = "\xEF\xBB\xBF";
-  if (line_number == 1 && line.substr(0, kBom.size()) == kBom) line.remove_prefix(kBom.size());
+  if (line.substr(0, kBom.size()) == kBom) line.remove_prefix(kBom.size());
+  if (line.find('\r') != std::string_view::npos) {
+    throw InputError(path + ":1: carriage return (CR) inside the line: the file has CR-only "
+                     "line endings; convert it to LF or CRLF line endings");
+  }
   return line;
 }
 
@@ -81,7 +87,8 @@ bool LineReader::next(std::string_view& line) {
       begin_ += length + 1;
       if (length > 0 && start[length - 1] == '\r') --length;
       ++line_number_;
-      line = without_bom(std::string_view(start, length), line_number_);
+      line = std::string_view(start, length);
+      if (line_number_ == 1) line = checked_first_line(line, path_);
       return true;
     }
     if (eof_ || fill() == 0) {
@@ -92,7 +99,8 @@ bool LineReader::next(std::string_view& line) {
       if (rest[length - 1] == '\r') --length;
       begin_ = end_;
       ++line_number_;
-      line = without_bom(std::string_view(rest, length), line_number_);
+      line = std::string_view(rest, length);
+      if (line_number_ == 1) line = checked_first_line(line, path_);
       return true;
     }
   }

@@ -28,7 +28,8 @@ class TemporaryPath final {
 
 /// Installs the cleanup for SIGINT, SIGTERM and SIGHUP: blocks them in the calling thread (and
 /// so in every thread it starts later) and starts a thread that waits for them. Call it once,
-/// early in main(), before any other thread exists. Idempotent.
+/// early in main(), before any other thread exists. Idempotent. A signal the process was started
+/// with ignored stays ignored.
 void install_signal_cleanup();
 
 /// Removes every registered path now (what the signal thread does). For tests.
