@@ -6,12 +6,12 @@
 // files are written into a staging folder inside DIR and moved into place only when every one
 // of them is complete, so a failure leaves no partial output.
 
-#include <optional>
 #include <fmt/format.h>
 
 #include <algorithm>
 
 #include <filesystem>
+#include <optional>
 #include <random>
 
 #include "command_support.hpp"

@@ -1,9 +1,11 @@
 #include "stochnav/core/temporary_files.hpp"
 
+#include <fcntl.h>
 #include <pthread.h>
-#include <unistd.h>
 #include <signal.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <map>
 #include <mutex>
 #include <thread>
@@ -12,8 +14,8 @@
 namespace stochnav {
 namespace {
 
-// The registry is a plain mutex-guarded map: the removal runs on an ordinary thread (woken by
-// sigwait), not in a signal handler, so it may allocate and take locks.
+// The registry is a plain mutex-guarded map: the removal runs on an ordinary thread (woken
+// through a pipe by the signal handler), not in the handler, so it may allocate and take locks.
 struct Registry {
   std::mutex mutex;
   std::map<std::uint64_t, std::filesystem::path> paths;
@@ -33,23 +35,21 @@ void remove_all_locked(Registry& r) {
   r.paths.clear();
 }
 
-// SIGINT, SIGTERM and SIGHUP, except those the process was started with ignored (nohup, a
-// background job without job control): they stay ignored.
-sigset_t cleanup_signals() {
-  sigset_t set;
-  sigemptyset(&set);
-  for (const int number : {SIGINT, SIGTERM, SIGHUP}) {
-    struct sigaction current {};
-    if (sigaction(number, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
-    sigaddset(&set, number);
-  }
-  return set;
+int signal_pipe[2] = {-1, -1};  // the handler writes the signal number, the watcher reads it
+
+// The whole signal handler: one async-signal-safe write. The work happens on the watcher thread.
+extern "C" void forward_signal(int number) {
+  const int saved_errno = errno;
+  const auto byte = static_cast<unsigned char>(number);
+  [[maybe_unused]] const ssize_t written = ::write(signal_pipe[1], &byte, 1);
+  errno = saved_errno;
 }
 
-[[noreturn]] void watch_signals(sigset_t set) {
-  int signal_number = 0;
-  while (sigwait(&set, &signal_number) != 0) {
+[[noreturn]] void watch_signals() {
+  unsigned char byte = 0;
+  while (::read(signal_pipe[0], &byte, 1) != 1) {
   }
+  const int number = byte;
   Registry& r = registry();
   // Held until the process dies: no writer registers a new temporary file meanwhile.
   r.mutex.lock();
@@ -57,14 +57,14 @@ sigset_t cleanup_signals() {
   struct sigaction default_action {};
   default_action.sa_handler = SIG_DFL;
   sigemptyset(&default_action.sa_mask);
-  sigaction(signal_number, &default_action, nullptr);
+  sigaction(number, &default_action, nullptr);
   sigset_t just_this;
   sigemptyset(&just_this);
-  sigaddset(&just_this, signal_number);
+  sigaddset(&just_this, number);
   pthread_sigmask(SIG_UNBLOCK, &just_this, nullptr);
-  raise(signal_number);
+  ::raise(number);
   // Not reached for the default actions of these signals.
-  _exit(128 + signal_number);
+  ::_exit(128 + number);
 }
 
 }  // namespace
@@ -89,9 +89,18 @@ void TemporaryPath::release() {
 void install_signal_cleanup() {
   static std::once_flag once;
   std::call_once(once, [] {
-    const sigset_t set = cleanup_signals();
-    pthread_sigmask(SIG_BLOCK, &set, nullptr);
-    std::thread(watch_signals, set).detach();
+    if (::pipe2(signal_pipe, O_CLOEXEC) != 0) return;  // no cleanup rather than no tool
+    std::thread(watch_signals).detach();
+    struct sigaction action {};
+    action.sa_handler = forward_signal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART;  // interrupted reads and writes of the workers carry on
+    for (const int number : {SIGINT, SIGTERM, SIGHUP}) {
+      // A signal the process was started with ignored (nohup, a background job) stays ignored.
+      struct sigaction current {};
+      if (sigaction(number, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
+      sigaction(number, &action, nullptr);
+    }
   });
 }
 

@@ -1,8 +1,8 @@
 #include "stochnav/scenario/scenario_writer.hpp"
 
-#include <cerrno>
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>

@@ -26,10 +26,11 @@ class TemporaryPath final {
   std::uint64_t id_ = 0;  // 0: not registered
 };
 
-/// Installs the cleanup for SIGINT, SIGTERM and SIGHUP: blocks them in the calling thread (and
-/// so in every thread it starts later) and starts a thread that waits for them. Call it once,
-/// early in main(), before any other thread exists. Idempotent. A signal the process was started
-/// with ignored stays ignored.
+/// Installs the cleanup for SIGINT, SIGTERM and SIGHUP: a handler that only hands the signal
+/// through a pipe to a thread, which removes the registered paths and re-raises the signal with
+/// its default action. Child processes (gnuplot) get the default actions back at exec. Call it
+/// once, early in main(). Idempotent. A signal the process was started with ignored stays
+/// ignored.
 void install_signal_cleanup();
 
 /// Removes every registered path now (what the signal thread does). For tests.
