@@ -87,5 +87,21 @@ TEST(TemporaryPath, RegisteredPathsAreRemovedAndReleasedOnesKept) {
   EXPECT_TRUE(fs::exists(kept));
 }
 
+TEST(TemporaryPath, SharedFoldersGoOnlyWhenEmpty) {
+  const TempDir dir;
+  const fs::path shared = dir.path() / "shared";
+  const fs::path mine = shared / "mine";
+  fs::create_directories(mine);
+  const fs::path other = dir.path() / "other";
+  fs::create_directories(other);
+  const std::string theirs = dir.write("other/theirs.csv", "another process's file");
+  TemporaryPath shared_registration(shared, TemporaryPath::Removal::kIfEmpty);
+  TemporaryPath other_registration(other, TemporaryPath::Removal::kIfEmpty);
+  TemporaryPath mine_registration(mine);
+  remove_registered_paths();
+  EXPECT_FALSE(fs::exists(shared)) << "emptied by removing mine, so removed";
+  EXPECT_TRUE(fs::exists(theirs)) << "a shared folder's other content was removed";
+}
+
 }  // namespace
 }  // namespace stochnav

@@ -18,7 +18,7 @@ namespace {
 // through a pipe by the signal handler), not in the handler, so it may allocate and take locks.
 struct Registry {
   std::mutex mutex;
-  std::map<std::uint64_t, std::filesystem::path> paths;
+  std::map<std::uint64_t, std::pair<std::filesystem::path, TemporaryPath::Removal>> paths;
   std::uint64_t next_id = 1;
 };
 
@@ -28,9 +28,16 @@ Registry& registry() {
 }
 
 void remove_all_locked(Registry& r) {
-  for (const auto& [id, path] : r.paths) {
-    std::error_code ignored;
-    std::filesystem::remove_all(path, ignored);
+  std::error_code ignored;
+  for (const auto& [id, entry] : r.paths) {
+    if (entry.second == TemporaryPath::Removal::kWhole) {
+      std::filesystem::remove_all(entry.first, ignored);
+    }
+  }
+  for (auto it = r.paths.rbegin(); it != r.paths.rend(); ++it) {
+    if (it->second.second == TemporaryPath::Removal::kIfEmpty) {
+      std::filesystem::remove(it->second.first, ignored);  // fails, harmlessly, unless empty
+    }
   }
   r.paths.clear();
 }
@@ -69,11 +76,11 @@ extern "C" void forward_signal(int number) {
 
 }  // namespace
 
-TemporaryPath::TemporaryPath(std::filesystem::path path) {
+TemporaryPath::TemporaryPath(std::filesystem::path path, Removal removal) {
   Registry& r = registry();
   const std::lock_guard lock(r.mutex);
   id_ = r.next_id++;
-  r.paths.emplace(id_, std::move(path));
+  r.paths.emplace(id_, std::make_pair(std::move(path), removal));
 }
 
 TemporaryPath::~TemporaryPath() { release(); }

@@ -8,18 +8,18 @@
 #include <exception>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <set>
-#include <optional>
 #include <thread>
 
 #include <boost/math/distributions/chi_squared.hpp>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/work_limits.hpp"
-#include "stochnav/io/atomic_file.hpp"
-#include "stochnav/io/json_document.hpp"
 #include "stochnav/core/progress_bar.hpp"
+#include "stochnav/core/temporary_files.hpp"
+#include "stochnav/io/json_document.hpp"
 #include "stochnav/experiment/parallel_jobs.hpp"
 #include "stochnav/experiment/run_consistency.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
@@ -32,6 +32,52 @@ namespace stochnav {
 namespace {
 
 namespace fs = std::filesystem;
+
+// This run's part of OUT, which shards of a sharded run share (experiment/shard_run.hpp): its
+// seeds' scenario folders, removed at the end whatever happens (and on SIGINT/SIGTERM); then
+// OUT/.scenarios when empty; and, if the run fails, OUT and the parents it had to create, when
+// empty. Nothing another process may be writing is removed.
+class ComparisonScratch final {
+ public:
+  explicit ComparisonScratch(const fs::path& out_dir) : scenarios_(out_dir / ".scenarios") {
+    std::error_code error;
+    for (fs::path missing = out_dir; !missing.empty() && !fs::exists(missing, error);
+         missing = missing.parent_path()) {
+      created_.push_back(missing);  // innermost first
+      if (missing == missing.parent_path()) break;
+    }
+    // A signal removes the latest registered empty folder first: outermost registered first.
+    for (auto it = created_.rbegin(); it != created_.rend(); ++it) {
+      registrations_.emplace_back(
+          std::make_unique<TemporaryPath>(*it, TemporaryPath::Removal::kIfEmpty));
+    }
+    registrations_.emplace_back(
+        std::make_unique<TemporaryPath>(scenarios_, TemporaryPath::Removal::kIfEmpty));
+  }
+  ~ComparisonScratch() {
+    std::error_code ignored;
+    for (const auto& seed : seeds_) fs::remove_all(seed, ignored);
+    fs::remove(scenarios_, ignored);  // only when empty: another shard may be using it
+    if (!succeeded_) {
+      for (const auto& folder : created_) fs::remove(folder, ignored);  // only when empty
+    }
+  }
+  ComparisonScratch(const ComparisonScratch&) = delete;
+  ComparisonScratch& operator=(const ComparisonScratch&) = delete;
+
+  void add_seed_folder(const fs::path& folder) {
+    seeds_.push_back(folder);
+    registrations_.emplace_back(std::make_unique<TemporaryPath>(folder));
+  }
+  void succeeded() { succeeded_ = true; }
+
+ private:
+  fs::path scenarios_;
+  std::vector<fs::path> created_;
+  std::vector<fs::path> seeds_;
+  std::vector<std::unique_ptr<TemporaryPath>> registrations_;
+  bool succeeded_ = false;
+};
 
 template <typename Error>
 [[noreturn]] void rethrow_with_context(const Error& error, const std::string& context) {
@@ -348,15 +394,8 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
   // 1. The data of every seed: simulated folders, or the fixed data section.
   std::vector<nlohmann::json> data(seed_count, config.fixed_data);
   const fs::path scenarios_dir = out_dir / ".scenarios";
-  // The output folder goes again if the comparison fails; the seeds' scenarios always go
-  // (never kept), on success, failure or a fatal signal.
-  std::optional<OutputFolder> out_folder;
-  std::optional<OutputFolder> scenarios_folder;
+  ComparisonScratch scratch(out_dir);
   if (config.scenario_config) {
-    out_folder.emplace(out_dir);
-    std::error_code stale;
-    fs::remove_all(scenarios_dir, stale);
-    scenarios_folder.emplace(scenarios_dir);
     nlohmann::json scenario_json =
         read_json_document(*config.scenario_config, "the experiment's data/scenario_config");
     apply_scenario_overrides(config.scenario_overrides, *config.scenario_config, scenario_json);
@@ -375,7 +414,9 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
       rethrow_with_context(error, config.scenario_config->string());
     }
     for (std::size_t s = 0; s < seed_count; ++s) {
-      data[s] = {{"scenario", (scenarios_dir / fmt::format("seed_{}", config.seeds[s])).string()}};
+      const fs::path seed_dir = scenarios_dir / fmt::format("seed_{}", config.seeds[s]);
+      scratch.add_seed_folder(seed_dir);
+      data[s] = {{"scenario", seed_dir.string()}};
     }
     run_parallel(seed_count, threads, progress, done, [&](std::size_t s) {
       write_scenario_outputs(scenario, {.out_dir = data[s]["scenario"].get<std::string>(),
@@ -410,8 +451,7 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
     }
   });
   progress.finish(done);
-  scenarios_folder.reset();
-  if (out_folder) out_folder->keep();
+  scratch.succeeded();
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -87,6 +87,17 @@ void ErrorStatistics::add(const std::array<double, kErrorMetricCount>& errors) {
   }
 }
 
+ErrorStatistics ErrorStatistics::from_parts(
+    const std::array<double, kErrorMetricCount>& max_abs,
+    const std::array<double, kErrorMetricCount>& sum_squares,
+    const std::array<std::size_t, kErrorMetricCount>& count) {
+  ErrorStatistics statistics;
+  statistics.max_abs_ = max_abs;
+  statistics.sum_squares_ = sum_squares;
+  statistics.count_ = count;
+  return statistics;
+}
+
 double ErrorStatistics::rms(std::size_t metric) const {
   if (count_[metric] == 0) return std::numeric_limits<double>::quiet_NaN();
   return std::sqrt(sum_squares_[metric] / static_cast<double>(count_[metric]));

@@ -1,5 +1,6 @@
 #include "stochnav/filter/mwd_navigator.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string_view>
@@ -53,12 +54,6 @@ Eigen::Vector3d compensated_increment(const Eigen::Vector3d& raw, const Eigen::V
   return ((raw - bias * dt_s).array() / (1.0 + scale_factor.array())).matrix();
 }
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
 }  // namespace
 
 MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gyro_noise,
@@ -98,7 +93,9 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
   gyro_scale_.offset = block_offset(layout_, "gyro_scale_factor");
   accel_scale_.offset = block_offset(layout_, "accel_scale_factor");
   head_f_ = Eigen::MatrixXd::Zero(head_size_, head_size_);
-  aid_intervals_.assign(aids_.size(), AidIntervalSums{});
+  aid_intervals_.assign(aids_.size(), InsIntervalAccumulator{});
+  interval_layout_ = interval_map_layout();
+  interval_map_ = Eigen::MatrixXd::Zero(3, interval_layout_.width);
   const int n = layout_.size();
   const int phi_size = options_.structured_covariance ? head_size_ : n;
   phi_ = Eigen::MatrixXd::Identity(phi_size, phi_size);
@@ -157,9 +154,10 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   const Eigen::Matrix3d velocity_noise_before = velocity_noise_;
   accumulate_noise(accel_noise_, t_start, dt, c_mid, accel_white_cache_, accel_cached_dt_,
                    velocity_noise_);
-  if (!aids_.empty()) {
-    accumulate_aid_intervals(v_start, c_mid, c_mid * compensated.delta_v_b,
-                             velocity_noise_ - velocity_noise_before, dt);
+  const Eigen::Matrix3d epoch_velocity_noise = velocity_noise_ - velocity_noise_before;
+  for (InsIntervalAccumulator& interval : aid_intervals_) {
+    interval.add_epoch(v_start, ins_.state().v_n, c_mid, compensated.delta_v_b,
+                       compensated.delta_theta_b, epoch_velocity_noise, dt);
   }
 
   bool measurement_due = false;
@@ -174,33 +172,39 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   }
 }
 
-void MwdNavigator::accumulate_aid_intervals(const Eigen::Vector3d& v_start,
-                                            const Eigen::Matrix3d& c_mid,
-                                            const Eigen::Vector3d& f_n_dt,
-                                            const Eigen::Matrix3d& noise_dt, double dt_s) {
-  const Eigen::Vector3d v_dt = 0.5 * dt_s * (v_start + ins_.state().v_n);
-  for (AidIntervalSums& sums : aid_intervals_) {
-    const double weight = sums.duration_s + 0.5 * dt_s;  // s - t_prev at the epoch's midpoint
-    sums.duration_s += dt_s;
-    sums.v_n_dt += v_dt;
-    sums.weighted_f_n_dt += weight * f_n_dt;
-    sums.weighted_c_nb_dt += (weight * dt_s) * c_mid;
-    sums.weighted_noise += (weight * weight) * noise_dt;
+IntervalMapLayout MwdNavigator::interval_map_layout() const {
+  IntervalMapLayout layout;
+  layout.gyro_scale_offset = gyro_scale_.offset;
+  layout.accel_scale_offset = accel_scale_.offset;
+  layout.width = cs::kSize;
+  for (const int offset : {gyro_scale_.offset, accel_scale_.offset}) {
+    if (offset >= 0) layout.width = std::max(layout.width, offset + 3);
   }
+  if (gyro_augmented_.size > 0) {
+    layout.gyro_augmented_offset = gyro_augmented_.offset;
+    layout.gyro_sensor_map = &gyro_augmented_.sensor_map;
+    layout.width = std::max(layout.width, gyro_augmented_.offset + gyro_augmented_.size);
+  }
+  if (accel_augmented_.size > 0) {
+    layout.accel_augmented_offset = accel_augmented_.offset;
+    layout.accel_sensor_map = &accel_augmented_.sensor_map;
+    layout.width = std::max(layout.width, accel_augmented_.offset + accel_augmented_.size);
+  }
+  return layout;
 }
 
-plugin::InsInterval MwdNavigator::interval_of(const AidIntervalSums& sums) {
-  plugin::InsInterval interval;
-  if (!(sums.duration_s > 0.0)) return interval;
-  const double t = sums.duration_s;
-  interval.duration_s = t;
-  interval.mean_v_n = sums.v_n_dt / t;
-  auto& map = interval.mean_velocity_error_map;
-  map.block<3, 3>(0, cs::kVelocity).setIdentity();
-  map.block<3, 3>(0, cs::kAttitude) = -skew(sums.weighted_f_n_dt / t);
-  map.block<3, 3>(0, cs::kAccelBias) = sums.weighted_c_nb_dt / t;
-  interval.mean_velocity_noise_covariance = sums.weighted_noise / (t * t);
-  return interval;
+const Eigen::MatrixXd& MwdNavigator::widened_measurement_matrix(
+    const InsIntervalAccumulator& interval) {
+  // The aid's h is P * map_core (+ terms of the attitude used to project the mean), P = dz /
+  // d mean_v_n = the velocity columns of h (the core map's velocity block is I).
+  interval.mean_error_map(interval_layout_, interval_map_);
+  const Eigen::Index m = h_core_.rows();
+  const Eigen::Index beyond = interval_layout_.width - cs::kSize;
+  h_wide_.resize(m, interval_layout_.width);
+  h_wide_.leftCols<cs::kSize>() = h_core_;
+  h_wide_.rightCols(beyond).noalias() =
+      h_core_.middleCols<3>(cs::kVelocity) * interval_map_.rightCols(beyond);
+  return h_wide_;
 }
 
 void MwdNavigator::propagate_covariance() {
@@ -282,8 +286,9 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
   for (std::size_t index = 0; index < aids_.size(); ++index) {
     plugin::AidPlugin& aid = *aids_[index];
     if (!aid.has_measurement(t_s)) continue;
-    imu.interval = interval_of(aid_intervals_[index]);
-    aid_intervals_[index] = AidIntervalSums{};
+    const InsIntervalAccumulator interval = aid_intervals_[index];
+    imu.interval = interval.interval();
+    aid_intervals_[index] = InsIntervalAccumulator{};
     const int m = aid.measurement_size();
     residual_.resize(m);
     h_core_.resize(m, cs::kSize);
@@ -297,8 +302,10 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
     const bool locked_out = options_.max_consecutive_rejections > 0 &&
                             rejections >= options_.max_consecutive_rejections;
     const bool gated = aid.gate().enabled && !locked_out;
+    const bool widen = aid.measures_interval_mean() && interval.duration_s() > 0.0 &&
+                       interval_layout_.width > cs::kSize;
     const UpdateOutcome outcome = filter_.update(
-        residual_, h_core_, r_, gated ? aid.gate().threshold : INFINITY, correction_,
+        residual_, widen ? widened_measurement_matrix(interval) : h_core_, r_, gated ? aid.gate().threshold : INFINITY, correction_,
         options_.structured_covariance ? JosephForm::kExpanded : JosephForm::kProduct);
     rejections = outcome.accepted ? 0 : rejections + 1;
     InnovationRecord record{.t_s = t_s,
@@ -352,11 +359,10 @@ void MwdNavigator::feed_back(const Eigen::VectorXd& correction) {
   // correction says about that history is its image through each interval's mean-error map
   // (plugin::InsInterval). Without this shift an aid measuring later at the same epoch (ROP after
   // the pipe tally) would see the corrected error again and apply it twice, every epoch.
-  for (AidIntervalSums& sums : aid_intervals_) {
-    if (!(sums.duration_s > 0.0)) continue;
-    sums.v_n_dt -= sums.duration_s * correction.segment<3>(cs::kVelocity) -
-                   skew(sums.weighted_f_n_dt) * correction.segment<3>(cs::kAttitude) +
-                   sums.weighted_c_nb_dt * correction.segment<3>(cs::kAccelBias);
+  for (InsIntervalAccumulator& interval : aid_intervals_) {
+    if (!(interval.duration_s() > 0.0)) continue;
+    interval.mean_error_map(interval_layout_, interval_map_);
+    interval.shift_mean_velocity(interval_map_ * correction.head(interval_layout_.width));
   }
   for (AugmentedGroup* group : {&gyro_augmented_, &accel_augmented_}) {
     if (group->size > 0) group->estimate -= correction.segment(group->offset, group->size);

@@ -57,6 +57,7 @@ class PipeLengthAid final : public stochnav::plugin::AidPlugin {
 
   std::string_view type() const override { return "pipe_length"; }
   int measurement_size() const override { return 1; }
+  bool measures_interval_mean() const override { return true; }
 
   // Every row is a measurement epoch (so that the interval of row k starts at row k-1), though
   // the first gives no measurement.

@@ -67,6 +67,7 @@ class RopAid final : public stochnav::plugin::AidPlugin {
 
   std::string_view type() const override { return "rop"; }
   int measurement_size() const override { return 3; }
+  bool measures_interval_mean() const override { return true; }
   bool has_measurement(double t_s) const override { return schedule_.due(t_s); }
 
   bool measure(double t_s, const stochnav::NavState& state,

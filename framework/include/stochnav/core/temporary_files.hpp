@@ -15,7 +15,11 @@ namespace stochnav {
 /// OutputFolder); release() ends the registration early (after a commit).
 class TemporaryPath final {
  public:
-  explicit TemporaryPath(std::filesystem::path path);
+  /// kWhole: the path with everything in it. kIfEmpty: a folder only when it is empty (one
+  /// other processes may share), removed after every kWhole path, the latest registered first.
+  enum class Removal { kWhole, kIfEmpty };
+
+  explicit TemporaryPath(std::filesystem::path path, Removal removal = Removal::kWhole);
   ~TemporaryPath();
   TemporaryPath(const TemporaryPath&) = delete;
   TemporaryPath& operator=(const TemporaryPath&) = delete;

@@ -83,9 +83,10 @@ void validate_variants(const ExperimentConfig& config);
 /// seeds) or with a seed given twice, before anything runs: ConfigError naming the limit.
 void check_work_limits(const ExperimentConfig& config);
 
-/// Runs the experiment (validate_variants first). Simulated seeds are generated under out_dir/.scenarios (removed at the
-/// end). Throws ConfigError / InputError (the first failure of any job, naming the variant and
-/// seed).
+/// Runs the experiment (validate_variants first). Simulated seeds are generated under
+/// out_dir/.scenarios/seed_<seed>/ (each removed at the end, on failure and on SIGINT/SIGTERM
+/// too, the folder when empty). An output folder the run created is removed if it fails.
+/// Throws ConfigError / InputError (the first failure of any job, naming the variant and seed).
 ComparisonResult run_comparison(const ExperimentConfig& config,
                                 const std::filesystem::path& out_dir, bool progress);
 

@@ -45,6 +45,13 @@ class ErrorStatistics final {
   double max_abs(std::size_t metric) const { return max_abs_[metric]; }
   double rms(std::size_t metric) const;
   std::size_t count(std::size_t metric) const { return count_[metric]; }
+  double sum_squares(std::size_t metric) const { return sum_squares_[metric]; }
+
+  /// Statistics with exactly these parts (as max_abs, sum_squares and count return them): a
+  /// run's statistics read back from a file (experiment/run_result_json.hpp).
+  static ErrorStatistics from_parts(const std::array<double, kErrorMetricCount>& max_abs,
+                                    const std::array<double, kErrorMetricCount>& sum_squares,
+                                    const std::array<std::size_t, kErrorMetricCount>& count);
 
   /// {"lat_err_m": {"max_abs": x, "rms": y, "samples": n}, ...}; metrics with no sample have
   /// null values.

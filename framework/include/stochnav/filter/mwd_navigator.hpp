@@ -24,6 +24,7 @@
 #include "stochnav/filter/error_dynamics.hpp"
 #include "stochnav/filter/error_state_filter.hpp"
 #include "stochnav/filter/filter_options.hpp"
+#include "stochnav/filter/ins_interval_accumulator.hpp"
 #include "stochnav/filter/sparse_map.hpp"
 #include "stochnav/ins/nav_state.hpp"
 #include "stochnav/ins/strapdown.hpp"
@@ -91,19 +92,10 @@ class MwdNavigator final {
     int offset = -1;  // first index in the error state; -1 when not estimated
     Eigen::Vector3d estimate = Eigen::Vector3d::Zero();
   };
-  // What an aid's InsInterval needs, accumulated since the aid's previous measurement epoch;
-  // s - t_prev is taken at each IMU epoch's midpoint.
-  struct AidIntervalSums {
-    double duration_s = 0.0;
-    Eigen::Vector3d v_n_dt = Eigen::Vector3d::Zero();           // int v_n ds (m)
-    Eigen::Vector3d weighted_f_n_dt = Eigen::Vector3d::Zero();  // int (s - t_prev) f_n ds (m)
-    Eigen::Matrix3d weighted_c_nb_dt = Eigen::Matrix3d::Zero();  // int (s - t_prev) C_nb ds (s^2)
-    Eigen::Matrix3d weighted_noise = Eigen::Matrix3d::Zero();  // int (s - t_prev)^2 dQ_v (m^2)
-  };
-  void accumulate_aid_intervals(const Eigen::Vector3d& v_start, const Eigen::Matrix3d& c_mid,
-                                const Eigen::Vector3d& f_n_dt, const Eigen::Matrix3d& noise_dt,
-                                double dt_s);
-  static plugin::InsInterval interval_of(const AidIntervalSums& sums);
+  IntervalMapLayout interval_map_layout() const;
+  // The measurement matrix of an aid that sees the error state only through its interval's
+  // mean (AidPlugin::measures_interval_mean): h_core extended to the states beyond the core.
+  const Eigen::MatrixXd& widened_measurement_matrix(const InsIntervalAccumulator& interval);
 
   void accumulate_noise(plugin::NoiseModelPlugin& model, double t_s, double dt_s,
                         const Eigen::Matrix3d& c_nb, Eigen::Matrix3d& cache, double& cached_dt,
@@ -130,7 +122,9 @@ class MwdNavigator final {
   ScaleFactorBlock accel_scale_;
   int head_size_ = 0;  // D: core + scale-factor states, the dense head before the augmented blocks
   Eigen::MatrixXd head_f_;  // head_size_ x head_size_ scratch
-  std::vector<AidIntervalSums> aid_intervals_;  // per aid, since its previous measurement epoch
+  std::vector<InsIntervalAccumulator> aid_intervals_;  // per aid, since its previous epoch
+  IntervalMapLayout interval_layout_;
+  Eigen::MatrixXd interval_map_;  // 3 x interval_layout_.width
 
   // Accumulated over the current covariance interval.
   double interval_start_s_ = 0.0;
@@ -146,7 +140,7 @@ class MwdNavigator final {
   Eigen::Matrix3d bias_walk_;
   Eigen::VectorXd correction_;
   Eigen::VectorXd residual_;
-  Eigen::MatrixXd h_core_, r_;
+  Eigen::MatrixXd h_core_, h_wide_, r_;
   std::vector<InnovationRecord> innovations_;
 };
 

@@ -81,10 +81,12 @@ struct AidContext {
 /// order in the interval and with the core error state dx (core_state) at the epoch t,
 ///   mean_v_n(estimate) - mean_v_n(true) = mean_velocity_error_map dx - e,
 ///   mean_velocity_error_map = [0, I, -(1/T) int (s - t_prev) [f_n(s) x] ds,
-///                              (1/T) int (s - t_prev) C_nb(s) ds, 0]              (3 x 15)
+///                              (1/T) int (s - t_prev) C_nb(s) ds, gyro-bias term] (3 x 15)
 ///   e ~ N(0, mean_velocity_noise_covariance),  (1/T^2) int (s - t_prev)^2 dQ_v(s)  (ENU, m^2/s^2)
 /// with dQ_v the accelerometer white noise integrated into the velocity (the Coriolis and
-/// transport terms, of order 1e-4 dv per s, are left out). At a tilt error of 1e-4 rad the drift
+/// transport terms, of order 1e-4 dv per s, are left out). The gyro-bias columns carry the
+/// attitude's drift inside the interval; filter/ins_interval_accumulator.hpp gives every term,
+/// and those of the states beyond the core (AidPlugin::measures_interval_mean). At a tilt error of 1e-4 rad the drift
 /// term alone is g 1e-4 T / 2 = 5e-4 m/s over a 1-s interval: an aid that linearised the mean
 /// on dv at the epoch would be overconfident by far. Aids project the mean with the attitude at
 /// the epoch (the hole direction does not rotate with the toolface, whereas a mean of the
@@ -144,6 +146,13 @@ class AidPlugin {
   virtual bool measure(double t_s, const NavState& state, const ImuSample& imu,
                        Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
                        Eigen::Ref<Eigen::MatrixXd> r) const = 0;
+
+  /// True when the measurement depends on the error state at the epoch only through
+  /// imu.interval's mean velocity (besides the attitude that projects it), as for ROP and the
+  /// pipe tally: the navigator then extends h beyond the 15 core states with the mean's
+  /// sensitivity to the scale-factor and augmented sensor-error states,
+  /// P * (their columns of the mean's map), P = dz / d mean_v_n being h's velocity columns.
+  virtual bool measures_interval_mean() const { return false; }
 
   /// One line with the params in their units.
   virtual std::string describe() const = 0;
