@@ -1,6 +1,8 @@
 #include "command_support.hpp"
 
+#include <charconv>
 #include <filesystem>
+#include <optional>
 #include <fstream>
 #include <iostream>
 
@@ -37,7 +39,8 @@ void add_input_options(CLI::App& command, InputArguments& arguments) {
       ->capture_default_str();
   command.add_option("--columns", arguments.binary_channels,
                      "Interleaved channels per epoch in .f64/.f32 files")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(positive_count());
 }
 
 void add_format_option(CLI::App& command, std::string& format) {
@@ -57,6 +60,48 @@ void write_output(const std::string& path, const std::string& content) {
     return;
   }
   write_file_atomically(path, content);
+}
+
+namespace {
+
+bool all_digits(const std::string& text) {
+  return !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+}
+
+// The value of a digit string, or nothing when it does not fit in 64 bits.
+std::optional<std::uint64_t> parse_whole(const std::string& text) {
+  std::uint64_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
+CLI::Validator whole_number() {
+  return CLI::Validator(
+      [](const std::string& text) -> std::string {
+        if (all_digits(text) && parse_whole(text)) return {};
+        return "'" + text + "' is not a whole number from 0 to 18446744073709551615";
+      },
+      "UINT >= 0");
+}
+
+CLI::Validator whole_number_in(std::uint64_t low, std::uint64_t high) {
+  return CLI::Validator(
+      [low, high](const std::string& text) -> std::string {
+        const auto value = all_digits(text) ? parse_whole(text) : std::nullopt;
+        if (!value || *value < low) {
+          return "'" + text + "' is not a whole number from " + std::to_string(low) + " to " +
+                 std::to_string(high);
+        }
+        if (*value > high) {
+          return text + " is above the limit of " + std::to_string(high) +
+                 " (README.md, Limits on work); give at most " + std::to_string(high);
+        }
+        return {};
+      },
+      "UINT in [" + std::to_string(low) + ", " + std::to_string(high) + "]");
 }
 
 CLI::Validator positive_count() {

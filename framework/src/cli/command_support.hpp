@@ -29,6 +29,14 @@ void add_format_option(CLI::App& command, std::string& format);
 
 /// Accepts a whole number >= 1 as typed ("-5" is refused, not wrapped into a huge count).
 CLI::Validator positive_count();
+
+/// Accepts a whole number in [0, 2^64 - 1] as typed: digits only, so "-5" is refused instead of
+/// wrapped into 2^64 - 5 (seeds).
+CLI::Validator whole_number();
+
+/// Accepts a whole number in [low, high] as typed; beyond `high` the message gives the limit
+/// (core/work_limits.hpp) and where it is documented.
+CLI::Validator whole_number_in(std::uint64_t low, std::uint64_t high);
 OutputFormat parse_format(const std::string& format);
 
 /// Writes `content` to `path` through a temporary file renamed into place, so a failure never

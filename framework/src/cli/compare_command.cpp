@@ -108,7 +108,8 @@ void add_compare_command(CLI::App& app) {
   command->add_option("experiment", arguments->experiment, "Experiment config (JSON)");
   command->add_option("--out", arguments->out, "Output folder (required; not with merge)");
   command->add_option("--seeds", arguments->seeds,
-                      "Override the experiment's seeds (simulated data only), e.g. --seeds 1 2 3");
+                      "Override the experiment's seeds (simulated data only), e.g. --seeds 1 2 3")
+      ->check(whole_number());
   command->add_flag("--full-scenario", arguments->full_scenario,
                     "Simulate the scenario as its config says, ignoring the experiment's "
                     "data/scenario_overrides (e.g. the whole 36 h drilling run)");
@@ -155,6 +156,7 @@ void add_compare_command(CLI::App& app) {
       }
       config.seeds = arguments->seeds;
     }
+    check_work_limits(config);
     if (arguments->shard.empty()) {
       run_unsharded(*arguments, config);
     } else {

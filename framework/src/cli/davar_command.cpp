@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -144,7 +145,7 @@ void run_davar(const DavarArguments& arguments) {
     std::cout << buffer.str() << std::flush;
   } else {
     file.close();
-    if (!file) throw InputError(arguments.output + ": cannot write; check the output folder");
+    if (!file) throw_write_error(arguments.output, errno);
     pending->commit();
   }
 }

@@ -11,21 +11,23 @@
 #include <algorithm>
 
 #include <filesystem>
+#include <optional>
 #include <random>
 
 #include "command_support.hpp"
 #include "commands.hpp"
 #include "diagnose_plots.hpp"
 #include "diagnose_run.hpp"
-#include "json_file.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/diagnose/diagnose.hpp"
 #include "stochnav/diagnose/effective_model.hpp"
 #include "stochnav/diagnose/report_json.hpp"
 #include "stochnav/diagnose/report_markdown.hpp"
+#include "stochnav/core/work_limits.hpp"
 #include "stochnav/io/atomic_file.hpp"
 #include "stochnav/model/noise_model_json.hpp"
 #include "stochnav/report/gnuplot.hpp"
+#include "stochnav/io/json_document.hpp"
 
 namespace stochnav::cli {
 namespace {
@@ -46,7 +48,7 @@ struct DiagnoseArguments {
 };
 
 NoiseModel read_model(const std::string& path) {
-  const nlohmann::json json = read_json_file(path, "--model");
+  const nlohmann::json json = read_json_document(path, "--model");
   try {
     return noise_model_from_json(json);
   } catch (const ConfigError& error) {
@@ -60,6 +62,7 @@ class StagingFolder final {
   explicit StagingFolder(const fs::path& out) {
     std::random_device entropy;
     path_ = out / fmt::format(".diagnose-staging-{:08x}", entropy());
+    registration_.emplace(path_);
     fs::create_directories(path_);
   }
   ~StagingFolder() {
@@ -72,6 +75,7 @@ class StagingFolder final {
 
  private:
   fs::path path_;
+  std::optional<TemporaryPath> registration_;  // removed on SIGINT/SIGTERM too
 };
 
 void run_diagnose(const DiagnoseArguments& arguments) {
@@ -112,12 +116,7 @@ void run_diagnose(const DiagnoseArguments& arguments) {
   }
   const DiagnoseResult result = diagnose(record, model, arguments.options, aux);
 
-  std::error_code error;
-  fs::create_directories(out, error);
-  if (error || !fs::is_directory(out)) {
-    throw InputError(out.string() + ": cannot create the output folder (" + error.message() +
-                     "); choose a writable --out");
-  }
+  OutputFolder out_folder(out);
   StagingFolder staging(out);
   std::vector<std::string> files;
   DiagnosePlotFiles plots;
@@ -155,6 +154,7 @@ void run_diagnose(const DiagnoseArguments& arguments) {
                         diagnose_report_json(result).dump(2) + "\n");
   files.push_back("report.json");
   // Stale plots of an earlier run would contradict this report.
+  std::error_code error;
   for (const auto& entry : fs::directory_iterator(out)) {
     const std::string name = entry.path().filename().string();
     if (name.rfind("allan_step", 0) == 0 || name.rfind("davar.", 0) == 0) {
@@ -162,6 +162,7 @@ void run_diagnose(const DiagnoseArguments& arguments) {
     }
   }
   for (const auto& name : files) fs::rename(staging.path() / name, out / name);
+  out_folder.keep();
 
   fmt::print("{}: {} (gap {:.3g} -> {:.3g}, {} step(s)); report in {}\n", source,
              result.consistent ? "consistent" : "not consistent", result.initial.gap.value,
@@ -197,23 +198,28 @@ void add_diagnose_command(CLI::App& app) {
   command
       ->add_option("--max-lag", arguments->run_options.max_lag,
                    "--run: lags of the whiteness test")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(whole_number_in(1, 100000));
   command->add_option("--out", arguments->out_dir, "Folder for report.json, report.md and plots")
       ->required();
   command
       ->add_option("--seeds", arguments->options.seeds,
                    "Simulated records per model for the band (0: none)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(whole_number_in(0, limits::kMaxDiagnoseSeeds));
   command->add_option("--seed", arguments->options.seed, "First simulation seed")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(whole_number());
   command->add_option("--max-iterations", arguments->options.max_iterations, "Most terms to add")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(whole_number_in(0, limits::kMaxDiagnoseIterations));
   command
       ->add_option("--alpha", arguments->options.alpha,
                    "False-alarm probability of the consistency test")
       ->capture_default_str();
   command->add_option("--windows", arguments->options.windows, "Windows of the stationarity test")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(whole_number_in(4, limits::kMaxStationarityWindows));
   command->add_option("--plots", arguments->plots, "png, svg or none")->capture_default_str();
   command
       ->add_option("--aux", arguments->aux_columns,

@@ -94,12 +94,7 @@ void run_innovation_diagnosis(const std::string& run_dir, const std::string& out
     aux_findings = innovation_aux_findings(samples, analysis, channels, options.alpha);
   }
 
-  std::error_code error;
-  fs::create_directories(out, error);
-  if (error || !fs::is_directory(out)) {
-    throw InputError(out.string() + ": cannot create the output folder (" + error.message() +
-                     "); choose a writable --out");
-  }
+  OutputFolder out_folder(out);
   // Render the plot first: if gnuplot fails, no report is written either.
   if (!plot_name.empty()) plot_levels(analysis, out / plot_name);
   std::string markdown = innovation_report_markdown(analysis, run_dir, options, plot_name);
@@ -124,6 +119,7 @@ void run_innovation_diagnosis(const std::string& run_dir, const std::string& out
   }
   write_file_atomically(out / "report.md", markdown);
   write_file_atomically(out / "report.json", report.dump(2) + "\n");
+  out_folder.keep();
 
   fmt::print("{}: {} ({} finding(s)); report in {}\n", run_dir,
              analysis.consistent ? "consistent" : "not consistent", analysis.findings.size(),

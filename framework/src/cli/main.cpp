@@ -7,10 +7,15 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "message_text.hpp"
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/temporary_files.hpp"
 #include "stochnav/version.hpp"
 
 int main(int argc, char** argv) {
+  // Before any thread starts: SIGINT/SIGTERM remove the temporary files of unfinished outputs.
+  stochnav::install_signal_cleanup();
+  using stochnav::cli::printable;
   CLI::App app{"stochnav: inertial-sensor noise modelling for Kalman filters"};
   app.set_version_flag("--version", std::string(stochnav::kVersion));
   app.require_subcommand(1);
@@ -27,16 +32,16 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& success) {
     return app.exit(success);
   } catch (const CLI::ParseError& error) {
-    std::cerr << "stochnav: error: " << error.what() << " (see stochnav --help)\n";
+    std::cerr << "stochnav: error: " << printable(error.what()) << " (see stochnav --help)\n";
     return 2;
   } catch (const stochnav::InputError& error) {
-    std::cerr << "stochnav: error: " << error.what() << '\n';
+    std::cerr << "stochnav: error: " << printable(error.what()) << '\n';
     return 2;
   } catch (const stochnav::ConfigError& error) {
-    std::cerr << "stochnav: error: " << error.what() << '\n';
+    std::cerr << "stochnav: error: " << printable(error.what()) << '\n';
     return 2;
   } catch (const std::exception& error) {
-    std::cerr << "stochnav: internal error: " << error.what() << '\n';
+    std::cerr << "stochnav: internal error: " << printable(error.what()) << '\n';
     return 1;
   }
   return 0;

@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "json_file.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/allan_variance.hpp"
 #include "stochnav/model/noise_model_json.hpp"
 #include "stochnav/report/gnuplot.hpp"
+#include "stochnav/io/json_document.hpp"
 
 namespace stochnav::cli {
 
@@ -16,7 +16,7 @@ ModelOverlay model_overlay(const std::string& model_path, const Record& record, 
                            double tau_max_s) {
   NoiseModel model;
   try {
-    model = noise_model_from_json(read_json_file(model_path, "--fit"));
+    model = noise_model_from_json(read_json_document(model_path, "--fit"));
   } catch (const ConfigError& error) {
     throw ConfigError(model_path + ": " + error.what());
   }

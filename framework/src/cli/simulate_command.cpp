@@ -5,20 +5,23 @@
 
 #include <unistd.h>
 
+#include <cerrno>
+#include <cmath>
 #include <fstream>
 #include <memory>
 #include <optional>
 
 #include "command_support.hpp"
 #include "commands.hpp"
-#include "json_file.hpp"
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/work_limits.hpp"
 #include "stochnav/io/atomic_file.hpp"
 #include "stochnav/model/noise_model_json.hpp"
 #include "stochnav/scenario/scenario_config_json.hpp"
 #include "stochnav/scenario/scenario_writer.hpp"
 #include "stochnav/sim/noise_generator.hpp"
 #include "stochnav/sim/normal_generator.hpp"
+#include "stochnav/io/json_document.hpp"
 
 namespace stochnav::cli {
 namespace {
@@ -39,7 +42,7 @@ struct Axis {
 
 // A model file is one noise model (one column) or {"axes": {"name": model, ...}}.
 std::vector<Axis> read_axes(const NoiseArguments& arguments) {
-  const nlohmann::json document = read_json_file(arguments.model_path, "--model");
+  const nlohmann::json document = read_json_document(arguments.model_path, "--model");
   std::vector<Axis> axes;
   try {
     if (document.is_object() && document.contains("axes")) {
@@ -66,12 +69,50 @@ std::vector<Axis> read_axes(const NoiseArguments& arguments) {
   return axes;
 }
 
-void run_simulate_noise(const NoiseArguments& arguments) {
-  if (!(arguments.duration_s > 0.0)) throw ConfigError("--duration must be > 0 s");
-  if (!(arguments.rate_hz > 0.0)) throw ConfigError("--rate must be > 0 Hz");
-  const std::vector<Axis> axes = read_axes(arguments);
-  const auto samples = static_cast<std::uint64_t>(std::llround(arguments.duration_s * arguments.rate_hz));
+// The record's sample count, refused up front when absurd (core/work_limits.hpp).
+std::uint64_t checked_sample_count(const NoiseArguments& arguments) {
+  if (!(arguments.duration_s > 0.0) || !std::isfinite(arguments.duration_s)) {
+    throw ConfigError("--duration must be a finite number of seconds > 0");
+  }
+  if (!(arguments.rate_hz > 0.0) || !std::isfinite(arguments.rate_hz)) {
+    throw ConfigError("--rate must be a finite number of Hz > 0");
+  }
+  if (arguments.rate_hz > limits::kMaxSimulatedRateHz) {
+    throw ConfigError(fmt::format("--rate {:g} Hz is above the limit of {:g} Hz; give a lower "
+                                  "--rate (README.md, Limits on work)",
+                                  arguments.rate_hz, limits::kMaxSimulatedRateHz));
+  }
+  const double samples = std::round(arguments.duration_s * arguments.rate_hz);
+  if (samples > limits::kMaxSimulatedSamples) {
+    throw ConfigError(fmt::format(
+        "--duration {:g} s at --rate {:g} Hz is {:.3g} samples, above the limit of {:.3g} per "
+        "record; shorten --duration or lower --rate, or simulate several records with different "
+        "--seed (README.md, Limits on work)",
+        arguments.duration_s, arguments.rate_hz, samples, limits::kMaxSimulatedSamples));
+  }
   if (samples < 2) throw ConfigError("--duration x --rate gives fewer than 2 samples");
+  return static_cast<std::uint64_t>(samples);
+}
+
+// A model whose numbers overflow a double (parameters near 1e300, a random walk run for ages)
+// gives infinities: no record, and a message saying which model and where.
+void check_finite(const std::vector<double>& block, std::size_t count, std::uint64_t first,
+                  const NoiseArguments& arguments, const Axis& axis) {
+  const double per_unit = si_per_unit(axis.model.unit);
+  for (std::size_t k = 0; k < count; ++k) {
+    // As written: in the model's unit.
+    if (!std::isfinite(block[k] / per_unit)) {
+      throw ConfigError(fmt::format(
+          "{}: the simulated {} is not finite at t = {:g} s (the model's parameters are too "
+          "large for a double); use parameters of a physical size",
+          arguments.model_path, axis.column, static_cast<double>(first + k) / arguments.rate_hz));
+    }
+  }
+}
+
+void run_simulate_noise(const NoiseArguments& arguments) {
+  const std::uint64_t samples = checked_sample_count(arguments);
+  const std::vector<Axis> axes = read_axes(arguments);
 
   std::vector<NoiseGenerator> generators;
   for (std::size_t i = 0; i < axes.size(); ++i) {
@@ -100,6 +141,7 @@ void run_simulate_noise(const NoiseArguments& arguments) {
   }
   PendingFile pending(arguments.out);
   std::ofstream out(pending.temporary_path());
+  if (!out) throw_write_error(arguments.out, errno);
   out << 't';
   for (const auto& axis : axes) out << ',' << axis.column;
   for (const auto& aux : aux_channels) out << ',' << aux.column;
@@ -111,6 +153,7 @@ void run_simulate_noise(const NoiseArguments& arguments) {
     const std::size_t count = static_cast<std::size_t>(std::min<std::uint64_t>(kBlock, samples - begin));
     for (std::size_t a = 0; a < axes.size(); ++a) {
       generators[a].generate(std::span<double>(blocks[a].data(), count));
+      check_finite(blocks[a], count, begin, arguments, axes[a]);
     }
     for (std::size_t k = 0; k < count; ++k) {
       line = fmt::format("{:.10g}", static_cast<double>(begin + k) / arguments.rate_hz);
@@ -126,9 +169,10 @@ void run_simulate_noise(const NoiseArguments& arguments) {
       line += '\n';
       out << line;
     }
+    if (!out) throw_write_error(arguments.out, errno);
   }
   out.close();
-  if (!out) throw InputError(arguments.out + ": cannot write; check the output folder");
+  if (!out) throw_write_error(arguments.out, errno);
   pending.commit();
 }
 
@@ -160,7 +204,9 @@ void add_simulate_command(CLI::App& app) {
       ->required();
   noise_command->add_option("--duration", noise->duration_s, "Record length (s)")->required();
   noise_command->add_option("--rate", noise->rate_hz, "Sampling rate (Hz)")->required();
-  noise_command->add_option("--seed", noise->seed, "Random seed")->required();
+  noise_command->add_option("--seed", noise->seed, "Random seed")
+      ->required()
+      ->check(whole_number());
   noise_command->add_option("--out", noise->out, "Output CSV: t,<column>...")->required();
   noise_command->add_option("--column", noise->columns,
                             "Column name(s), one per axis (default: value, or the axis names)");
@@ -174,7 +220,8 @@ void add_simulate_command(CLI::App& app) {
   scenario_command->add_option("--out", scenario->out, "Output folder (created if missing)")
       ->required();
   scenario_command->add_option("--seed", scenario->seed,
-                               "Random seed (default: the configuration's \"seed\")");
+                               "Random seed (default: the configuration's \"seed\")")
+      ->check(whole_number());
   scenario_command->callback([scenario] { run_simulate_scenario(*scenario); });
 }
 

@@ -1,5 +1,7 @@
 #include "stochnav/diagnose/diagnose.hpp"
 
+#include "stochnav/core/work_limits.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -16,10 +18,19 @@
 namespace stochnav {
 
 std::string DiagnoseOptions::validate() const {
-  if (seeds < 0 || seeds == 1) return fmt::format("seeds: {}; expected 0 or at least 2", seeds);
-  if (max_iterations < 0) return fmt::format("max_iterations: {}; expected >= 0", max_iterations);
+  if (seeds < 0 || seeds == 1 || seeds > limits::kMaxDiagnoseSeeds) {
+    return fmt::format("seeds: {}; expected 0 or 2 to {} (the limit on work)", seeds,
+                       limits::kMaxDiagnoseSeeds);
+  }
+  if (max_iterations < 0 || max_iterations > limits::kMaxDiagnoseIterations) {
+    return fmt::format("max_iterations: {}; expected 0 to {} (the limit on work)", max_iterations,
+                       limits::kMaxDiagnoseIterations);
+  }
   if (!(alpha > 0.0 && alpha < 0.5)) return fmt::format("alpha: {}; expected in (0, 0.5)", alpha);
-  if (windows < 4) return fmt::format("windows: {}; expected >= 4", windows);
+  if (windows < 4 || windows > limits::kMaxStationarityWindows) {
+    return fmt::format("windows: {}; expected 4 to {} (the limit on work)", windows,
+                       limits::kMaxStationarityWindows);
+  }
   if (!(min_term_share >= 0.0 && min_term_share < 1.0)) {
     return fmt::format("min_term_share: {}; expected in [0, 1)", min_term_share);
   }

@@ -34,8 +34,8 @@ AvarGap avar_gap(const NoiseModel& model, const AvarMeasurement& measured) {
     point.avar_model = allan_variance(equivalent.model, point.tau_s);
     if (!(point.avar_model > 0.0) || !std::isfinite(point.avar_model)) {
       throw ConfigError(fmt::format(
-          "avar_gap: the model's Allan variance is {} at tau = {} s; expected a model with a "
-          "positive Allan variance at every measured tau",
+          "the noise model's Allan variance is {} at tau = {} s; give the model a term with a "
+          "positive Allan variance at every measured tau (e.g. angle_random_walk N > 0)",
           point.avar_model, point.tau_s));
     }
     const double terms = static_cast<double>(measured.phase_count - 2 * measured.m[index]);
@@ -80,8 +80,8 @@ AvarGap screening_avar_gap(const NoiseModel& model, const AvarMeasurement& measu
     point.avar_model = allan_variance(equivalent, point.tau_s);
     if (!(point.avar_model > 0.0) || !std::isfinite(point.avar_model)) {
       throw ConfigError(
-          fmt::format("screening_avar_gap: the model's Allan variance is {} at "
-                      "tau = {} s; expected > 0",
+          fmt::format("a candidate noise model's Allan variance is {} at tau = {} s; give "
+                      "the model a term with a positive Allan variance there",
                       point.avar_model, point.tau_s));
     }
     const double half = 0.5 * point.edf_model;

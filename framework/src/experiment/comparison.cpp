@@ -8,14 +8,20 @@
 #include <exception>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <mutex>
+#include <set>
 #include <thread>
 
 #include <boost/math/distributions/chi_squared.hpp>
 
 #include "shared_imu_records.hpp"
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/work_limits.hpp"
 #include "stochnav/core/progress_bar.hpp"
+#include "stochnav/core/temporary_files.hpp"
+#include "stochnav/io/json_document.hpp"
+#include "stochnav/experiment/parallel_jobs.hpp"
 #include "stochnav/experiment/run_consistency.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
 #include "stochnav/plugin/run_config.hpp"
@@ -28,43 +34,51 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Runs jobs 0..count-1 on `threads` workers; rethrows the first failure after all stopped.
-void run_parallel(std::size_t count, unsigned threads, ProgressBar& progress,
-                  std::atomic<std::uint64_t>& done, const std::function<void(std::size_t)>& job) {
-  std::atomic<std::size_t> next{0};
-  std::atomic<std::size_t> finished{0};
-  std::atomic<bool> failed{false};
-  std::exception_ptr first_failure;
-  std::mutex failure_mutex;
-  const auto worker = [&] {
-    for (std::size_t i = next++; i < count && !failed; i = next++) {
-      try {
-        job(i);
-      } catch (...) {
-        const std::lock_guard lock(failure_mutex);
-        if (!first_failure) first_failure = std::current_exception();
-        failed = true;
-      }
-      ++done;
-      ++finished;
+// This run's part of OUT, which shards of a sharded run share (experiment/shard_run.hpp): its
+// seeds' scenario folders, removed at the end whatever happens (and on SIGINT/SIGTERM); then
+// OUT/.scenarios when empty; and, if the run fails, OUT and the parents it had to create, when
+// empty. Nothing another process may be writing is removed.
+class ComparisonScratch final {
+ public:
+  explicit ComparisonScratch(const fs::path& out_dir) : scenarios_(out_dir / ".scenarios") {
+    std::error_code error;
+    for (fs::path missing = out_dir; !missing.empty() && !fs::exists(missing, error);
+         missing = missing.parent_path()) {
+      created_.push_back(missing);  // innermost first
+      if (missing == missing.parent_path()) break;
     }
-  };
-  std::vector<std::thread> pool;
-  const unsigned workers = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(count)));
-  for (unsigned t = 1; t < workers; ++t) pool.emplace_back(worker);
-  // A drawer thread keeps the progress up to date until the last job has finished (the last
-  // jobs can run for a long time after the last one started).
-  std::thread drawer([&] {
-    while (finished < count && !failed) {
-      progress.show(done);
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    // A signal removes the latest registered empty folder first: outermost registered first.
+    for (auto it = created_.rbegin(); it != created_.rend(); ++it) {
+      registrations_.emplace_back(
+          std::make_unique<TemporaryPath>(*it, TemporaryPath::Removal::kIfEmpty));
     }
-  });
-  worker();
-  for (auto& thread : pool) thread.join();
-  drawer.join();
-  if (first_failure) std::rethrow_exception(first_failure);
-}
+    registrations_.emplace_back(
+        std::make_unique<TemporaryPath>(scenarios_, TemporaryPath::Removal::kIfEmpty));
+  }
+  ~ComparisonScratch() {
+    std::error_code ignored;
+    for (const auto& seed : seeds_) fs::remove_all(seed, ignored);
+    fs::remove(scenarios_, ignored);  // only when empty: another shard may be using it
+    if (!succeeded_) {
+      for (const auto& folder : created_) fs::remove(folder, ignored);  // only when empty
+    }
+  }
+  ComparisonScratch(const ComparisonScratch&) = delete;
+  ComparisonScratch& operator=(const ComparisonScratch&) = delete;
+
+  void add_seed_folder(const fs::path& folder) {
+    seeds_.push_back(folder);
+    registrations_.emplace_back(std::make_unique<TemporaryPath>(folder));
+  }
+  void succeeded() { succeeded_ = true; }
+
+ private:
+  fs::path scenarios_;
+  std::vector<fs::path> created_;
+  std::vector<fs::path> seeds_;
+  std::vector<std::unique_ptr<TemporaryPath>> registrations_;
+  bool succeeded_ = false;
+};
 
 template <typename Error>
 [[noreturn]] void rethrow_with_context(const Error& error, const std::string& context) {
@@ -341,12 +355,34 @@ void validate_variants(const ExperimentConfig& config) {
   }
 }
 
+void check_work_limits(const ExperimentConfig& config) {
+  if (config.seeds.size() > limits::kMaxCompareSeeds) {
+    throw ConfigError(fmt::format("{}: {} seeds, above the limit of {} per comparison; use fewer "
+                                  "seeds (README.md, Limits on work)",
+                                  config.file.string(), config.seeds.size(),
+                                  limits::kMaxCompareSeeds));
+  }
+  const std::uint64_t runs = config.seeds.size() * config.variants.size();
+  if (runs > limits::kMaxCompareRuns) {
+    throw ConfigError(fmt::format("{}: {} variants x {} seeds = {} filter runs, above the limit "
+                                  "of {} per comparison; use fewer seeds or variants (README.md, "
+                                  "Limits on work)",
+                                  config.file.string(), config.variants.size(),
+                                  config.seeds.size(), runs, limits::kMaxCompareRuns));
+  }
+  std::set<std::uint64_t> distinct(config.seeds.begin(), config.seeds.end());
+  if (distinct.size() != config.seeds.size()) {
+    throw ConfigError(config.file.string() + ": a seed is given twice; give distinct seeds");
+  }
+}
+
 ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& out_dir_given,
                                 bool progress_bar) {
   const auto start = std::chrono::steady_clock::now();
   // Absolute: the seeds' folders are handed to run configs that resolve relative paths
   // against the experiment's folder, not the working directory.
   const fs::path out_dir = fs::absolute(out_dir_given);
+  check_work_limits(config);
   validate_variants(config);
   const unsigned threads =
       config.threads > 0 ? config.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -359,15 +395,10 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
   // 1. The data of every seed: simulated folders, or the fixed data section.
   std::vector<nlohmann::json> data(seed_count, config.fixed_data);
   const fs::path scenarios_dir = out_dir / ".scenarios";
+  ComparisonScratch scratch(out_dir);
   if (config.scenario_config) {
-    std::ifstream in(*config.scenario_config);
-    nlohmann::json scenario_json;
-    try {
-      scenario_json = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& error) {
-      throw InputError(config.scenario_config->string() + ": not valid JSON (" + error.what() +
-                       ")");
-    }
+    nlohmann::json scenario_json =
+        read_json_document(*config.scenario_config, "the experiment's data/scenario_config");
     apply_scenario_overrides(config.scenario_overrides, *config.scenario_config, scenario_json);
     for (const auto& [text, value] : config.scenario_sweep_values.items()) {
       try {
@@ -384,7 +415,9 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
       rethrow_with_context(error, config.scenario_config->string());
     }
     for (std::size_t s = 0; s < seed_count; ++s) {
-      data[s] = {{"scenario", (scenarios_dir / fmt::format("seed_{}", config.seeds[s])).string()}};
+      const fs::path seed_dir = scenarios_dir / fmt::format("seed_{}", config.seeds[s]);
+      scratch.add_seed_folder(seed_dir);
+      data[s] = {{"scenario", seed_dir.string()}};
     }
     run_parallel(seed_count, threads, progress, done, [&](std::size_t s) {
       write_scenario_outputs(scenario, {.out_dir = data[s]["scenario"].get<std::string>(),
@@ -421,15 +454,7 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
     }
   });
   progress.finish(done);
-  // Only this run's seed folders: shards of a sharded run (experiment/shard_run.hpp) simulate
-  // other seeds into the same .scenarios folder at the same time. The folder goes when empty.
-  std::error_code ignored;
-  if (config.scenario_config) {
-    for (const auto& seed_data : data) {
-      fs::remove_all(seed_data["scenario"].get<std::string>(), ignored);
-    }
-    fs::remove(scenarios_dir, ignored);
-  }
+  scratch.succeeded();
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -79,8 +79,11 @@ nlohmann::json run_sweep(const ExperimentConfig& config, const fs::path& out_dir
   std::vector<ExperimentConfig> levels;
   for (std::size_t i = 0; i < sweep.values.size(); ++i) {
     levels.push_back(sweep_level(config, i));
+    check_work_limits(levels.back());
     validate_variants(levels.back());
   }
+  // A sweep failing at a later level leaves no folder it created.
+  OutputFolder out_folder(out_dir);
   nlohmann::json document = {{"name", sweep.name},
                              {"set", sweep.set},
                              {"values", sweep.values},
@@ -95,6 +98,7 @@ nlohmann::json run_sweep(const ExperimentConfig& config, const fs::path& out_dir
                                   {"results", comparison_json(result)}});
   }
   write_sweep_files(document, out_dir);
+  out_folder.keep();
   return document;
 }
 

@@ -7,6 +7,8 @@
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/nearest_name.hpp"
+#include "stochnav/core/work_limits.hpp"
+#include "stochnav/io/json_document.hpp"
 #include "stochnav/plugin/run_config.hpp"
 
 namespace stochnav {
@@ -51,6 +53,15 @@ const nlohmann::json& member(const nlohmann::json& object, const std::string& po
 
 std::vector<std::uint64_t> parse_seeds(const nlohmann::json& seeds) {
   std::vector<std::uint64_t> out;
+  const bool too_many = seeds.is_array() ? seeds.size() > limits::kMaxCompareSeeds
+                                         : seeds.is_number_unsigned() &&
+                                               seeds.get<std::uint64_t>() > limits::kMaxCompareSeeds;
+  if (too_many) {
+    throw ConfigError(fmt::format("/data/seeds: {} seeds, above the limit of {} per comparison; "
+                                  "use fewer seeds (README.md, Limits on work)",
+                                  seeds.is_array() ? seeds.size() : seeds.get<std::uint64_t>(),
+                                  limits::kMaxCompareSeeds));
+  }
   if (seeds.is_number_integer() && seeds.get<std::int64_t>() >= 1) {
     for (std::uint64_t s = 1; s <= seeds.get<std::uint64_t>(); ++s) out.push_back(s);
     return out;
@@ -309,14 +320,7 @@ nlohmann::json variant_run_document(const ExperimentVariant& variant, const nloh
 }
 
 ExperimentConfig read_experiment_config(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string() + ": cannot be read; check the experiment path");
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw InputError(file.string() + ": not valid JSON (" + error.what() + ")");
-  }
+  const nlohmann::json document = read_json_document(file, "the experiment config");
   return experiment_config_from_json(document, file);
 }
 

@@ -1,5 +1,8 @@
 #include "stochnav/experiment/navigation_files.hpp"
 
+#include <fmt/format.h>
+
+#include <cmath>
 #include <numbers>
 
 #include "stochnav/core/errors.hpp"
@@ -13,6 +16,9 @@ constexpr std::array<std::string_view, 7> kIncrementColumns = {
 constexpr std::array<std::string_view, 7> kRateColumns = {"t",       "gyro_x",  "gyro_y", "gyro_z",
                                                           "accel_x", "accel_y", "accel_z"};
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+// Relative deviation of an IMU time step from the first one that is still the same rate (the
+// sample reader's tolerance: time stamps written with few digits jitter a little).
+constexpr double kStepTolerance = 0.01;
 
 bool has_all(const CsvTableReader& table, std::span<const std::string_view> names) {
   for (auto name : names) {
@@ -60,6 +66,13 @@ bool ImuFileReader::next(ImuIncrement& increment) {
     throw InputError(table_->path() + ":" + std::to_string(table_->line_number()) +
                      ": time does not increase (t = " + std::to_string(row_[0]) +
                      " s after " + std::to_string(last_t_s_) + " s); sort or cut the record");
+  }
+  // DESIGN.md: a gap or a change of rate is an error naming the line, never integrated over.
+  if (std::abs(dt - first_interval_s_) > kStepTolerance * first_interval_s_) {
+    throw InputError(fmt::format(
+        "{}:{}: IMU time step {:.9g} s where the record started with {:.9g} s (t = {:.9g} s); "
+        "a gap or a change of rate: fill the gap, resample, or split the record here",
+        table_->path(), table_->line_number(), dt, first_interval_s_, row_[0]));
   }
   last_t_s_ = row_[0];
   increment.t_s = row_[0];

@@ -86,6 +86,20 @@ std::uint64_t estimated_rows(const std::filesystem::path& path) {
   return std::filesystem::file_size(path) * lines / bytes;
 }
 
+bool is_finite(const NavState& state) {
+  return std::isfinite(state.latitude_rad + state.longitude_rad + state.height_m) &&
+         state.v_n.allFinite() && state.q_nb.coeffs().allFinite();
+}
+
+// A state that became NaN or infinite stays so: rather than a nav.csv of NaN rows with only a
+// health flag set, the run fails, saying where.
+InputError non_finite_state(const plugin::RunConfig& config, double t_s) {
+  return InputError(fmt::format(
+      "{}: the navigation solution is not finite from t = {:.9g} s on; the IMU samples near "
+      "that time or the noise parameters of the run config are absurd: check both",
+      config.data.imu.string(), t_s));
+}
+
 }  // namespace
 
 nlohmann::json NavigationRunResult::metrics_json() const {
@@ -226,6 +240,7 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   while (imu.next(increment)) {
     navigator.step(increment);
     ++result.epochs;
+    if (!is_finite(navigator.state())) throw non_finite_state(config, increment.t_s);
     progress.update(result.epochs);
     const bool output_epoch = result.epochs % config.output.decimation == 0;
     const auto innovations = navigator.innovations();

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cmath>
 #include <numbers>
 
@@ -24,41 +25,31 @@ std::string error_header() {
   return header + ",nees";
 }
 
-std::filesystem::path prepared(const std::filesystem::path& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) {
-    throw InputError(dir.string() + ": cannot create the output folder (" + error.message() +
-                     "); choose another --out");
-  }
-  return dir;
-}
-
 }  // namespace
 
 CsvOutput::CsvOutput(const std::filesystem::path& path, const std::string& header)
     : pending_(path), out_(pending_.temporary_path(), std::ios::binary) {
-  if (!out_) {
-    throw InputError(path.string() + ": cannot be written; check the --out folder");
-  }
+  if (!out_) throw_write_error(path, errno);
   buffer_ = header + '\n';
 }
 
 void CsvOutput::flush() {
   out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+  if (!out_) throw_write_error(pending_.temporary_path(), errno);
   buffer_.clear();
 }
 
 void CsvOutput::commit() {
   flush();
   out_.close();
-  if (!out_) throw InputError(pending_.temporary_path().string() + ": write failed (disk full?)");
+  if (!out_) throw_write_error(pending_.temporary_path(), errno);
   pending_.commit();
 }
 
 RunFiles::RunFiles(const std::filesystem::path& out_dir, const plugin::OutputConfig& config,
                    const std::vector<std::shared_ptr<plugin::AidPlugin>>& aids, bool with_truth)
-    : out_dir_(prepared(out_dir)),
+    : folder_(out_dir),
+      out_dir_(out_dir),
       config_(config),
       nav_(out_dir / "nav.csv", "t,lat,lon,h,ve,vn,vu,inclination,toolface,azimuth"),
       biases_(out_dir / "biases.csv",
@@ -190,6 +181,7 @@ void RunFiles::commit(const NavigationRunResult& result, bool plot, const Survey
   if (covariance_) covariance_->commit();
   for (auto& file : survey_files) file->commit();
   write_file_atomically(out_dir_ / "metrics.json", result.metrics_json().dump(2) + "\n");
+  folder_.keep();
 }
 
 }  // namespace stochnav

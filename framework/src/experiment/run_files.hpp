@@ -50,6 +50,7 @@ class RunFiles final {
               const SurveyTieOn& tie_on);
 
  private:
+  OutputFolder folder_;  // first: created before the files, removed after them on failure
   std::filesystem::path out_dir_;
   plugin::OutputConfig config_;
   std::vector<std::string> aid_types_;

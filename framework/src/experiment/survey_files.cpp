@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -78,10 +79,7 @@ std::unique_ptr<PendingFile> pending_text_file(const std::filesystem::path& path
   std::ofstream out(pending->temporary_path(), std::ios::binary);
   out.write(content.data(), static_cast<std::streamsize>(content.size()));
   out.close();
-  if (!out) {
-    throw InputError(path.string() + ": cannot write (folder missing or not writable, or disk " +
-                     "full); check the output folder");
-  }
+  if (!out) throw_write_error(path, errno);
   return pending;
 }
 

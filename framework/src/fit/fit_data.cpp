@@ -21,7 +21,10 @@ std::string check_positive(const std::vector<double>& values, std::string_view n
 }  // namespace
 
 std::string validate(const FitData& data) {
-  if (data.tau_s.empty()) return "no points to fit: tau_s is empty";
+  if (data.tau_s.empty()) {
+    return "no Allan deviation points to fit (the record is too short for any averaging time, or "
+           "every point is zero); give a longer record";
+  }
   if (data.avar.size() != data.tau_s.size() || data.edf.size() != data.tau_s.size()) {
     return fmt::format("tau_s, avar and edf have different lengths ({}, {}, {})",
                        data.tau_s.size(), data.avar.size(), data.edf.size());

@@ -57,7 +57,7 @@ std::vector<TermType> types_of(const std::vector<TermParameters>& terms) {
 }
 
 [[noreturn]] void fail(const std::string& problem) {
-  throw ConfigError("fit_noise_terms: " + problem);
+  throw ConfigError("noise-term fit: " + problem);
 }
 
 Solution fit_explicit(const LogAvarFit& fit, std::vector<TermType> terms) {

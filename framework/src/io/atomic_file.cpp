@@ -3,7 +3,9 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <fstream>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 
 #include "stochnav/core/errors.hpp"
 
@@ -19,8 +21,14 @@ std::filesystem::path temporary_beside(const std::filesystem::path& path) {
 
 }  // namespace
 
+void throw_write_error(const std::filesystem::path& path, int errno_value) {
+  const std::string reason = errno_value != 0 ? std::strerror(errno_value) : "write failed";
+  throw InputError(path.string() + ": cannot write (" + reason +
+                   "); check the space and permissions of the output folder");
+}
+
 PendingFile::PendingFile(std::filesystem::path path)
-    : final_(std::move(path)), temporary_(temporary_beside(final_)) {}
+    : final_(std::move(path)), temporary_(temporary_beside(final_)), registration_(temporary_) {}
 
 PendingFile::~PendingFile() {
   if (!committed_) {
@@ -37,20 +45,53 @@ void PendingFile::commit() {
                      "); check that the folder exists and is writable");
   }
   committed_ = true;
+  registration_.release();
 }
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
   PendingFile pending(path);
-  {
-    std::ofstream out(pending.temporary_path(), std::ios::binary);
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.close();
-    if (!out) {
-      throw InputError(path.string() + ": cannot write (folder missing or not writable); " +
-                       "check the output path");
-    }
-  }
+  std::FILE* out = std::fopen(pending.temporary_path().c_str(), "wb");
+  if (out == nullptr) throw_write_error(path, errno);
+  const bool written = std::fwrite(content.data(), 1, content.size(), out) == content.size() &&
+                       std::fflush(out) == 0;
+  const int write_errno = errno;
+  const bool closed = std::fclose(out) == 0;
+  if (!written) throw_write_error(path, write_errno);
+  if (!closed) throw_write_error(path, errno);
   pending.commit();
+}
+
+OutputFolder::OutputFolder(std::filesystem::path path) : path_(std::move(path)) {
+  std::error_code error;
+  // The outermost missing folder: what removing "what we created" means.
+  std::filesystem::path probe = std::filesystem::absolute(path_, error);
+  std::filesystem::path outermost_missing;
+  while (!probe.empty() && !std::filesystem::exists(probe, error)) {
+    outermost_missing = probe;
+    if (probe == probe.parent_path()) break;
+    probe = probe.parent_path();
+  }
+  std::filesystem::create_directories(path_, error);
+  if (error || !std::filesystem::is_directory(path_)) {
+    const std::string reason = error ? error.message() : "a file of that name exists";
+    throw InputError(path_.string() + ": cannot create the output folder (" + reason +
+                     "); choose a writable --out");
+  }
+  if (!outermost_missing.empty()) {
+    created_ = outermost_missing;
+    registration_ = std::make_unique<TemporaryPath>(created_);
+  }
+}
+
+OutputFolder::~OutputFolder() {
+  if (created_.empty()) return;
+  std::error_code ignored;
+  std::filesystem::remove_all(created_, ignored);
+}
+
+void OutputFolder::keep() {
+  created_.clear();
+  registration_.reset();
 }
 
 }  // namespace stochnav

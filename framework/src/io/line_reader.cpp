@@ -60,6 +60,23 @@ std::size_t LineReader::fill() {
   return got;
 }
 
+namespace {
+
+// The first line: a UTF-8 byte-order mark (what some Windows editors put first) is not part of
+// it, and a carriage return inside it means old Mac line endings (CR alone), which would make
+// the whole file one line. CRLF endings are handled in next().
+std::string_view checked_first_line(std::string_view line, const std::string& path) {
+  constexpr std::string_view kBom = "\xEF\xBB\xBF";
+  if (line.substr(0, kBom.size()) == kBom) line.remove_prefix(kBom.size());
+  if (line.find('\r') != std::string_view::npos) {
+    throw InputError(path + ":1: carriage return (CR) inside the line: the file has CR-only "
+                     "line endings; convert it to LF or CRLF line endings");
+  }
+  return line;
+}
+
+}  // namespace
+
 bool LineReader::next(std::string_view& line) {
   while (true) {
     const char* start = buffer_.data() + begin_;
@@ -69,8 +86,9 @@ bool LineReader::next(std::string_view& line) {
       std::size_t length = static_cast<std::size_t>(newline - start);
       begin_ += length + 1;
       if (length > 0 && start[length - 1] == '\r') --length;
-      line = std::string_view(start, length);
       ++line_number_;
+      line = std::string_view(start, length);
+      if (line_number_ == 1) line = checked_first_line(line, path_);
       return true;
     }
     if (eof_ || fill() == 0) {
@@ -79,9 +97,10 @@ bool LineReader::next(std::string_view& line) {
       const char* rest = buffer_.data() + begin_;
       std::size_t length = end_ - begin_;
       if (rest[length - 1] == '\r') --length;
-      line = std::string_view(rest, length);
       begin_ = end_;
       ++line_number_;
+      line = std::string_view(rest, length);
+      if (line_number_ == 1) line = checked_first_line(line, path_);
       return true;
     }
   }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <string_view>
 
@@ -34,6 +35,17 @@ FileFormat format_of(std::string_view path) {
   return FileFormat::kText;
 }
 
+// Samples beyond this magnitude are refused: squared differences of such numbers, summed over a
+// record, overflow a double (alternating +/-1e308 gave NaN deviations), and no sensor writes them.
+constexpr double kMaxSampleMagnitude = 1e100;
+
+std::string magnitude_problem(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return std::string(text) + " is beyond +/-1e100, where the Allan variance's squared "
+         "differences overflow; rescale the record (another --unit, or divide it)";
+}
+
 bool is_time_column(std::string_view name) {
   return name == "t" || name == "t_s" || name == "time" || name == "time_s";
 }
@@ -43,7 +55,11 @@ std::optional<std::size_t> parse_index(std::string_view text) {
     return std::nullopt;
   }
   std::size_t value = 0;
-  std::from_chars(text.data(), text.data() + text.size(), value);
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  // Beyond size_t: no such column either (not column 0, which a failed parse would leave).
+  if (error != std::errc() || end != text.data() + text.size()) {
+    return std::numeric_limits<std::size_t>::max();
+  }
   return value;
 }
 
@@ -292,6 +308,10 @@ class SampleReader::Impl {
                     "'; NaN and infinity are not samples: fill the gap or split the record";
       return;
     }
+    if (std::abs(row.value) > kMaxSampleMagnitude) {
+      row.problem = ": column '" + column_name_ + "': " + magnitude_problem(row.value);
+      return;
+    }
     if (time_column_) {
       const std::string_view t_cell = cells[*time_column_];
       if (!parse_number(t_cell, row.t_s) || !std::isfinite(row.t_s)) {
@@ -480,6 +500,10 @@ class SampleReader::Impl {
                          " of channel " + column_name_ +
                          " is NaN or infinite; fill the gap or split the record");
       }
+      if (std::abs(value) > kMaxSampleMagnitude) {
+        throw InputError(options_.path + ": epoch " + std::to_string(epochs_read_ + e) +
+                         " of channel " + column_name_ + ": " + magnitude_problem(value));
+      }
       out.push_back(value);
     }
     epochs_read_ += epochs;
@@ -499,14 +523,23 @@ class SampleReader::Impl {
     binary_->read(reinterpret_cast<char*>(out.data() + first),
                   static_cast<std::streamsize>(epochs * sizeof(double)));
     // x - x is 0 for every finite x and NaN otherwise; the sum vectorizes.
+    // The largest magnitude, for the same reason; NaN makes the comparison false, not larger.
     double poison = 0.0;
-    for (std::size_t i = first; i < out.size(); ++i) poison += out[i] - out[i];
-    if (poison != 0.0 || std::isnan(poison)) {
+    double peak = 0.0;
+    for (std::size_t i = first; i < out.size(); ++i) {
+      poison += out[i] - out[i];
+      peak = std::max(peak, std::abs(out[i]));
+    }
+    if (poison != 0.0 || std::isnan(poison) || peak > kMaxSampleMagnitude) {
       for (std::size_t i = first; i < out.size(); ++i) {
         if (!std::isfinite(out[i])) {
           throw InputError(options_.path + ": epoch " + std::to_string(epochs_read_ + i - first) +
                            " of channel " + column_name_ +
                            " is NaN or infinite; fill the gap or split the record");
+        }
+        if (std::abs(out[i]) > kMaxSampleMagnitude) {
+          throw InputError(options_.path + ": epoch " + std::to_string(epochs_read_ + i - first) +
+                           " of channel " + column_name_ + ": " + magnitude_problem(out[i]));
         }
       }
     }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -123,7 +124,9 @@ void check_term_ranges(const NoiseTerm& term, Unit unit, const std::string& poin
 
 double tidy(double value) {
   // 15 significant digits: 0.05 written as 0.05 after a round trip through natural units.
-  return std::stod(fmt::format("{:.15g}", value));
+  // strtod, not stod: stod throws out_of_range for a subnormal (1e-320), which is a number.
+  const std::string text = fmt::format("{:.15g}", value);
+  return std::strtod(text.c_str(), nullptr);
 }
 
 }  // namespace

@@ -98,7 +98,7 @@ void ShapingFilter::sensor_map(Eigen::Ref<Eigen::MatrixXd> map_row) const {
 
 ShapingFilter build_shaping_filter(const NoiseModel& model, const ShapingOptions& options) {
   if (const std::string problem = options.validate(); !problem.empty()) {
-    throw ConfigError("build_shaping_filter: " + problem);
+    throw ConfigError("noise model shaping options: " + problem);
   }
   ShapingFilter filter;
   for (const NoiseTerm& term : model.terms) {

@@ -175,6 +175,16 @@ struct PluginRegistry::Impl {
       found = &plugin;
     }
     if (found == nullptr) {
+      // A library that failed to load may be the one that provides the type: its loader
+      // error (dlerror: a missing symbol, a bad ELF file) says more than "unknown type".
+      for (const auto& problem : problems) {
+        const std::string stem = problem.file.stem().string();
+        if (stem.size() >= type.size() && stem.ends_with("_" + std::string(type))) {
+          throw ConfigError(std::string(type_pointer) + ": " +
+                            std::string(plugin_kind_name(kind)) + " plugin type '" +
+                            std::string(type) + "' is not available: " + problem.reason);
+        }
+      }
       std::string known;
       for (const auto& plugin : loaded) {
         if (plugin.descriptor.kind != kind) continue;
@@ -188,9 +198,18 @@ struct PluginRegistry::Impl {
           std::string(type_pointer) + ": unknown " + std::string(plugin_kind_name(kind)) +
           " plugin type '" + std::string(type) +
           "'; expected one of: " + (known.empty() ? std::string("(none found)") : known) +
-          " (searched " + folders + "; add folders with " + std::string(kPluginPathVariable) + ")");
+          " (searched " + folders + "; add folders with " + std::string(kPluginPathVariable) + ")" +
+          failed_libraries());
     }
     return *found;
+  }
+
+  // "; N plugin libraries failed to load, first: REASON" when any did, else "".
+  std::string failed_libraries() const {
+    if (problems.empty()) return {};
+    return "; " + std::to_string(problems.size()) + " plugin librar" +
+           (problems.size() == 1 ? "y" : "ies") + " failed to load, first: " +
+           problems.front().reason;
   }
 };
 

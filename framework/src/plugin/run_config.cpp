@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/io/json_document.hpp"
 #include "stochnav/plugin/params.hpp"
 
 namespace stochnav::plugin {
@@ -419,16 +420,7 @@ void check_run_start(const RunConfig& config) {
 }
 
 RunConfig read_run_config(const fs::path& file, const std::optional<DataConfig>& data) {
-  std::ifstream stream(file);
-  if (!stream) {
-    throw InputError(file.string() + ": cannot read the run config; check the path");
-  }
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(stream);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw InputError(file.string() + ": not valid JSON (" + error.what() + "); fix the syntax");
-  }
+  const nlohmann::json document = read_json_document(file, "the run config");
   return parse_run_config(document, fs::absolute(file).parent_path(), data);
 }
 

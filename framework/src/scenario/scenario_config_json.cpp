@@ -9,8 +9,9 @@
 #include <vector>
 
 #include "stochnav/core/errors.hpp"
-#include "stochnav/core/json_file.hpp"
 #include "stochnav/core/nearest_name.hpp"
+#include "stochnav/core/work_limits.hpp"
+#include "stochnav/io/json_document.hpp"
 #include "stochnav/model/noise_model_json.hpp"
 
 namespace stochnav {
@@ -505,10 +506,12 @@ ScenarioConfig parse(const json& value) {
   }
   r.finish();
   const double epochs = scenario_duration_s(config) * config.imu.rate_hz;
-  if (epochs < 2.0 || epochs > 1e12) {
+  if (epochs < 2.0 || epochs > limits::kMaxScenarioEpochs) {
     fail(
         config.kind == ScenarioKind::kDrilling ? "/drilling/duration_s" : "/vibration_table/phases",
-        fmt::format("gives {} IMU epochs", epochs), "a duration of at least 2 epochs");
+        fmt::format("gives {:.3g} IMU epochs", epochs),
+        fmt::format("a duration of 2 to {:.3g} epochs at imu/rate_hz (the limit on work, "
+                    "README.md)", limits::kMaxScenarioEpochs));
   }
   return config;
 }
@@ -660,7 +663,7 @@ json to_json(const ScenarioConfig& config) {
 }
 
 ScenarioConfig read_scenario_config(const std::filesystem::path& file) {
-  return scenario_config_from_json(read_json_file(file, "scenario config"), file.string());
+  return scenario_config_from_json(read_json_document(file, "the scenario config"), file.string());
 }
 
 }  // namespace stochnav

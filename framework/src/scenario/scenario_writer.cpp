@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -31,11 +32,7 @@ class CsvStream {
   CsvStream(const std::filesystem::path& path, std::string_view header)
       : pending_(path), display_(path.string()) {
     file_ = std::fopen(pending_.temporary_path().c_str(), "wb");
-    if (file_ == nullptr) {
-      throw InputError(display_ +
-                       ": cannot create the file; check that the output folder is "
-                       "writable");
-    }
+    if (file_ == nullptr) throw_write_error(path, errno);
     buffer_.append(header);
     buffer_.push_back('\n');
   }
@@ -52,9 +49,7 @@ class CsvStream {
   void flush() {
     if (buffer_.size() > 0 &&
         std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size()) {
-      throw InputError(display_ +
-                       ": write failed (disk full?); free space or choose another "
-                       "--out folder");
+      throw_write_error(display_, errno);
     }
     buffer_.clear();
   }
@@ -63,7 +58,7 @@ class CsvStream {
     flush();
     const int status = std::fclose(file_);
     file_ = nullptr;
-    if (status != 0) throw InputError(display_ + ": cannot finish writing; check the disk");
+    if (status != 0) throw_write_error(display_, errno);
   }
   void commit() { pending_.commit(); }
 
@@ -117,12 +112,7 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
   ScenarioConfig run_config = config;
   run_config.seed = options.seed;
   ScenarioSimulator simulator(run_config, options.seed);  // configuration errors first
-  std::error_code error;
-  std::filesystem::create_directories(options.out_dir, error);
-  if (error || !std::filesystem::is_directory(options.out_dir)) {
-    throw InputError(options.out_dir.string() + ": cannot create the output folder (" +
-                     error.message() + "); give a writable --out folder");
-  }
+  OutputFolder out_folder(options.out_dir);
 
   // Column names say what the numbers are (experiment/navigation_files.hpp reads both forms).
   CsvStream imu(options.out_dir / "imu.csv",
@@ -251,8 +241,9 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
     const std::string text = document.dump(2) + "\n";
     if (file == nullptr || std::fwrite(text.data(), 1, text.size(), file) != text.size() ||
         std::fclose(file) != 0) {
-      throw InputError((options.out_dir / "scenario.json").string() +
-                       ": cannot write; check the output folder");
+      const int write_errno = errno;
+      if (file != nullptr) std::fclose(file);
+      throw_write_error(options.out_dir / "scenario.json", write_errno);
     }
   }
   // Everything is complete: move the four files into place.
@@ -260,6 +251,7 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
   truth.commit();
   aids.commit();
   scenario_json.commit();
+  out_folder.keep();
   ScenarioRunSummary summary;
   summary.epochs = count;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

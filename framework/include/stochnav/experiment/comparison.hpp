@@ -79,8 +79,13 @@ nlohmann::json pair_json(const ComparisonResult& result, const std::string& a,
 /// here. Aid params are checked when the first run builds them.
 void validate_variants(const ExperimentConfig& config);
 
+/// Refuses a comparison beyond the limits on work (core/work_limits.hpp: seeds, variants x
+/// seeds) or with a seed given twice, before anything runs: ConfigError naming the limit.
+void check_work_limits(const ExperimentConfig& config);
+
 /// Runs the experiment (validate_variants first). Simulated seeds are generated under
-/// out_dir/.scenarios/seed_<seed>/ (each removed at the end, the folder too when empty).
+/// out_dir/.scenarios/seed_<seed>/ (each removed at the end, on failure and on SIGINT/SIGTERM
+/// too, the folder when empty). An output folder the run created is removed if it fails.
 /// Throws ConfigError / InputError (the first failure of any job, naming the variant and seed).
 ComparisonResult run_comparison(const ExperimentConfig& config,
                                 const std::filesystem::path& out_dir, bool progress);

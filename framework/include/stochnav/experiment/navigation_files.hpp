@@ -6,7 +6,9 @@
 //   increments  t, dtheta_x, dtheta_y, dtheta_z (rad), dv_x, dv_y, dv_z (m/s) over [t - dt, t]
 //   rates       t, gyro_x, gyro_y, gyro_z (rad/s), accel_x, accel_y, accel_z (m/s^2), each the
 //               mean over [t - dt, t]
-// with t in s, strictly increasing (the first row's interval is taken equal to the second's).
+// with t in s, strictly increasing and uniformly sampled: a step more than 1 % away from the
+// first one (a gap, a change of rate) is an InputError naming the line (the first row's interval
+// is taken equal to the second's).
 // truth.csv: t (s), lat, lon (deg), h (m), ve, vn, vu (m/s), inclination, toolface, azimuth (deg).
 
 #include <array>
@@ -36,7 +38,7 @@ class ImuFileReader final {
   explicit ImuFileReader(const std::string& path);
 
   /// The next epoch's increments. Returns false at the end. Throws InputError "file:line" for a
-  /// bad row or a time that does not increase.
+  /// bad row, a time that does not increase or a step that differs from the first.
   bool next(ImuIncrement& increment);
 
   /// Nominal rate from the first interval (Hz).

@@ -18,7 +18,9 @@ class LineReader final {
   LineReader& operator=(const LineReader&) = delete;
 
   /// Sets `line` to the next line without its line terminator ("\n" or "\r\n"). The view is
-  /// valid until the next call. Returns false at the end of the file.
+  /// valid until the next call. Returns false at the end of the file. A UTF-8 byte-order mark
+  /// before the first line is dropped; CR-only line endings (a CR inside the first line) throw
+  /// InputError.
   bool next(std::string_view& line);
   /// Bytes of the file consumed by the lines returned so far (uncompressed files: the file offset
   /// where the next line starts).

@@ -51,7 +51,9 @@ struct ReadOptions {
 };
 
 /// Reads one channel of a file. Throws InputError on malformed content (non-numeric cell, NaN or
-/// infinity, missing column, ragged row, fewer than 2 samples, non-uniform or decreasing time)
+/// infinity, a sample beyond +/-1e100 (its squares would overflow the statistics), missing or
+/// out-of-range column, ragged row, fewer than 2 samples, non-uniform or decreasing time, CR-only
+/// line endings; a UTF-8 byte-order mark is skipped)
 /// and ConfigError on inconsistent options (no rate and no time column, rate <= 0).
 Record read_record(const ReadOptions& options);
 

@@ -1,0 +1,17 @@
+#pragma once
+// Reading a JSON document (a configuration or a noise model) from a file.
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string_view>
+
+namespace stochnav {
+
+/// Parses the JSON file at `path`. Throws InputError, one line naming the file, for everything a
+/// user can get wrong: a missing or unreadable file, a folder, invalid syntax (with the parser's
+/// position), a number beyond the range of a double (1e400). `what` says what the file should
+/// be ("the run config", "--model"), for the hint. Never throws nlohmann's own exceptions.
+nlohmann::json read_json_document(const std::filesystem::path& path, std::string_view what);
+
+}  // namespace stochnav

@@ -1,0 +1,358 @@
+// The catalogue of issue #17 (a fuzzing and sanitizer pass over every subcommand) as one table:
+// each defect found, run through the command-line tool. Every bad input gives exit code 2 and
+// one printable line saying what and where, names no internal function, and leaves no output,
+// no temporary file and no folder behind; the inputs that were mishandled although valid (a
+// UTF-8 byte-order mark, a subnormal number) now work.
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "run_cli.hpp"
+#include "temp_dir.hpp"
+
+namespace stochnav {
+namespace {
+
+using testing::CliResult;
+using testing::TempDir;
+namespace fs = std::filesystem;
+
+struct CatalogueCase {
+  std::string name;
+  std::string arguments;  ///< '@' stands for the fixture's folder
+  int exit_code = 2;
+  std::string fragment;   ///< in the message (exit 2) or on standard output (exit 0)
+  std::vector<std::string> absent = {};  ///< paths under '@' that must not exist afterwards
+  std::string shell_prefix = {};         ///< sh commands before the tool (ulimit)
+};
+void PrintTo(const CatalogueCase& c, std::ostream* os) { *os << c.name; }
+
+std::string replace_at(std::string text, const std::string& dir) {
+  for (std::size_t at = text.find('@'); at != std::string::npos; at = text.find('@', at)) {
+    text.replace(at, 1, dir);
+    at += dir.size();
+  }
+  return text;
+}
+
+// run_cli with shell commands first (sh -c 'PREFIX; exec stochnav ARGS').
+CliResult run_in_shell(const std::string& prefix, const std::string& arguments,
+                       const std::string& scratch) {
+  if (prefix.empty()) return testing::run_cli(arguments, scratch);
+  const std::string err_path = scratch + "/stderr.txt";
+  const std::string script = prefix + "; exec '" + STOCHNAV_CLI_PATH + "' " + arguments;
+  std::string quoted;
+  for (char c : script) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  const std::string command = "sh -c '" + quoted + "' 2> '" + err_path + "'";
+  CliResult result;
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  std::array<char, 4096> chunk{};
+  while (std::fgets(chunk.data(), chunk.size(), pipe) != nullptr) result.out += chunk.data();
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream err(err_path);
+  result.err.assign(std::istreambuf_iterator<char>(err), {});
+  fs::remove(err_path);
+  return result;
+}
+
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+std::string csv(int rows) {
+  std::string text = "t,x\n";
+  for (int i = 0; i < rows; ++i) text += std::to_string(i) + "," + std::to_string((i * 7) % 5) + "\n";
+  return text;
+}
+
+// Writes an IMU file like `source` with each data row passed through `edit` (row index, cells).
+template <typename Edit>
+void edited_imu(const fs::path& source, const fs::path& folder, Edit edit) {
+  fs::create_directories(folder);
+  for (const char* name : {"aids.csv", "truth.csv", "scenario.json"}) {
+    fs::copy_file(source.parent_path() / name, folder / name);
+  }
+  std::ifstream in(source);
+  std::ofstream out(folder / "imu.csv");
+  std::string line;
+  std::getline(in, line);
+  out << line << '\n';
+  for (int row = 0; std::getline(in, line); ++row) {
+    std::vector<std::string> cells;
+    for (std::size_t start = 0;;) {
+      const std::size_t comma = line.find(',', start);
+      cells.push_back(line.substr(start, comma - start));
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    if (!edit(row, cells)) continue;
+    for (std::size_t i = 0; i < cells.size(); ++i) out << (i ? "," : "") << cells[i];
+    out << '\n';
+  }
+}
+
+class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempDir();
+    const TempDir& d = *dir_;
+    d.write("good.csv", csv(200));
+    std::string alternating = "t,x\n";
+    for (int i = 0; i < 200; ++i) alternating += std::to_string(i) + (i % 2 ? ",1e308\n" : ",-1e308\n");
+    d.write("alternating.csv", alternating);
+    d.write("cr_only.csv", "t,x\r0,1\r1,2\r2,3\r3,4\r");
+    d.write("control.csv", "t,x\n0,1\n1,2\x1b[31mred\x07\n2,3\n");
+    d.write("bom.csv", "\xEF\xBB\xBF" + csv(200));
+    d.write("crlf.csv", "t,x\r\n0,1\r\n1,3\r\n2,2\r\n3,5\r\n4,1\r\n5,0\r\n6,4\r\n7,2\r\n");
+    const std::string model = R"({"units": "deg/h", "rate_hz": 10, "terms": [
+        {"type": "angle_random_walk", "N": 0.1}]})";
+    d.write("model.json", model);
+    d.write("model_1e400.json", R"({"units": "deg/h", "rate_hz": 10, "terms": [
+        {"type": "angle_random_walk", "N": 1e400}]})");
+    d.write("model_huge.json", R"({"units": "deg/h", "rate_hz": 10, "terms": [
+        {"type": "angle_random_walk", "N": 1e307}]})");
+    d.write("model_subnormal.json", R"({"units": "deg/h", "rate_hz": 10, "terms": [
+        {"type": "angle_random_walk", "N": 1e-320}]})");
+    fs::create_directories(d.path() / "folder.json");
+
+    // A still vibration table, 30 s at 100 Hz, and a run config on it.
+    nlohmann::json scenario =
+        read_json(std::string(STOCHNAV_SOURCE_DIR) + "/configs/scenarios/paper_fixed_frequency.json");
+    scenario["vibration_table"]["phases"] = {
+        {{"name", "static"}, {"duration_s", 30}, {"motion", "static"}}};
+    d.write("scenario.json", scenario.dump());
+    nlohmann::json subnormal_scenario = scenario;
+    subnormal_scenario["sensors"]["gyro"]["noise"]["terms"] = {
+        {{"type", "angle_random_walk"}, {"N", 1e-320}}};
+    d.write("scenario_subnormal.json", subnormal_scenario.dump());
+    nlohmann::json long_scenario = scenario;
+    long_scenario["vibration_table"]["phases"][0]["duration_s"] = 1e12;
+    d.write("scenario_1e12.json", long_scenario.dump());
+    std::string text = scenario.dump();
+    d.write("scenario_1e400.json", text.replace(text.find("\"seed\":") + 7, 0, "1e400, \"x\":"));
+    const CliResult simulated = testing::run_cli(
+        "simulate scenario '" + d.file("scenario.json") + "' --out '" + d.file("table") + "'",
+        d.path().string());
+    if (simulated.exit_code != 0) setup_error_ = simulated.err;
+
+    const fs::path imu = d.path() / "table" / "imu.csv";
+    edited_imu(imu, d.path() / "gap", [](int row, auto&) { return row < 1000 || row >= 1010; });
+    edited_imu(imu, d.path() / "rate_change", [](int row, std::vector<std::string>& cells) {
+      if (row >= 1500) cells[0] = std::to_string(15.0 + (row - 1499) * 0.005);
+      return true;
+    });
+    edited_imu(imu, d.path() / "spike", [](int row, std::vector<std::string>& cells) {
+      if (row == 700) cells[1] = "1e150";
+      return true;
+    });
+    const nlohmann::json run = {
+        {"data", {{"scenario", "table"}}},
+        {"noise",
+         {{"gyro", {{"plugin", "white"}, {"params", {{"N", 0.005}}}}},
+          {"accel", {{"plugin", "white"}, {"params", {{"N", 0.03}}}}}}},
+        {"aids",
+         {{{"plugin", "static_position"},
+           {"params", {{"sigma_position_m", 0.01}, {"sigma_velocity_mps", 0.3}}}}}},
+        {"filter",
+         {{"initial_sigma",
+           {{"position_m", 0.01},
+            {"velocity_m_s", 0.001},
+            {"attitude_deg", {0.05, 0.05, 0.5}},
+            {"accel_bias_m_s2", 0.001},
+            {"gyro_bias_deg_h", 0.7}}}}}};
+    d.write("run.json", run.dump());
+    nlohmann::json broken = run;
+    broken["noise"]["gyro"]["plugin"] = "mymodel";
+    d.write("run_broken_plugin.json", broken.dump());
+    d.write("stochnav_noise_mymodel.so", "not an ELF file");
+    text = run.dump();
+    d.write("run_1e400.json", text.replace(text.find("0.005"), 5, "1e400"));
+    const nlohmann::json experiment = {
+        {"data", {{"scenario_config", "scenario.json"}, {"seeds", 1}}},
+        {"baseline", "classic"},
+        {"aids", run["aids"]},
+        {"filter", run["filter"]},
+        {"variants", {{{"name", "classic"}, {"noise", run["noise"]}}}}};
+    d.write("experiment.json", experiment.dump());
+    nlohmann::json many_seeds = experiment;
+    many_seeds["data"]["seeds"] = 1000000;
+    d.write("experiment_1e6_seeds.json", many_seeds.dump());
+    text = experiment.dump();
+    d.write("experiment_1e400.json", text.replace(text.find("0.005"), 5, "1e400"));
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  void SetUp() override {
+    if (!setup_error_.empty()) GTEST_SKIP() << "simulating the scenario failed: " << setup_error_;
+  }
+
+  static TempDir* dir_;
+  static std::string setup_error_;
+};
+TempDir* Catalogue::dir_ = nullptr;
+std::string Catalogue::setup_error_;
+
+bool has_raw_control_character(const std::string& line) {
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    const auto byte = static_cast<unsigned char>(line[i]);
+    if (byte < 0x20 || byte == 0x7f) return true;
+  }
+  return false;
+}
+
+std::vector<std::string> temporary_files(const fs::path& root) {
+  std::vector<std::string> found;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    const std::string name = entry.path().filename().string();
+    if (name.find(".tmp") != std::string::npos || name == ".scenarios" ||
+        name.rfind(".diagnose-staging", 0) == 0) {
+      found.push_back(entry.path().string());
+    }
+  }
+  return found;
+}
+
+TEST_P(Catalogue, HandledAsDocumented) {
+  const CatalogueCase& c = GetParam();
+  const std::string dir = dir_->path().string();
+  const CliResult result = run_in_shell(c.shell_prefix, replace_at(c.arguments, dir), dir);
+  EXPECT_EQ(result.exit_code, c.exit_code) << result.err;
+  if (c.exit_code == 0) {
+    EXPECT_NE(result.out.find(c.fragment), std::string::npos) << result.out;
+  } else {
+    ASSERT_FALSE(result.err.empty());
+    EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << "one line: " << result.err;
+    EXPECT_NE(result.err.find(c.fragment), std::string::npos) << result.err;
+    EXPECT_FALSE(has_raw_control_character(result.err)) << result.err;
+    EXPECT_EQ(result.err.find("internal error"), std::string::npos) << result.err;
+    // "fit_noise_terms: ..." and the like: a snake_case identifier used as a message prefix.
+    static const std::regex kInternalName("(^|: )[a-z]+_[a-z_]+: ");
+    EXPECT_FALSE(std::regex_search(result.err, kInternalName)) << result.err;
+  }
+  for (const std::string& path : c.absent) {
+    EXPECT_FALSE(fs::exists(replace_at(path, dir))) << "left behind: " << path;
+  }
+  EXPECT_EQ(temporary_files(dir_->path()), std::vector<std::string>{});
+}
+
+// Each case names the defect of issue #17 it checks.
+INSTANTIATE_TEST_SUITE_P(
+    Issue17, Catalogue,
+    ::testing::Values(
+        // Silent wrong results.
+        CatalogueCase{"column_index_overflow",
+                      "allan --input @/good.csv --rate 1 --column 99999999999999999999999",
+                      2, "column index 99999999999999999999999 out of range"},
+        CatalogueCase{"negative_seed_simulate_noise",
+                      "simulate noise --model @/model.json --duration 10 --rate 10 --seed -5 "
+                      "--out @/n.csv", 2, "--seed", {"@/n.csv"}},
+        CatalogueCase{"negative_seed_simulate_scenario",
+                      "simulate scenario @/scenario.json --seed -1 --out @/s", 2, "--seed",
+                      {"@/s"}},
+        CatalogueCase{"negative_seed_diagnose",
+                      "diagnose --input @/good.csv --model @/model.json --seed -1 --out @/d", 2,
+                      "--seed", {"@/d"}},
+        CatalogueCase{"negative_seeds_compare",
+                      "compare @/experiment.json --seeds 2 -3 --out @/c", 2, "--seeds", {"@/c"}},
+        CatalogueCase{"alternating_1e308_refused", "allan --input @/alternating.csv --format json",
+                      2, "alternating.csv:2: column 'x': -1e+308 is beyond +/-1e100"},
+        CatalogueCase{"run_imu_gap", "run @/run.json --data @/gap --out @/r", 2,
+                      "imu.csv:1002: IMU time step", {"@/r"}},
+        CatalogueCase{"run_imu_rate_change", "run @/run.json --data @/rate_change --out @/r", 2,
+                      "imu.csv:1502: IMU time step", {"@/r"}},
+        CatalogueCase{"run_non_finite_solution", "run @/run.json --data @/spike --out @/r", 2,
+                      "not finite from t = 7.01 s", {"@/r"}},
+        CatalogueCase{"simulate_noise_infinite",
+                      "simulate noise --model @/model_huge.json --duration 10 --rate 10 --seed 1 "
+                      "--out @/n.csv", 2, "model_huge.json: the simulated value is not finite",
+                      {"@/n.csv"}},
+        CatalogueCase{"cr_only_line_endings", "allan --input @/cr_only.csv", 2,
+                      "cr_only.csv:1: carriage return (CR)"},
+        CatalogueCase{"bom_is_not_part_of_the_header", "allan --input @/bom.csv --format csv", 0,
+                      "m,tau,n"},
+        CatalogueCase{"crlf_line_endings", "allan --input @/crlf.csv --format csv", 0,
+                      "\n1,1,7,"},
+        // Exit 1 instead of 2.
+        CatalogueCase{"json_1e400_simulate",
+                      "simulate noise --model @/model_1e400.json --duration 10 --rate 10 --seed 1 "
+                      "--out @/n.csv", 2, "model_1e400.json: a number is out of range",
+                      {"@/n.csv"}},
+        CatalogueCase{"json_1e400_diagnose",
+                      "diagnose --input @/good.csv --model @/model_1e400.json --out @/d", 2,
+                      "model_1e400.json: a number is out of range", {"@/d"}},
+        CatalogueCase{"json_1e400_run", "run @/run_1e400.json --out @/r", 2,
+                      "run_1e400.json: a number is out of range", {"@/r"}},
+        CatalogueCase{"json_1e400_compare", "compare @/experiment_1e400.json --out @/c", 2,
+                      "experiment_1e400.json: a number is out of range", {"@/c"}},
+        CatalogueCase{"json_1e400_scenario", "simulate scenario @/scenario_1e400.json --out @/s",
+                      2, "scenario_1e400.json: a number is out of range", {"@/s"}},
+        CatalogueCase{"subnormal_in_scenario_works",
+                      "simulate scenario @/scenario_subnormal.json --out @/sub", 0, ""},
+        CatalogueCase{"folder_as_model_diagnose",
+                      "diagnose --input @/good.csv --model @/folder.json --out @/d", 2,
+                      "folder.json: is a folder", {"@/d"}},
+        CatalogueCase{"folder_as_model_simulate",
+                      "simulate noise --model @/folder.json --duration 1 --rate 10 --seed 1 "
+                      "--out @/n.csv", 2, "folder.json: is a folder", {"@/n.csv"}},
+        CatalogueCase{"folder_as_run_config", "run @/folder.json --out @/r", 2,
+                      "folder.json: is a folder", {"@/r"}},
+        CatalogueCase{"folder_as_experiment", "compare @/folder.json --out @/c", 2,
+                      "folder.json: is a folder", {"@/c"}},
+        CatalogueCase{"folder_as_scenario", "simulate scenario @/folder.json --out @/s", 2,
+                      "folder.json: is a folder", {"@/s"}},
+        // Messages.
+        CatalogueCase{"broken_plugin_library", "run @/run_broken_plugin.json --out @/r", 2,
+                      "noise plugin type 'mymodel' is not available: ", {"@/r"}},
+        CatalogueCase{"write_failure_reports_errno",
+                      "simulate noise --model @/model.json --duration 1000 --rate 10 --seed 1 "
+                      "--out @/n.csv", 2, "n.csv: cannot write (File too large)", {"@/n.csv"},
+                      "ulimit -f 8; trap '' XFSZ"},
+        CatalogueCase{"control_characters_escaped", "allan --input @/control.csv", 2,
+                      "'2\\x1b[31mred\\x07' in column 'x'"},
+        CatalogueCase{"no_internal_function_name",
+                      "diagnose --input @/good.csv --model @/model_subnormal.json --plots none "
+                      "--out @/d", 2, "the noise model's Allan variance is 0", {"@/d"}},
+        // Bounded work.
+        CatalogueCase{"simulate_duration_1e12",
+                      "simulate noise --model @/model.json --duration 1e12 --rate 10 --seed 1 "
+                      "--out @/n.csv", 2, "above the limit of 1e+09", {"@/n.csv"}},
+        CatalogueCase{"simulate_rate_1e9",
+                      "simulate noise --model @/model.json --duration 10 --rate 1e9 --seed 1 "
+                      "--out @/n.csv", 2, "above the limit of 1e+06 Hz", {"@/n.csv"}},
+        CatalogueCase{"scenario_duration_1e12", "simulate scenario @/scenario_1e12.json --out @/s",
+                      2, "the limit on work", {"@/s"}},
+        CatalogueCase{"compare_1e6_seeds", "compare @/experiment_1e6_seeds.json --out @/c", 2,
+                      "above the limit of 1000", {"@/c"}},
+        CatalogueCase{"diagnose_1e6_seeds",
+                      "diagnose --input @/good.csv --model @/model.json --seeds 1000000 "
+                      "--out @/d", 2, "above the limit of 1000", {"@/d"}},
+        CatalogueCase{"diagnose_iterations",
+                      "diagnose --input @/good.csv --model @/model.json --max-iterations 1000000 "
+                      "--out @/d", 2, "above the limit of 32", {"@/d"}}),
+    [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
+
+TEST_F(Catalogue, SubnormalScenarioIsWrittenWhole) {
+  const std::string dir = dir_->path().string();
+  const CliResult result = testing::run_cli(
+      replace_at("simulate scenario @/scenario_subnormal.json --out @/subnormal", dir), dir);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json written = read_json(dir_->path() / "subnormal" / "scenario.json");
+  EXPECT_NE(written.dump().find("angle_random_walk"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace stochnav

@@ -1,0 +1,107 @@
+// SIGINT and SIGTERM leave no temporary file (*.tmpPID_N, hundreds of MB for a long record) and
+// no output folder the interrupted command created; the process still ends by the signal. And
+// the registry under it (core/temporary_files.hpp).
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "spawn_cli.hpp"
+#include "stochnav/core/temporary_files.hpp"
+#include "temp_dir.hpp"
+
+namespace stochnav {
+namespace {
+
+using testing::BackgroundCli;
+using testing::TempDir;
+namespace fs = std::filesystem;
+
+bool has_temporary_file(const fs::path& root) {
+  std::error_code ignored;
+  for (const auto& entry : fs::recursive_directory_iterator(root, ignored)) {
+    if (entry.path().filename().string().find(".tmp") != std::string::npos) return true;
+  }
+  return false;
+}
+
+std::string noise_model(const TempDir& dir) {
+  return dir.write("model.json", R"({"units": "deg/h", "rate_hz": 100, "terms": [
+      {"type": "angle_random_walk", "N": 0.1}]})");
+}
+
+class SignalCleanup : public ::testing::TestWithParam<int> {};
+
+TEST_P(SignalCleanup, SimulateNoiseLeavesNoTemporaryFile) {
+  const TempDir dir;
+  const std::string out = dir.file("noise.csv");
+  // 1e8 samples: minutes of writing, so the signal comes in the middle.
+  BackgroundCli cli({"simulate", "noise", "--model", noise_model(dir), "--duration", "1e6",
+                     "--rate", "100", "--seed", "1", "--out", out});
+  ASSERT_TRUE(cli.started());
+  ASSERT_TRUE(testing::eventually([&] { return has_temporary_file(dir.path()); }, 30.0))
+      << "no temporary file appeared";
+  cli.signal(GetParam());
+  const int status = cli.wait();
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == GetParam()) << "status " << status;
+  EXPECT_FALSE(has_temporary_file(dir.path()));
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_P(SignalCleanup, SimulateScenarioLeavesNoFolder) {
+  const TempDir dir;
+  std::ifstream in(std::string(STOCHNAV_SOURCE_DIR) + "/configs/scenarios/drilling_short.json");
+  const std::string config = dir.write(
+      "scenario.json", std::string(std::istreambuf_iterator<char>(in), {}));
+  const fs::path out = dir.path() / "new" / "scenario";
+  BackgroundCli cli({"simulate", "scenario", config, "--out", out.string()});
+  ASSERT_TRUE(cli.started());
+  ASSERT_TRUE(testing::eventually([&] { return has_temporary_file(out); }, 30.0));
+  cli.signal(GetParam());
+  const int status = cli.wait();
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == GetParam()) << "status " << status;
+  EXPECT_FALSE(fs::exists(dir.path() / "new")) << "the interrupted run left its folder";
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, SignalCleanup, ::testing::Values(SIGTERM, SIGINT),
+                         [](const ::testing::TestParamInfo<int>& signal_info) {
+                           return std::string(signal_info.param == SIGTERM ? "SIGTERM" : "SIGINT");
+                         });
+
+TEST(TemporaryPath, RegisteredPathsAreRemovedAndReleasedOnesKept) {
+  const TempDir dir;
+  const std::string file = dir.write("partial.csv.tmp1_0", "half a record");
+  const fs::path folder = dir.path() / "scratch";
+  fs::create_directories(folder / "inner");
+  const std::string kept = dir.write("kept.csv", "done");
+  TemporaryPath file_registration(file);
+  TemporaryPath folder_registration(folder);
+  TemporaryPath released(kept);
+  released.release();
+  remove_registered_paths();
+  EXPECT_FALSE(fs::exists(file));
+  EXPECT_FALSE(fs::exists(folder));
+  EXPECT_TRUE(fs::exists(kept));
+}
+
+TEST(TemporaryPath, SharedFoldersGoOnlyWhenEmpty) {
+  const TempDir dir;
+  const fs::path shared = dir.path() / "shared";
+  const fs::path mine = shared / "mine";
+  fs::create_directories(mine);
+  const fs::path other = dir.path() / "other";
+  fs::create_directories(other);
+  const std::string theirs = dir.write("other/theirs.csv", "another process's file");
+  TemporaryPath shared_registration(shared, TemporaryPath::Removal::kIfEmpty);
+  TemporaryPath other_registration(other, TemporaryPath::Removal::kIfEmpty);
+  TemporaryPath mine_registration(mine);
+  remove_registered_paths();
+  EXPECT_FALSE(fs::exists(shared)) << "emptied by removing mine, so removed";
+  EXPECT_TRUE(fs::exists(theirs)) << "a shared folder's other content was removed";
+}
+
+}  // namespace
+}  // namespace stochnav
