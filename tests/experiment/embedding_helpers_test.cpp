@@ -67,8 +67,8 @@ TEST(ScenarioConfigFile, ReadsShippedConfigsAndNamesFileAndTypo) {
     return "(accepted)";
   };
   EXPECT_EQ(error_of(dir.path()), dir.path().string() +
-                                      ": is a folder; expected a scenario "
-                                      "config file (JSON)");
+                                      ": is a folder, not a JSON file; give the scenario "
+                                      "config as a file");
   const auto with_key_renamed = [&](const std::string& from, const std::string& to) {
     std::ifstream in(std::string(STOCHNAV_SOURCE_DIR) + "/configs/scenarios/drilling_short.json");
     nlohmann::json document = nlohmann::json::parse(in);
