@@ -47,7 +47,7 @@ ImuIncrement ideal_increment(int epoch) {
 }
 
 struct SensorError {
-  Eigen::Vector3d gyro_scale = Eigen::Vector3d::Zero();   // the sensor reads (1 + s) truth
+  Eigen::Vector3d gyro_scale = Eigen::Vector3d::Zero();  // the sensor reads (1 + s) truth
   Eigen::Vector3d accel_scale = Eigen::Vector3d::Zero();
   Eigen::Vector3d gyro_bias_radps = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_bias_mps2 = Eigen::Vector3d::Zero();
@@ -61,8 +61,8 @@ Eigen::Vector3d vee_of_skew(const Eigen::Matrix3d& m) {
 }
 
 struct Comparison {
-  Eigen::Vector3d actual;     // mean velocity (erring INS) - mean velocity (exact INS), m/s
-  Eigen::Vector3d predicted;  // the map times the error state at the interval's end
+  Eigen::Vector3d actual;            // mean velocity (erring INS) - mean velocity (exact INS), m/s
+  Eigen::Vector3d predicted;         // the map times the error state at the interval's end
   Eigen::Matrix3d noise_covariance;  // of actual - predicted, from the in-interval noise
   Eigen::Vector3d predicted_core_only;
 };
@@ -86,9 +86,11 @@ Comparison compare_over_one_second(const SensorError& error) {
     const double z = normal(*error.random);
     return (density * std::sqrt(dt)) * Eigen::Vector3d(x, y, z);
   };
-  const Eigen::Matrix3d attitude_noise = Eigen::Matrix3d::Identity() *
+  const Eigen::Matrix3d attitude_noise =
+      Eigen::Matrix3d::Identity() *
       (error.gyro_white_radps_per_sqrt_hz * error.gyro_white_radps_per_sqrt_hz * dt);
-  const Eigen::Matrix3d velocity_noise = Eigen::Matrix3d::Identity() *
+  const Eigen::Matrix3d velocity_noise =
+      Eigen::Matrix3d::Identity() *
       (error.accel_white_mps2_per_sqrt_hz * error.accel_white_mps2_per_sqrt_hz * dt);
   for (int epoch = 0; epoch < static_cast<int>(kRate_hz); ++epoch) {
     const ImuIncrement ideal = ideal_increment(epoch);
@@ -128,8 +130,8 @@ Comparison compare_over_one_second(const SensorError& error) {
   dx.segment<3>(kGyroScale) = -error.gyro_scale;
   dx.segment<3>(kAccelScale) = -error.accel_scale;
 
-  IntervalMapLayout layout{.width = 21, .gyro_scale_offset = kGyroScale,
-                           .accel_scale_offset = kAccelScale};
+  IntervalMapLayout layout{
+      .width = 21, .gyro_scale_offset = kGyroScale, .accel_scale_offset = kAccelScale};
   Eigen::MatrixXd map(3, 21);
   interval.mean_error_map(layout, map);
   Comparison comparison;
@@ -141,8 +143,8 @@ Comparison compare_over_one_second(const SensorError& error) {
 }
 
 void expect_map_explains(const Comparison& c, double relative_tolerance) {
-  SCOPED_TRACE(::testing::Message() << "actual " << c.actual.transpose() << " predicted "
-                                    << c.predicted.transpose());
+  SCOPED_TRACE(::testing::Message()
+               << "actual " << c.actual.transpose() << " predicted " << c.predicted.transpose());
   EXPECT_LT((c.predicted - c.actual).norm(), relative_tolerance * c.actual.norm());
 }
 

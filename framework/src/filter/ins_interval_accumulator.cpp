@@ -73,7 +73,8 @@ void InsIntervalAccumulator::mean_error_map(const IntervalMapLayout& layout,
     map.middleCols<3>(layout.accel_scale_offset) = weighted_accel_scale_ / t;
   }
   if (layout.gyro_scale_offset >= 0) {
-    map.middleCols<3>(layout.gyro_scale_offset) = gyro_map(gyro_scale_dt_, weighted_f_x_gyro_scale_);
+    map.middleCols<3>(layout.gyro_scale_offset) =
+        gyro_map(gyro_scale_dt_, weighted_f_x_gyro_scale_);
   }
   if (layout.accel_augmented_offset >= 0) {
     map.middleCols(layout.accel_augmented_offset, layout.accel_sensor_map->cols()).noalias() =

@@ -156,13 +156,17 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   // epochs before this one, not this epoch's measurement, whose noise also drives the velocity
   // error and would correlate the gains with the residuals (over a day of 1-s aids that biased
   // the scale factors, hence the inclination, by -0.015 deg in the middle of the build).
-  const Eigen::Vector3d scale_factor_delta_v_b = c_mid.transpose() * smoothed_specific_force_n_ * dt;
-  if (dt > 0.0) {
-    smoothed_specific_force_n_ += (std::min(dt, kSpecificForceSmoothing_s) /
-                                   kSpecificForceSmoothing_s) *
-                                  (c_mid * compensated.delta_v_b / dt - smoothed_specific_force_n_);
+  const bool smoothing = accel_scale_.offset >= 0 || !interval_aids_.empty();
+  const Eigen::Vector3d scale_factor_delta_v_b =
+      smoothing ? Eigen::Vector3d(c_mid.transpose() * smoothed_specific_force_n_ * dt)
+                : Eigen::Vector3d::Zero();
+  if (smoothing && dt > 0.0) {
+    smoothed_specific_force_n_ +=
+        (std::min(dt, kSpecificForceSmoothing_s) / kSpecificForceSmoothing_s) *
+        (c_mid * compensated.delta_v_b / dt - smoothed_specific_force_n_);
   }
-  if (gyro_scale_.offset >= 0) fast_.gyro_scale_dt += c_mid * compensated.delta_theta_b.asDiagonal();
+  if (gyro_scale_.offset >= 0)
+    fast_.gyro_scale_dt += c_mid * compensated.delta_theta_b.asDiagonal();
   if (accel_scale_.offset >= 0) fast_.accel_scale_dt += c_mid * scale_factor_delta_v_b.asDiagonal();
   const Eigen::Matrix3d attitude_noise_before = attitude_noise_;
   accumulate_noise(gyro_noise_, t_start, dt, c_mid, gyro_white_cache_, gyro_cached_dt_,
@@ -354,7 +358,8 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
     const bool widen = aid.measures_interval_mean() && interval.duration_s() > 0.0 &&
                        interval_layout_.width > cs::kSize;
     const UpdateOutcome outcome = filter_.update(
-        residual_, widen ? widened_measurement_matrix(interval) : h_core_, r_, gated ? aid.gate().threshold : INFINITY, correction_,
+        residual_, widen ? widened_measurement_matrix(interval) : h_core_, r_,
+        gated ? aid.gate().threshold : INFINITY, correction_,
         options_.structured_covariance ? JosephForm::kExpanded : JosephForm::kProduct);
     rejections = outcome.accepted ? 0 : rejections + 1;
     InnovationRecord record{.t_s = t_s,

@@ -54,10 +54,10 @@ class InsIntervalAccumulator {
  public:
   /// One IMU epoch as the interval needs it.
   struct Epoch {
-    Eigen::Vector3d v_start_n;   ///< INS velocity at the epoch's start, ENU (m/s)
-    Eigen::Vector3d v_end_n;     ///< and at its end
-    Eigen::Matrix3d c_nb_mid;    ///< attitude at the epoch's midpoint
-    Eigen::Vector3d delta_v_b;   ///< compensated velocity increment, body (m/s)
+    Eigen::Vector3d v_start_n;  ///< INS velocity at the epoch's start, ENU (m/s)
+    Eigen::Vector3d v_end_n;    ///< and at its end
+    Eigen::Matrix3d c_nb_mid;   ///< attitude at the epoch's midpoint
+    Eigen::Vector3d delta_v_b;  ///< compensated velocity increment, body (m/s)
     /// The increment of the specific force the scale factors multiply, free of this epoch's
     /// noise (MwdNavigator: a smoothed specific force): the measured increment would correlate
     /// the map with the noise of the measurement it weighs.
@@ -89,15 +89,15 @@ class InsIntervalAccumulator {
   Eigen::Matrix3d gyro_map(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) const;
 
   double duration_s_ = 0.0;
-  Eigen::Vector3d v_n_dt_ = Eigen::Vector3d::Zero();            // int v_n du (m)
-  Eigen::Vector3d weighted_f_n_dt_ = Eigen::Vector3d::Zero();   // W_f (m)
-  Eigen::Matrix3d weighted_c_nb_dt_ = Eigen::Matrix3d::Zero();  // W_c (s^2)
-  Eigen::Matrix3d weighted_accel_scale_ = Eigen::Matrix3d::Zero();  // W_sa (m)
-  Eigen::Matrix3d c_nb_dt_ = Eigen::Matrix3d::Zero();              // A_c (s)
-  Eigen::Matrix3d gyro_scale_dt_ = Eigen::Matrix3d::Zero();        // A_sg (rad)
-  Eigen::Matrix3d weighted_f_x_c_nb_ = Eigen::Matrix3d::Zero();    // B_c (m s)
+  Eigen::Vector3d v_n_dt_ = Eigen::Vector3d::Zero();                   // int v_n du (m)
+  Eigen::Vector3d weighted_f_n_dt_ = Eigen::Vector3d::Zero();          // W_f (m)
+  Eigen::Matrix3d weighted_c_nb_dt_ = Eigen::Matrix3d::Zero();         // W_c (s^2)
+  Eigen::Matrix3d weighted_accel_scale_ = Eigen::Matrix3d::Zero();     // W_sa (m)
+  Eigen::Matrix3d c_nb_dt_ = Eigen::Matrix3d::Zero();                  // A_c (s)
+  Eigen::Matrix3d gyro_scale_dt_ = Eigen::Matrix3d::Zero();            // A_sg (rad)
+  Eigen::Matrix3d weighted_f_x_c_nb_ = Eigen::Matrix3d::Zero();        // B_c (m s)
   Eigen::Matrix3d weighted_f_x_gyro_scale_ = Eigen::Matrix3d::Zero();  // B_sg (m)
-  Eigen::Matrix3d weighted_noise_ = Eigen::Matrix3d::Zero();  // int (u - t_prev)^2 dQ_v (m^2)
+  Eigen::Matrix3d weighted_noise_ = Eigen::Matrix3d::Zero();        // int (u - t_prev)^2 dQ_v (m^2)
   Eigen::Matrix3d attitude_noise_image_ = Eigen::Matrix3d::Zero();  // int [W_f x] dQ_phi [.]^T
 };
 

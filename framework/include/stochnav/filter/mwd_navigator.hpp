@@ -123,9 +123,9 @@ class MwdNavigator final {
   ScaleFactorBlock gyro_scale_;
   ScaleFactorBlock accel_scale_;
   int head_size_ = 0;  // D: core + scale-factor states, the dense head before the augmented blocks
-  Eigen::MatrixXd head_f_;  // head_size_ x head_size_ scratch
+  Eigen::MatrixXd head_f_;                             // head_size_ x head_size_ scratch
   std::vector<InsIntervalAccumulator> aid_intervals_;  // per aid, since its previous epoch
-  std::vector<std::size_t> interval_aids_;  // the aids that measure an interval mean
+  std::vector<std::size_t> interval_aids_;             // the aids that measure an interval mean
   IntervalMapLayout interval_layout_;
   Eigen::MatrixXd interval_map_;  // 3 x interval_layout_.width
 
