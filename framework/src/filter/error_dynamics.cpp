@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "stochnav/ins/cross_product_matrix.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 
@@ -9,12 +10,6 @@ namespace stochnav {
 namespace {
 
 namespace cs = plugin::core_state;
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
 
 }  // namespace
 

@@ -33,6 +33,7 @@
 
 #include <cmath>
 
+#include "stochnav/ins/cross_product_matrix.hpp"
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/aid_schedule.hpp"
 #include "stochnav/plugin/param_table.hpp"
@@ -44,12 +45,6 @@ namespace {
 namespace cs = stochnav::plugin::core_state;
 using stochnav::plugin::Bound;
 using stochnav::plugin::ParamUnit;
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
 
 struct RopParams {
   double sigma_rop_mps;         ///< m/s
@@ -96,7 +91,7 @@ class RopAid final : public stochnav::plugin::AidPlugin {
     residual = c_bn * interval.mean_v_n;
     residual(2) -= rop_mph / 3600.0;
     h = c_bn * interval.mean_velocity_error_map;
-    h.block<3, 3>(0, cs::kAttitude) -= c_bn * skew(interval.mean_v_n);
+    h.block<3, 3>(0, cs::kAttitude) -= c_bn * stochnav::skew(interval.mean_v_n);
     r = c_bn * interval.mean_velocity_noise_covariance * c_bn.transpose();
     r(0, 0) += params_.sigma_lateral_mps * params_.sigma_lateral_mps;
     r(1, 1) += params_.sigma_lateral_mps * params_.sigma_lateral_mps;
