@@ -19,6 +19,7 @@
 #include "stochnav/experiment/comparison.hpp"
 #include "stochnav/experiment/experiment_config.hpp"
 #include "temp_dir.hpp"
+#include "tiny_comparison.hpp"
 
 namespace stochnav {
 namespace {
@@ -44,40 +45,20 @@ nlohmann::json short_scenario() {
   return scenario;
 }
 
-const nlohmann::json kAccel = {{"plugin", "white"}, {"params", {{"N", 0.029}}}};
-
 // Three variants on the short scenario: the classic datasheet filter, a white model fitted with
 // a random walk on the first 60 s, the oracle.
 nlohmann::json tiny_experiment(int seeds) {
-  nlohmann::json experiment = {
-      {"data", {{"scenario_config", "scenario.json"}, {"seeds", seeds}}},
-      {"baseline", "classic"},
-      {"aids",
-       {{{"plugin", "static_position"},
-         {"params",
-          {{"sigma_position_m", 0.01}, {"sigma_velocity_mps", 0.3}, {"nis_gate", false}}}}}},
-      {"filter",
-       {{"initial_sigma",
-         {{"position_m", 0.01},
-          {"velocity_m_s", 0.001},
-          {"attitude_deg", {0.05, 0.05, 0.5}},
-          {"accel_bias_m_s2", 0.001},
-          {"gyro_bias_deg_h", 0.7}}}}},
-      {"variants",
-       {{{"name", "classic"},
-         {"noise",
-          {{"gyro", {{"plugin", "white"}, {"params", {{"N", 3.33e-5}}}}}, {"accel", kAccel}}}},
-        {{"name", "white_tuned"},
-         {"noise",
-          {{"gyro",
-            {{"plugin", "white"},
-             {"params", {{"rate_random_walk", true}}},
-             {"fit", {{"end_s", 60}}}}},
-           {"accel", kAccel}}}},
-        {{"name", "oracle"},
-         {"noise",
-          {{"gyro", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}},
-           {"accel", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}}}}}}}};
+  nlohmann::json experiment = {{"data", {{"scenario_config", "scenario.json"}, {"seeds", seeds}}},
+                               {"baseline", "classic"},
+                               {"aids", stochnav::testing::static_position_aids()},
+                               {"filter",
+                                {{"initial_sigma",
+                                  {{"position_m", 0.01},
+                                   {"velocity_m_s", 0.001},
+                                   {"attitude_deg", {0.05, 0.05, 0.5}},
+                                   {"accel_bias_m_s2", 0.001},
+                                   {"gyro_bias_deg_h", 0.7}}}}},
+                               {"variants", stochnav::testing::tiny_comparison_variants()}};
   return experiment;
 }
 

@@ -20,6 +20,7 @@
 
 #include "run_cli.hpp"
 #include "temp_dir.hpp"
+#include "tiny_comparison.hpp"
 
 namespace stochnav {
 namespace {
@@ -45,7 +46,6 @@ std::size_t line_count(const std::string& text) {
 // Three variants (a datasheet white model, a white model fitted on the first 60 s, the oracle)
 // on the shipped random-vibration scenario shortened to 150 s; `seeds` Monte-Carlo seeds.
 nlohmann::json tiny_experiment(int seeds) {
-  const nlohmann::json accel = {{"plugin", "white"}, {"params", {{"N", 0.029}}}};
   nlohmann::json overrides = nlohmann::json::object();
   const int durations[] = {60, 5, 20, 5, 60};
   for (int i = 0; i < 5; ++i) {
@@ -57,25 +57,8 @@ nlohmann::json tiny_experiment(int seeds) {
             {"seeds", seeds},
             {"scenario_overrides", overrides}}},
           {"baseline", "classic"},
-          {"aids",
-           {{{"plugin", "static_position"},
-             {"params",
-              {{"sigma_position_m", 0.01}, {"sigma_velocity_mps", 0.3}, {"nis_gate", false}}}}}},
-          {"variants",
-           {{{"name", "classic"},
-             {"noise",
-              {{"gyro", {{"plugin", "white"}, {"params", {{"N", 3.33e-5}}}}}, {"accel", accel}}}},
-            {{"name", "white_tuned"},
-             {"noise",
-              {{"gyro",
-                {{"plugin", "white"},
-                 {"params", {{"rate_random_walk", true}}},
-                 {"fit", {{"end_s", 60}}}}},
-               {"accel", accel}}}},
-            {{"name", "oracle"},
-             {"noise",
-              {{"gyro", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}},
-               {"accel", {{"plugin", "oracle"}, {"params", nlohmann::json::object()}}}}}}}}};
+          {"aids", stochnav::testing::static_position_aids()},
+          {"variants", stochnav::testing::tiny_comparison_variants()}};
 }
 
 // Runs `env ENVIRONMENT stochnav ARGUMENTS` (ENVIRONMENT: "-u NAME" and "NAME=VALUE" words):

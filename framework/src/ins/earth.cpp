@@ -15,7 +15,14 @@ EarthRadii radii_from_sin(double s) {
           wgs84::kSemiMajorAxis_m / sqrt_w};
 }
 
-double gravity_from_sin_squared(double s2, double height_m) {
+// Somigliana's normal gravity on the ellipsoid, g0, and the bracket c of its height expansion
+// g(h) = g0 (1 - 2 c h / a + 3 h^2 / a^2), for sin^2(latitude) = s2.
+struct NormalGravityTerms {
+  double g0;
+  double c;
+};
+
+NormalGravityTerms normal_gravity_terms(double s2) {
   using namespace wgs84;
   const double k =
       (kSemiMinorAxis_m * kGravityPole_mps2) / (kSemiMajorAxis_m * kGravityEquator_mps2) - 1.0;
@@ -23,9 +30,13 @@ double gravity_from_sin_squared(double s2, double height_m) {
       kGravityEquator_mps2 * (1.0 + k * s2) / std::sqrt(1.0 - kEccentricitySquared * s2);
   const double m = kEarthRate_radps * kEarthRate_radps * kSemiMajorAxis_m * kSemiMajorAxis_m *
                    kSemiMinorAxis_m / kGm_m3ps2;
-  const double a = kSemiMajorAxis_m;
-  return g0 * (1.0 - 2.0 / a * (1.0 + kFlattening + m - 2.0 * kFlattening * s2) * height_m +
-               3.0 * height_m * height_m / (a * a));
+  return {g0, 1.0 + kFlattening + m - 2.0 * kFlattening * s2};
+}
+
+double gravity_from_sin_squared(double s2, double height_m) {
+  const NormalGravityTerms terms = normal_gravity_terms(s2);
+  const double a = wgs84::kSemiMajorAxis_m;
+  return terms.g0 * (1.0 - 2.0 / a * terms.c * height_m + 3.0 * height_m * height_m / (a * a));
 }
 
 Eigen::Vector3d transport_from(const EarthRadii& r, double tan_lat, double height_m,
@@ -55,17 +66,10 @@ double normal_gravity(double latitude_rad, double height_m) {
 }
 
 double normal_gravity_height_gradient(double latitude_rad, double height_m) {
-  using namespace wgs84;
-  const double s2 = std::sin(latitude_rad) * std::sin(latitude_rad);
-  const double k =
-      (kSemiMinorAxis_m * kGravityPole_mps2) / (kSemiMajorAxis_m * kGravityEquator_mps2) - 1.0;
-  const double g0 =
-      kGravityEquator_mps2 * (1.0 + k * s2) / std::sqrt(1.0 - kEccentricitySquared * s2);
-  const double m = kEarthRate_radps * kEarthRate_radps * kSemiMajorAxis_m * kSemiMajorAxis_m *
-                   kSemiMinorAxis_m / kGm_m3ps2;
-  const double a = kSemiMajorAxis_m;
-  return g0 *
-         (-2.0 / a * (1.0 + kFlattening + m - 2.0 * kFlattening * s2) + 6.0 * height_m / (a * a));
+  const double s = std::sin(latitude_rad);
+  const NormalGravityTerms terms = normal_gravity_terms(s * s);
+  const double a = wgs84::kSemiMajorAxis_m;
+  return terms.g0 * (-2.0 / a * terms.c + 6.0 * height_m / (a * a));
 }
 
 Eigen::Vector3d gravity_n(double latitude_rad, double height_m) {
