@@ -5,7 +5,6 @@
 // UTF-8 byte-order mark, a subnormal number) now work.
 
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 
 #include <array>
@@ -19,6 +18,7 @@
 
 #include "run_cli.hpp"
 #include "temp_dir.hpp"
+#include "tiny_comparison.hpp"
 
 namespace stochnav {
 namespace {
@@ -31,7 +31,7 @@ struct CatalogueCase {
   std::string name;
   std::string arguments;  ///< '@' stands for the fixture's folder
   int exit_code = 2;
-  std::string fragment;   ///< in the message (exit 2) or on standard output (exit 0)
+  std::string fragment;                  ///< in the message (exit 2) or on standard output (exit 0)
   std::vector<std::string> absent = {};  ///< paths under '@' that must not exist afterwards
   std::string shell_prefix = {};         ///< sh commands before the tool (ulimit)
 };
@@ -73,7 +73,8 @@ nlohmann::json read_json(const fs::path& path) {
 
 std::string csv(int rows) {
   std::string text = "t,x\n";
-  for (int i = 0; i < rows; ++i) text += std::to_string(i) + "," + std::to_string((i * 7) % 5) + "\n";
+  for (int i = 0; i < rows; ++i)
+    text += std::to_string(i) + "," + std::to_string((i * 7) % 5) + "\n";
   return text;
 }
 
@@ -110,7 +111,8 @@ class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
     const TempDir& d = *dir_;
     d.write("good.csv", csv(200));
     std::string alternating = "t,x\n";
-    for (int i = 0; i < 200; ++i) alternating += std::to_string(i) + (i % 2 ? ",1e308\n" : ",-1e308\n");
+    for (int i = 0; i < 200; ++i)
+      alternating += std::to_string(i) + (i % 2 ? ",1e308\n" : ",-1e308\n");
     d.write("alternating.csv", alternating);
     d.write("cr_only.csv", "t,x\r0,1\r1,2\r2,3\r3,4\r");
     d.write("control.csv", "t,x\n0,1\n1,2\x1b[31mred\x07\n2,3\n");
@@ -128,8 +130,8 @@ class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
     fs::create_directories(d.path() / "folder.json");
 
     // A still vibration table, 30 s at 100 Hz, and a run config on it.
-    nlohmann::json scenario =
-        read_json(std::string(STOCHNAV_SOURCE_DIR) + "/configs/scenarios/paper_fixed_frequency.json");
+    nlohmann::json scenario = read_json(std::string(STOCHNAV_SOURCE_DIR) +
+                                        "/configs/scenarios/paper_fixed_frequency.json");
     scenario["vibration_table"]["phases"] = {
         {{"name", "static"}, {"duration_s", 30}, {"motion", "static"}}};
     d.write("scenario.json", scenario.dump());
@@ -165,13 +167,7 @@ class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
         {"aids",
          {{{"plugin", "static_position"},
            {"params", {{"sigma_position_m", 0.01}, {"sigma_velocity_mps", 0.3}}}}}},
-        {"filter",
-         {{"initial_sigma",
-           {{"position_m", 0.01},
-            {"velocity_m_s", 0.001},
-            {"attitude_deg", {0.05, 0.05, 0.5}},
-            {"accel_bias_m_s2", 0.001},
-            {"gyro_bias_deg_h", 0.7}}}}}};
+        {"filter", stochnav::testing::vibration_table_filter()}};
     d.write("run.json", run.dump());
     nlohmann::json broken = run;
     broken["noise"]["gyro"]["plugin"] = "mymodel";
@@ -255,94 +251,168 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         // Silent wrong results.
         CatalogueCase{"column_index_overflow",
-                      "allan --input @/good.csv --rate 1 --column 99999999999999999999999",
-                      2, "column index 99999999999999999999999 out of range"},
+                      "allan --input @/good.csv --rate 1 --column 99999999999999999999999", 2,
+                      "column index 99999999999999999999999 out of range"},
         CatalogueCase{"negative_seed_simulate_noise",
                       "simulate noise --model @/model.json --duration 10 --rate 10 --seed -5 "
-                      "--out @/n.csv", 2, "--seed", {"@/n.csv"}},
+                      "--out @/n.csv",
+                      2,
+                      "--seed",
+                      {"@/n.csv"}},
         CatalogueCase{"negative_seed_simulate_scenario",
-                      "simulate scenario @/scenario.json --seed -1 --out @/s", 2, "--seed",
+                      "simulate scenario @/scenario.json --seed -1 --out @/s",
+                      2,
+                      "--seed",
                       {"@/s"}},
         CatalogueCase{"negative_seed_diagnose",
-                      "diagnose --input @/good.csv --model @/model.json --seed -1 --out @/d", 2,
-                      "--seed", {"@/d"}},
+                      "diagnose --input @/good.csv --model @/model.json --seed -1 --out @/d",
+                      2,
+                      "--seed",
+                      {"@/d"}},
         CatalogueCase{"negative_seeds_compare",
-                      "compare @/experiment.json --seeds 2 -3 --out @/c", 2, "--seeds", {"@/c"}},
+                      "compare @/experiment.json --seeds 2 -3 --out @/c",
+                      2,
+                      "--seeds",
+                      {"@/c"}},
         CatalogueCase{"alternating_1e308_refused", "allan --input @/alternating.csv --format json",
                       2, "alternating.csv:2: column 'x': -1e+308 is beyond +/-1e100"},
-        CatalogueCase{"run_imu_gap", "run @/run.json --data @/gap --out @/r", 2,
-                      "imu.csv:1002: IMU time step", {"@/r"}},
-        CatalogueCase{"run_imu_rate_change", "run @/run.json --data @/rate_change --out @/r", 2,
-                      "imu.csv:1502: IMU time step", {"@/r"}},
-        CatalogueCase{"run_non_finite_solution", "run @/run.json --data @/spike --out @/r", 2,
-                      "not finite from t = 7.01 s", {"@/r"}},
+        CatalogueCase{"run_imu_gap",
+                      "run @/run.json --data @/gap --out @/r",
+                      2,
+                      "imu.csv:1002: IMU time step",
+                      {"@/r"}},
+        CatalogueCase{"run_imu_rate_change",
+                      "run @/run.json --data @/rate_change --out @/r",
+                      2,
+                      "imu.csv:1502: IMU time step",
+                      {"@/r"}},
+        CatalogueCase{"run_non_finite_solution",
+                      "run @/run.json --data @/spike --out @/r",
+                      2,
+                      "not finite from t = 7.01 s",
+                      {"@/r"}},
         CatalogueCase{"simulate_noise_infinite",
                       "simulate noise --model @/model_huge.json --duration 10 --rate 10 --seed 1 "
-                      "--out @/n.csv", 2, "model_huge.json: the simulated value is not finite",
+                      "--out @/n.csv",
+                      2,
+                      "model_huge.json: the simulated value is not finite",
                       {"@/n.csv"}},
         CatalogueCase{"cr_only_line_endings", "allan --input @/cr_only.csv", 2,
                       "cr_only.csv:1: carriage return (CR)"},
         CatalogueCase{"bom_is_not_part_of_the_header", "allan --input @/bom.csv --format csv", 0,
                       "m,tau,n"},
-        CatalogueCase{"crlf_line_endings", "allan --input @/crlf.csv --format csv", 0,
-                      "\n1,1,7,"},
+        CatalogueCase{"crlf_line_endings", "allan --input @/crlf.csv --format csv", 0, "\n1,1,7,"},
         // Exit 1 instead of 2.
         CatalogueCase{"json_1e400_simulate",
                       "simulate noise --model @/model_1e400.json --duration 10 --rate 10 --seed 1 "
-                      "--out @/n.csv", 2, "model_1e400.json: a number is out of range",
+                      "--out @/n.csv",
+                      2,
+                      "model_1e400.json: a number is out of range",
                       {"@/n.csv"}},
         CatalogueCase{"json_1e400_diagnose",
-                      "diagnose --input @/good.csv --model @/model_1e400.json --out @/d", 2,
-                      "model_1e400.json: a number is out of range", {"@/d"}},
-        CatalogueCase{"json_1e400_run", "run @/run_1e400.json --out @/r", 2,
-                      "run_1e400.json: a number is out of range", {"@/r"}},
-        CatalogueCase{"json_1e400_compare", "compare @/experiment_1e400.json --out @/c", 2,
-                      "experiment_1e400.json: a number is out of range", {"@/c"}},
-        CatalogueCase{"json_1e400_scenario", "simulate scenario @/scenario_1e400.json --out @/s",
-                      2, "scenario_1e400.json: a number is out of range", {"@/s"}},
+                      "diagnose --input @/good.csv --model @/model_1e400.json --out @/d",
+                      2,
+                      "model_1e400.json: a number is out of range",
+                      {"@/d"}},
+        CatalogueCase{"json_1e400_run",
+                      "run @/run_1e400.json --out @/r",
+                      2,
+                      "run_1e400.json: a number is out of range",
+                      {"@/r"}},
+        CatalogueCase{"json_1e400_compare",
+                      "compare @/experiment_1e400.json --out @/c",
+                      2,
+                      "experiment_1e400.json: a number is out of range",
+                      {"@/c"}},
+        CatalogueCase{"json_1e400_scenario",
+                      "simulate scenario @/scenario_1e400.json --out @/s",
+                      2,
+                      "scenario_1e400.json: a number is out of range",
+                      {"@/s"}},
         CatalogueCase{"subnormal_in_scenario_works",
                       "simulate scenario @/scenario_subnormal.json --out @/sub", 0, ""},
         CatalogueCase{"folder_as_model_diagnose",
-                      "diagnose --input @/good.csv --model @/folder.json --out @/d", 2,
-                      "folder.json: is a folder", {"@/d"}},
+                      "diagnose --input @/good.csv --model @/folder.json --out @/d",
+                      2,
+                      "folder.json: is a folder",
+                      {"@/d"}},
         CatalogueCase{"folder_as_model_simulate",
                       "simulate noise --model @/folder.json --duration 1 --rate 10 --seed 1 "
-                      "--out @/n.csv", 2, "folder.json: is a folder", {"@/n.csv"}},
-        CatalogueCase{"folder_as_run_config", "run @/folder.json --out @/r", 2,
-                      "folder.json: is a folder", {"@/r"}},
-        CatalogueCase{"folder_as_experiment", "compare @/folder.json --out @/c", 2,
-                      "folder.json: is a folder", {"@/c"}},
-        CatalogueCase{"folder_as_scenario", "simulate scenario @/folder.json --out @/s", 2,
-                      "folder.json: is a folder", {"@/s"}},
+                      "--out @/n.csv",
+                      2,
+                      "folder.json: is a folder",
+                      {"@/n.csv"}},
+        CatalogueCase{"folder_as_run_config",
+                      "run @/folder.json --out @/r",
+                      2,
+                      "folder.json: is a folder",
+                      {"@/r"}},
+        CatalogueCase{"folder_as_experiment",
+                      "compare @/folder.json --out @/c",
+                      2,
+                      "folder.json: is a folder",
+                      {"@/c"}},
+        CatalogueCase{"folder_as_scenario",
+                      "simulate scenario @/folder.json --out @/s",
+                      2,
+                      "folder.json: is a folder",
+                      {"@/s"}},
         // Messages.
-        CatalogueCase{"broken_plugin_library", "run @/run_broken_plugin.json --out @/r", 2,
-                      "noise plugin type 'mymodel' is not available: ", {"@/r"}},
+        CatalogueCase{"broken_plugin_library",
+                      "run @/run_broken_plugin.json --out @/r",
+                      2,
+                      "noise plugin type 'mymodel' is not available: ",
+                      {"@/r"}},
         CatalogueCase{"write_failure_reports_errno",
                       "simulate noise --model @/model.json --duration 1000 --rate 10 --seed 1 "
-                      "--out @/n.csv", 2, "n.csv: cannot write (File too large)", {"@/n.csv"},
+                      "--out @/n.csv",
+                      2,
+                      "n.csv: cannot write (File too large)",
+                      {"@/n.csv"},
                       "ulimit -f 8; trap '' XFSZ"},
         CatalogueCase{"control_characters_escaped", "allan --input @/control.csv", 2,
                       "'2\\x1b[31mred\\x07' in column 'x'"},
         CatalogueCase{"no_internal_function_name",
                       "diagnose --input @/good.csv --model @/model_subnormal.json --plots none "
-                      "--out @/d", 2, "the noise model's Allan variance is 0", {"@/d"}},
+                      "--out @/d",
+                      2,
+                      "the noise model's Allan variance is 0",
+                      {"@/d"}},
         // Bounded work.
         CatalogueCase{"simulate_duration_1e12",
                       "simulate noise --model @/model.json --duration 1e12 --rate 10 --seed 1 "
-                      "--out @/n.csv", 2, "above the limit of 1e+09", {"@/n.csv"}},
+                      "--out @/n.csv",
+                      2,
+                      "above the limit of 1e+09",
+                      {"@/n.csv"}},
         CatalogueCase{"simulate_rate_1e9",
                       "simulate noise --model @/model.json --duration 10 --rate 1e9 --seed 1 "
-                      "--out @/n.csv", 2, "above the limit of 1e+06 Hz", {"@/n.csv"}},
-        CatalogueCase{"scenario_duration_1e12", "simulate scenario @/scenario_1e12.json --out @/s",
-                      2, "the limit on work", {"@/s"}},
-        CatalogueCase{"compare_1e6_seeds", "compare @/experiment_1e6_seeds.json --out @/c", 2,
-                      "above the limit of 1000", {"@/c"}},
+                      "--out @/n.csv",
+                      2,
+                      "above the limit of 1e+06 Hz",
+                      {"@/n.csv"}},
+        CatalogueCase{"scenario_duration_1e12",
+                      "simulate scenario @/scenario_1e12.json --out @/s",
+                      2,
+                      "the limit on work",
+                      {"@/s"}},
+        CatalogueCase{"compare_1e6_seeds",
+                      "compare @/experiment_1e6_seeds.json --out @/c",
+                      2,
+                      "above the limit of 1000",
+                      {"@/c"}},
         CatalogueCase{"diagnose_1e6_seeds",
                       "diagnose --input @/good.csv --model @/model.json --seeds 1000000 "
-                      "--out @/d", 2, "above the limit of 1000", {"@/d"}},
+                      "--out @/d",
+                      2,
+                      "above the limit of 1000",
+                      {"@/d"}},
         CatalogueCase{"diagnose_iterations",
                       "diagnose --input @/good.csv --model @/model.json --max-iterations 1000000 "
-                      "--out @/d", 2, "above the limit of 32", {"@/d"}}),
+                      "--out @/d",
+                      2,
+                      "above the limit of 32",
+                      {"@/d"}}),
     [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
 
 TEST_F(Catalogue, SubnormalScenarioIsWrittenWhole) {

@@ -14,6 +14,7 @@
 #include "run_cli.hpp"
 #include "spawn_cli.hpp"
 #include "temp_dir.hpp"
+#include "tiny_comparison.hpp"
 
 namespace stochnav {
 namespace {
@@ -34,23 +35,17 @@ nlohmann::json still_table(double seconds) {
 
 nlohmann::json experiment(const nlohmann::json& seeds) {
   const nlohmann::json white = {{"plugin", "white"}, {"params", {{"N", 0.03}}}};
-  return {{"data", {{"scenario_config", "scenario.json"}, {"seeds", seeds}}},
-          {"baseline", "classic"},
-          {"aids",
-           {{{"plugin", "static_position"},
-             {"params", {{"sigma_position_m", 0.01}, {"sigma_velocity_mps", 0.3}}}}}},
-          {"filter",
-           {{"initial_sigma",
-             {{"position_m", 0.01},
-              {"velocity_m_s", 0.001},
-              {"attitude_deg", {0.05, 0.05, 0.5}},
-              {"accel_bias_m_s2", 0.001},
-              {"gyro_bias_deg_h", 0.7}}}}},
-          {"variants",
-           {{{"name", "classic"},
-             {"noise",
-              {{"gyro", {{"plugin", "white"}, {"params", {{"N", 3.33e-5}}}}},
-               {"accel", white}}}}}}};
+  return {
+      {"data", {{"scenario_config", "scenario.json"}, {"seeds", seeds}}},
+      {"baseline", "classic"},
+      {"aids",
+       {{{"plugin", "static_position"},
+         {"params", {{"sigma_position_m", 0.01}, {"sigma_velocity_mps", 0.3}}}}}},
+      {"filter", stochnav::testing::vibration_table_filter()},
+      {"variants",
+       {{{"name", "classic"},
+         {"noise",
+          {{"gyro", {{"plugin", "white"}, {"params", {{"N", 3.33e-5}}}}}, {"accel", white}}}}}}};
 }
 
 fs::path write(const TempDir& dir, const nlohmann::json& experiment_json,
@@ -97,9 +92,9 @@ TEST(CompareFailure, ExistingOutputFolderStaysWithoutScenarios) {
 
 struct RefusedCase {
   std::string name;
-  nlohmann::json seeds;   // the experiment's data/seeds
-  std::string extra;      // more command-line options
-  std::string fragment;   // in the message
+  nlohmann::json seeds;  // the experiment's data/seeds
+  std::string extra;     // more command-line options
+  std::string fragment;  // in the message
 };
 void PrintTo(const RefusedCase& c, std::ostream* os) { *os << c.name; }
 

@@ -51,13 +51,7 @@ nlohmann::json tiny_experiment(int seeds) {
   nlohmann::json experiment = {{"data", {{"scenario_config", "scenario.json"}, {"seeds", seeds}}},
                                {"baseline", "classic"},
                                {"aids", stochnav::testing::static_position_aids()},
-                               {"filter",
-                                {{"initial_sigma",
-                                  {{"position_m", 0.01},
-                                   {"velocity_m_s", 0.001},
-                                   {"attitude_deg", {0.05, 0.05, 0.5}},
-                                   {"accel_bias_m_s2", 0.001},
-                                   {"gyro_bias_deg_h", 0.7}}}}},
+                               {"filter", stochnav::testing::vibration_table_filter()},
                                {"variants", stochnav::testing::tiny_comparison_variants()}};
   return experiment;
 }

@@ -27,9 +27,19 @@ inline nlohmann::json tiny_comparison_variants() {
 
 /// The static-position aid of the vibration table, without its NIS gate.
 inline nlohmann::json static_position_aids() {
-  return {{{"plugin", "static_position"},
-           {"params",
-            {{"sigma_position_m", 0.01}, {"sigma_velocity_mps", 0.3}, {"nis_gate", false}}}}};
+  return {
+      {{"plugin", "static_position"},
+       {"params", {{"sigma_position_m", 0.01}, {"sigma_velocity_mps", 0.3}, {"nis_gate", false}}}}};
+}
+
+/// The filter section of the vibration-table runs: their initial sigmas.
+inline nlohmann::json vibration_table_filter() {
+  return {{"initial_sigma",
+           {{"position_m", 0.01},
+            {"velocity_m_s", 0.001},
+            {"attitude_deg", {0.05, 0.05, 0.5}},
+            {"accel_bias_m_s2", 0.001},
+            {"gyro_bias_deg_h", 0.7}}}};
 }
 
 }  // namespace stochnav::testing
