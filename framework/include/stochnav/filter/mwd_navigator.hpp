@@ -54,6 +54,10 @@ class MwdNavigator final {
                plugin::NoiseModelPlugin& accel_noise, std::vector<plugin::AidPlugin*> aids,
                const FilterOptions& options);
 
+  // Holds references to the plugins and pointers into itself (the interval map's layout).
+  MwdNavigator(const MwdNavigator&) = delete;
+  MwdNavigator& operator=(const MwdNavigator&) = delete;
+
   /// Advances over one IMU epoch of raw (uncompensated) increments.
   void step(const ImuIncrement& raw);
 
