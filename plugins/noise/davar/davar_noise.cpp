@@ -36,6 +36,17 @@
 //               median of the axis' positive N values are raised to it. In quiet windows where
 //               the bias-instability floor dominates, the non-negative fit may drop N entirely;
 //               Q = 0 would make the filter trust the gyro blindly there.
+//   "spin_axis" "none" (default), "x", "y" or "z": the body axis a tool spins about (an MWD
+//               tool drilling at 60 rpm: "z"). The gyro axes across it see the steady rates
+//               around them (Earth rate) as a sinusoid at the spin frequency; that motion is
+//               fitted and removed window by window before their DAVAR (spin_motion.hpp).
+//               Gyro only.
+//   "floor_tau_s"  (s, >= 0) default 0: N(t) alone, the paper's Q. When > 0 (needs "B" in
+//               terms), each window's white level is raised to meet its fitted bias-instability
+//               floor at that tau: N_eff^2 = N^2 + (2 ln 2 / pi) B^2 floor_tau_s — the
+//               floor-matched rule of the white plugin (calibration_fit.hpp) window by window.
+//               For a sensor whose short-term noise is the floor (a FOG's flicker), N alone
+//               leaves the filter's attitude sigma far below its error.
 //   "rate_random_walk"  bool, default false: fit K once over the whole record (Ceres fit of
 //               N and K, as the white plugin, plugin/calibration_fit.hpp) for
 //               bias_walk_covariance. "rate_random_walk_end_s" (s, > 0) fits it over the
@@ -50,10 +61,13 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "noise_level_series.hpp"
+#include "spin_motion.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/reporting_units.hpp"
 #include "stochnav/plugin/calibration_fit.hpp"
@@ -67,11 +81,15 @@ namespace {
 using stochnav::ParameterDimension;
 using stochnav::davar_noise::Interpolation;
 using stochnav::davar_noise::NoiseLevelSeries;
+using stochnav::davar_noise::WindowTerm;
 using stochnav::plugin::SensorGroup;
 using Axes = std::array<double, 3>;
 using AxisSeries = std::array<std::vector<double>, 3>;
 
 constexpr std::string_view kModes[] = {"offline", "causal"};
+constexpr std::string_view kSpinAxes[] = {"none", "x", "y", "z"};
+/// Allan variance of a bias-instability floor per B^2: 2 ln 2 / pi.
+constexpr double kFloorAvarPerB2 = 2.0 * std::numbers::ln2 / std::numbers::pi;
 
 struct DavarParams {
   bool causal = false;
@@ -245,7 +263,6 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_davar(
 }
 
 std::vector<stochnav::davar_noise::WindowTerm> read_terms(stochnav::plugin::ParamReader& reader) {
-  using stochnav::davar_noise::WindowTerm;
   const nlohmann::json& json = reader.raw("terms");
   if (json.is_null()) return {WindowTerm::kAngleRandomWalk, WindowTerm::kBiasInstability};
   const std::string pointer = reader.pointer("terms");
@@ -310,6 +327,38 @@ std::size_t samples_for(double seconds, double rate_hz) {
   return static_cast<std::size_t>(std::llround(seconds * rate_hz));
 }
 
+/// "spin_axis": "none" (default) or the body axis the tool spins about; gyro only (the spin
+/// angle comes from the gyro's own axis).
+std::optional<std::size_t> read_spin_axis(stochnav::plugin::ParamReader& reader,
+                                          SensorGroup group) {
+  const std::string name = reader.choice_or("spin_axis", "none", kSpinAxes);
+  if (name == "none") return std::nullopt;
+  if (group != SensorGroup::kGyro) {
+    throw stochnav::ConfigError(fmt::format(
+        "{}: found \"{}\"; the spin angle comes from the gyro, so spin_axis applies to the gyro "
+        "model only: remove it from the accelerometer's fit params",
+        reader.pointer("spin_axis"), name));
+  }
+  return static_cast<std::size_t>(name[0] - 'x');
+}
+
+/// Replaces the DAVAR of the two axes across `spin_axis` by that of their spin-free residuals
+/// and the spin axis' own where its rate was not steady (spin_motion.hpp), on the windows and
+/// factors of the spin axis' own DAVAR.
+void remove_spin_motion(const stochnav::plugin::CalibrationRecord& record, std::size_t spin_axis,
+                        const stochnav::davar_noise::WindowFitOptions& options,
+                        std::array<stochnav::DavarResult, 3>& deviations) {
+  const auto across = stochnav::davar_noise::cross_axes(spin_axis);
+  auto windows = stochnav::davar_noise::spin_free_window_deviations(
+      record.axes[across[0]], record.axes[across[1]], record.axes[spin_axis], record.rate_hz,
+      options.window, options.step, deviations[spin_axis].m);
+  stochnav::davar_noise::replace_unsteady_spin_rows(deviations[spin_axis].adev, windows);
+  for (std::size_t j = 0; j < 2; ++j) {
+    deviations[across[j]] = deviations[spin_axis];
+    deviations[across[j]].adev = std::move(windows.cross[j]);
+  }
+}
+
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
     const stochnav::plugin::CalibrationRecord& record, const nlohmann::json& json,
     const stochnav::plugin::NoiseModelContext& context) {
@@ -328,6 +377,15 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
     throw stochnav::ConfigError(fmt::format("{}: found {}; expected a number in [0, 1]",
                                             reader.pointer("N_floor_fraction"), floor_fraction));
   }
+  const auto spin_axis = read_spin_axis(reader, record.group);
+  const double floor_tau_s = reader.number_or("floor_tau_s", 0.0, Bound::kNonNegative, "s");
+  if (floor_tau_s > 0.0 && std::ranges::find(options.terms, WindowTerm::kBiasInstability) ==
+                               options.terms.end()) {
+    throw stochnav::ConfigError(
+        fmt::format("{}: found {}; the floor comes from the windows' fitted B: add \"B\" to "
+                    "\"terms\" or set floor_tau_s to 0",
+                    reader.pointer("floor_tau_s"), floor_tau_s));
+  }
   reader.finish();
   options.window = samples_for(window_s, record.rate_hz);
   options.step = std::max<std::size_t>(1, samples_for(step_s, record.rate_hz));
@@ -340,16 +398,29 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
 
   DavarParams params;
   params.causal = causal;
+  std::array<stochnav::DavarResult, 3> deviations;
   for (std::size_t axis = 0; axis < 3; ++axis) {
-    stochnav::davar_noise::WindowFitSeries series;
+    if (spin_axis && axis != *spin_axis) continue;
     try {
-      series = stochnav::davar_noise::fit_terms_per_window(record.axes[axis], record.rate_hz,
-                                                           record.start_time_s, options);
+      deviations[axis] = stochnav::davar_noise::window_deviations(
+          record.axes[axis], record.rate_hz, record.start_time_s, options);
     } catch (const stochnav::InputError& error) {
       throw stochnav::InputError(record.source + ": " + error.what());
     }
+  }
+  if (spin_axis) remove_spin_motion(record, *spin_axis, options, deviations);
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    auto series = stochnav::davar_noise::fit_window_deviations(deviations[axis], options);
     if (axis == 0) params.time_s = series.time_s;
     params.n[axis] = std::move(series.angle_random_walk);
+    if (floor_tau_s > 0.0) {
+      // The white level whose Allan variance at floor_tau_s equals the window's N and B.
+      for (std::size_t j = 0; j < params.n[axis].size(); ++j) {
+        const double b = series.bias_instability[j];
+        params.n[axis][j] = std::sqrt(params.n[axis][j] * params.n[axis][j] +
+                                      kFloorAvarPerB2 * b * b * floor_tau_s);
+      }
+    }
     raise_to_floor(params.n[axis], floor_fraction);
   }
   nlohmann::json quality;  // the windows' DAVAR fits are not summarised: null without K

@@ -79,20 +79,25 @@ Eigen::VectorXd solve_non_negative(const WindowData& data, const Eigen::VectorXd
   return solution.cwiseMax(0.0);
 }
 
+/// Index of the angle random walk among `terms`; ConfigError when it is not one of them.
+Eigen::Index angle_random_walk_column(const std::vector<WindowTerm>& terms) {
+  const auto arw = std::find(terms.begin(), terms.end(), WindowTerm::kAngleRandomWalk);
+  if (arw == terms.end()) {
+    throw ConfigError("fit_terms_per_window: the terms must include the angle random walk");
+  }
+  return static_cast<Eigen::Index>(arw - terms.begin());
+}
+
 }  // namespace
 
-WindowFitSeries fit_terms_per_window(std::span<const double> rate_samples, double rate_hz,
-                                     double start_time_s, const WindowFitOptions& options) {
+DavarResult window_deviations(std::span<const double> rate_samples, double rate_hz,
+                              double start_time_s, const WindowFitOptions& options) {
   if (!(rate_hz > 0.0)) throw ConfigError("fit_terms_per_window: rate_hz must be > 0");
   if (options.window < 16 || options.step < 1) {
     throw ConfigError("fit_terms_per_window: window must be >= 16 samples and step >= 1 (got " +
                       std::to_string(options.window) + ", " + std::to_string(options.step) + ")");
   }
-  const auto arw =
-      std::find(options.terms.begin(), options.terms.end(), WindowTerm::kAngleRandomWalk);
-  if (arw == options.terms.end()) {
-    throw ConfigError("fit_terms_per_window: the terms must include the angle random walk");
-  }
+  angle_random_walk_column(options.terms);
   if (rate_samples.size() < options.window) {
     throw InputError("fit_terms_per_window: the record (" + std::to_string(rate_samples.size()) +
                      " samples) is shorter than one window (" + std::to_string(options.window) +
@@ -104,14 +109,30 @@ WindowFitSeries fit_terms_per_window(std::span<const double> rate_samples, doubl
   record.start_time_s = start_time_s;
   const DavarOptions davar_options{
       .window = options.window, .step = options.step, .causal = options.causal, .m_values = {}};
-  const DavarResult davar = dynamic_allan_deviation(record, davar_options);
+  DavarResult davar = dynamic_allan_deviation(record, davar_options);
+  if (davar.tau_s.size() < options.terms.size() + 1) {
+    throw InputError("fit_terms_per_window: a window of " + std::to_string(options.window) +
+                     " samples has " + std::to_string(davar.tau_s.size()) +
+                     " octave taus, too few for " + std::to_string(options.terms.size()) +
+                     " terms; use a longer window or fewer terms");
+  }
+  return davar;
+}
+
+WindowFitSeries fit_terms_per_window(std::span<const double> rate_samples, double rate_hz,
+                                     double start_time_s, const WindowFitOptions& options) {
+  return fit_window_deviations(window_deviations(rate_samples, rate_hz, start_time_s, options),
+                               options);
+}
+
+WindowFitSeries fit_window_deviations(const DavarResult& davar, const WindowFitOptions& options) {
   const auto taus = static_cast<Eigen::Index>(davar.tau_s.size());
   const auto terms = static_cast<Eigen::Index>(options.terms.size());
-  if (taus < terms + 1) {
-    throw InputError("fit_terms_per_window: a window of " + std::to_string(options.window) +
-                     " samples has " + std::to_string(taus) + " octave taus, too few for " +
-                     std::to_string(terms) + " terms; use a longer window or fewer terms");
-  }
+  const Eigen::Index arw_column = angle_random_walk_column(options.terms);
+  const auto b_term =
+      std::find(options.terms.begin(), options.terms.end(), WindowTerm::kBiasInstability);
+  const Eigen::Index b_column = static_cast<Eigen::Index>(b_term - options.terms.begin());
+  const bool with_b = b_term != options.terms.end();
 
   Eigen::MatrixXd design(taus, terms);
   Eigen::VectorXd edf(taus);
@@ -125,11 +146,11 @@ WindowFitSeries fit_terms_per_window(std::span<const double> rate_samples, doubl
                             .phase_count = options.window + 1,
                             .overlapping = true});
   }
-  const auto arw_column = static_cast<Eigen::Index>(arw - options.terms.begin());
 
   WindowFitSeries series;
   series.time_s = davar.time_s;
   series.angle_random_walk.reserve(davar.adev.size());
+  series.bias_instability.reserve(davar.adev.size());
   for (const auto& row : davar.adev) {
     // Points with a zero deviation (a constant stretch) carry no information on the noise.
     std::vector<Eigen::Index> usable;
@@ -148,6 +169,7 @@ WindowFitSeries fit_terms_per_window(std::span<const double> rate_samples, doubl
     }
     if (data.avar.size() < terms + 1) {
       series.angle_random_walk.push_back(0.0);
+      series.bias_instability.push_back(0.0);
       continue;
     }
     const Eigen::VectorXd pilot = solve_non_negative(data, data.avar);
@@ -158,6 +180,7 @@ WindowFitSeries fit_terms_per_window(std::span<const double> rate_samples, doubl
     }
     const Eigen::VectorXd squared = solve_non_negative(data, reference);
     series.angle_random_walk.push_back(std::sqrt(squared(arw_column)));
+    series.bias_instability.push_back(with_b ? std::sqrt(squared(b_column)) : 0.0);
   }
   return series;
 }

@@ -19,6 +19,8 @@
 #include <span>
 #include <vector>
 
+#include "stochnav/stats/davar.hpp"
+
 namespace stochnav::davar_noise {
 
 /// Terms of Eq. 7 a window fit may use (rate ramp is left out: a window too short to hold a
@@ -36,13 +38,24 @@ struct WindowFitSeries {
   std::vector<double> time_s;  ///< analysis time of each window (s), ascending
   /// Angle random walk N of each window (natural units, e.g. rad/sqrt(s)), >= 0.
   std::vector<double> angle_random_walk;
+  /// Bias instability B of each window (natural units, e.g. rad/s), >= 0; zeros when the
+  /// terms do not include it.
+  std::vector<double> bias_instability;
 };
 
 /// Fits `terms` to every window of a uniformly sampled rate record (samples in natural units,
-/// sample k at start_time_s + k / rate_hz). Throws ConfigError when the options are invalid
-/// or the terms do not include kAngleRandomWalk, and InputError when the record is shorter
-/// than one window or a window has fewer octave taus than terms + 1.
+/// sample k at start_time_s + k / rate_hz): window_deviations, then fit_window_deviations.
 WindowFitSeries fit_terms_per_window(std::span<const double> rate_samples, double rate_hz,
                                      double start_time_s, const WindowFitOptions& options);
+
+/// The DAVAR of the record at the octave factors of one window (stats/davar.hpp). Throws
+/// ConfigError when the options are invalid or the terms do not include kAngleRandomWalk, and
+/// InputError when the record is shorter than one window or a window has fewer octave taus
+/// than terms + 1.
+DavarResult window_deviations(std::span<const double> rate_samples, double rate_hz,
+                              double start_time_s, const WindowFitOptions& options);
+
+/// Fits `options.terms` to every window (row) of `davar`, computed with options.window.
+WindowFitSeries fit_window_deviations(const DavarResult& davar, const WindowFitOptions& options);
 
 }  // namespace stochnav::davar_noise
