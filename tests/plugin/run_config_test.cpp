@@ -98,7 +98,7 @@ TEST_F(RunConfigTest, FilterDefaultsAreFilterOptionsDefaults) {
       "initial_sigma": {"position_m": 0.1, "velocity_m_s": 0.01,
                         "attitude_deg": [0.0572958, 0.0572958, 0.572958],
                         "accel_bias_m_s2": 0.001, "gyro_bias_deg_h": 1.031324},
-      "covariance_interval_s": 0.1, "max_consecutive_rejections": 10,
+      "covariance_interval_s": 0.1, "max_consecutive_rejections": 3,
       "scale_factor_sigma_ppm": {"gyro": 0, "accel": 0}, "feedback": "closed_loop"})");
   expect_same_options(parse_filter_section(stated, "/filter").options, defaults, 1e-6);
 }
