@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -115,8 +116,9 @@ NoiseId lag1_noise_id(std::span<const double> phase, std::size_t m, int max_diff
 
 /// Phase points per block: 256 KB, an L2-sized piece of the record.
 constexpr std::size_t kLag1BlockPoints = std::size_t{1} << 15;
-/// Independent accumulators per sum: they break the serial chain of additions.
-constexpr std::size_t kLag1Lanes = 4;
+/// Independent accumulators per sum: sixteen break the serial chains of additions (two AVX-512
+/// or four AVX2 registers per sum).
+constexpr std::size_t kLag1Lanes = 16;
 
 /// The decimated indices k of factor m whose phase index k m lies in [first, last): [begin, end).
 struct DecimatedRange {
@@ -149,6 +151,49 @@ PerDifference differences_ending_at(const double* x, std::size_t m, std::size_t 
 /// Accumulators of the centred lag products and squares: [order d][lane].
 using LaneSums = std::array<std::array<double, kLag1Lanes>, kMaxDifferences + 1>;
 
+/// Adds the centred products c(t - 1) c(t) and squares c(t)^2 of one order's differences,
+/// c(t) = D(t) - mu, t = 0 .. count - 1, where D(t) is the Order-th backward difference of z
+/// ending at z[t] (z[-(Order + 1)] .. z[count - 1] readable); for order 0 also the sum of c(t).
+/// c(t - 1) is recomputed rather than kept: the loop has no carried value but its sums. Always
+/// inlined, so it is compiled for the instruction set of its caller's clone.
+template <int Order>
+[[gnu::always_inline]] inline void add_order_sums(const double* z, std::size_t count, double mu,
+                           std::array<double, kLag1Lanes>& lagged,
+                           std::array<double, kLag1Lanes>& squares,
+                           std::array<double, kLag1Lanes>& values) {
+  const auto centred = [z, mu](std::ptrdiff_t t) {
+    const double* e = z + t;
+    if constexpr (Order == 0) return e[0] - mu;
+    if constexpr (Order == 1) return (e[0] - e[-1]) - mu;
+    if constexpr (Order == 2) return (e[0] - 2.0 * e[-1] + e[-2]) - mu;
+    return (e[0] - 3.0 * e[-1] + 3.0 * e[-2] - e[-3]) - mu;
+  };
+  // Local copies: the references might alias each other, which would pin them in memory.
+  std::array<double, kLag1Lanes> lag = lagged;
+  std::array<double, kLag1Lanes> square = squares;
+  std::array<double, kLag1Lanes> sum = values;
+  std::size_t t = 0;
+  for (; t + kLag1Lanes <= count; t += kLag1Lanes) {
+    for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) {
+      const auto at = static_cast<std::ptrdiff_t>(t + lane);
+      const double now = centred(at);
+      lag[lane] += centred(at - 1) * now;
+      square[lane] += now * now;
+      if constexpr (Order == 0) sum[lane] += now;
+    }
+  }
+  for (; t < count; ++t) {
+    const auto at = static_cast<std::ptrdiff_t>(t);
+    const double now = centred(at);
+    lag[0] += centred(at - 1) * now;
+    square[0] += now * now;
+    if constexpr (Order == 0) sum[0] += now;
+  }
+  lagged = lag;
+  squares = square;
+  if constexpr (Order == 0) values = sum;
+}
+
 /// One contiguous piece of decimated points: z[-(highest + 1) .. count - 1] readable. Adds the
 /// centred products D_d(t - 1) D_d(t) and squares D_d(t)^2, t = 0 .. count - 1, for the orders
 /// lowest <= d <= highest. Every loop is contiguous, so it vectorises.
@@ -156,54 +201,14 @@ STOCHNAV_WIDE_VECTOR_CLONES
 void add_piece_sums(const double* z, std::size_t count, const PerDifference& mean, int lowest,
                     int highest, LaneSums& lagged, LaneSums& squares,
                     std::array<double, kLag1Lanes>& values) {
-  constexpr std::size_t kPiece = 512;
-  std::array<double, kPiece + 1> centred;
-  const double* e = z - 1;  // e[t] = z(t - 1), t = 0 .. count
   for (int order = lowest; order <= highest; ++order) {
-    const double mu = mean[static_cast<std::size_t>(order)];
+    const auto d = static_cast<std::size_t>(order);
     switch (order) {
-      case 0:
-        for (std::size_t t = 0; t <= count; ++t) centred[t] = e[t] - mu;
-        break;
-      case 1:
-        for (std::size_t t = 0; t <= count; ++t) centred[t] = (e[t] - *(e + t - 1)) - mu;
-        break;
-      case 2:
-        for (std::size_t t = 0; t <= count; ++t) {
-          centred[t] = (e[t] - 2.0 * *(e + t - 1) + *(e + t - 2)) - mu;
-        }
-        break;
-      default:
-        for (std::size_t t = 0; t <= count; ++t) {
-          centred[t] = (e[t] - 3.0 * *(e + t - 1) + 3.0 * *(e + t - 2) - *(e + t - 3)) - mu;
-        }
-        break;
+      case 0: add_order_sums<0>(z, count, mean[d], lagged[d], squares[d], values); break;
+      case 1: add_order_sums<1>(z, count, mean[d], lagged[d], squares[d], values); break;
+      case 2: add_order_sums<2>(z, count, mean[d], lagged[d], squares[d], values); break;
+      default: add_order_sums<3>(z, count, mean[d], lagged[d], squares[d], values); break;
     }
-    // Local copies: the inputs might alias the caller's arrays, which would pin them in memory.
-    std::array<double, kLag1Lanes> lag = lagged[static_cast<std::size_t>(order)];
-    std::array<double, kLag1Lanes> square = squares[static_cast<std::size_t>(order)];
-    std::size_t t = 0;
-    for (; t + kLag1Lanes <= count; t += kLag1Lanes) {
-      for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) {
-        lag[lane] += centred[t + lane] * centred[t + lane + 1];
-        square[lane] += centred[t + lane + 1] * centred[t + lane + 1];
-      }
-    }
-    for (; t < count; ++t) {
-      lag[0] += centred[t] * centred[t + 1];
-      square[0] += centred[t + 1] * centred[t + 1];
-    }
-    if (order == 0) {
-      std::array<double, kLag1Lanes> sum = values;
-      t = 0;
-      for (; t + kLag1Lanes <= count; t += kLag1Lanes) {
-        for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) sum[lane] += centred[t + lane + 1];
-      }
-      for (; t < count; ++t) sum[0] += centred[t + 1];
-      values = sum;
-    }
-    lagged[static_cast<std::size_t>(order)] = lag;
-    squares[static_cast<std::size_t>(order)] = square;
   }
 }
 
@@ -235,6 +240,11 @@ Lag1Sums lag1_sums(const double* x, std::size_t m, DecimatedRange range, const P
   LaneSums lagged{};
   LaneSums squares{};
   std::array<double, kLag1Lanes> values{};
+  if (m == 1 && k < range.end) {
+    // The decimated points are the phase itself: no copy.
+    add_piece_sums(x + k, range.end - k, mean, lowest, highest, lagged, squares, values);
+    k = range.end;
+  }
   while (k < range.end) {
     const std::size_t count = std::min(kPiece, range.end - k);
     const double* from = x + (k - kBack) * m;
@@ -242,11 +252,18 @@ Lag1Sums lag1_sums(const double* x, std::size_t m, DecimatedRange range, const P
     add_piece_sums(z.data() + kBack, count, mean, lowest, highest, lagged, squares, values);
     k += count;
   }
+  // Pairwise: lanes (2j, 2j + 1), then pairs of those, and so on.
+  const auto reduce = [](std::array<double, kLag1Lanes> a) {
+    for (std::size_t width = kLag1Lanes / 2; width >= 1; width /= 2) {
+      for (std::size_t lane = 0; lane < width; ++lane) a[lane] = a[2 * lane] + a[2 * lane + 1];
+    }
+    return a[0];
+  };
   for (std::size_t d = low; d <= high; ++d) {
-    sums.lagged[d] += (lagged[d][0] + lagged[d][1]) + (lagged[d][2] + lagged[d][3]);
-    sums.squares[d] += (squares[d][0] + squares[d][1]) + (squares[d][2] + squares[d][3]);
+    sums.lagged[d] += reduce(lagged[d]);
+    sums.squares[d] += reduce(squares[d]);
   }
-  sums.values += (values[0] + values[1]) + (values[2] + values[3]);
+  sums.values += reduce(values);
   return sums;
 }
 
