@@ -300,14 +300,19 @@ bool is_single_float64_channel(const ReadOptions& options) {
 }  // namespace
 
 /// Uninitialised storage for n doubles in transparent huge pages where the kernel allows: the
-/// pages are first touched, and zeroed, by the threads that fill them.
+/// pages are first touched, and zeroed, by the threads that fill them. Only whole huge pages
+/// inside the data are advised: the tail stays in small pages, so the resident memory is the
+/// data's size, not up to one huge page (2 MB) more.
 std::shared_ptr<double[]> huge_page_array(std::size_t n) {
   constexpr std::size_t kHugePage = std::size_t{1} << 21;
-  const std::size_t bytes = (n * sizeof(double) + kHugePage - 1) / kHugePage * kHugePage;
-  void* memory = std::aligned_alloc(kHugePage, bytes);
-  if (memory == nullptr) throw std::bad_alloc();
+  constexpr std::size_t kPage = std::size_t{1} << 12;
+  const std::size_t bytes = (n * sizeof(double) + kPage - 1) / kPage * kPage;
+  // posix_memalign: the size need not be a multiple of the alignment (aligned_alloc's rule).
+  void* memory = nullptr;
+  if (::posix_memalign(&memory, kHugePage, bytes) != 0) throw std::bad_alloc();
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  ::madvise(memory, bytes, MADV_HUGEPAGE);  // a hint only
+  const std::size_t whole_huge_pages = n * sizeof(double) / kHugePage * kHugePage;
+  if (whole_huge_pages > 0) ::madvise(memory, whole_huge_pages, MADV_HUGEPAGE);  // a hint only
 #endif
   return std::shared_ptr<double[]>(static_cast<double*>(memory), [](double* p) { std::free(p); });
 }
