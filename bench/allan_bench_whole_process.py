@@ -79,6 +79,7 @@ walk = np.cumsum(1e-4 * rng.standard_normal({args.samples}))
                            "50000", "--step", "5000", "--format", "json", "--output",
                            out("davar.json")],
     }
+    load_before = os.getloadavg()
     best = {name: (float("inf"), 0) for name in programs}
     for _ in range(args.repeats):
         for name, command in programs.items():
@@ -92,9 +93,11 @@ walk = np.cumsum(1e-4 * rng.standard_normal({args.samples}))
         assert all(abs(x / y - 1.0) < 1e-12 for x, y in zip(a["tau"], b["tau"])), "tau differs"
         return max(abs(x / y - 1.0) for x, y in zip(a["adev"], b["adev"]))
 
+    load_after = os.getloadavg()
     limit = best["read+sum"][0]
     print(f"{args.samples} samples, {data_bytes / 1e6:.0f} MB raw float64; best of {args.repeats} "
-          f"whole-process runs; {os.cpu_count()} CPUs\n")
+          f"whole-process runs; {os.cpu_count()} CPUs; load average (1 min) {load_before[0]:.1f} "
+          f"before, {load_after[0]:.1f} after (above 0.5 other processes shared the CPUs)\n")
     print(f"{'program':24} {'seconds':>8} {'x read+sum':>10} {'peak MB':>8} {'/ data':>7}")
     for name, (seconds, rss) in best.items():
         print(f"{name:24} {seconds:8.3f} {seconds / limit:10.1f} {rss / 1e6:8.1f} "
@@ -103,13 +106,21 @@ walk = np.cumsum(1e-4 * rng.standard_normal({args.samples}))
     dense = best["numpy dense"][0] / best["stochnav allan dense"][0]
     davar = best["stochnav davar"][0] / best["stochnav allan octave"][0]
     memory = max(best[n][1] for n in programs if n.startswith("stochnav")) / data_bytes
+    over_limit = lambda name: best[name][0] / limit
+    verdict = lambda met: "met" if met else "NOT met"
     print()
-    print(f"OADEV octave, speed-up over numpy:  {octave:6.1f}x  (goal >= 20x)  "
-          f"largest relative adev difference {agreement('octave.json', 'numpy_octave.stdout'):.1e}")
-    print(f"OADEV dense,  speed-up over numpy:  {dense:6.1f}x  (goal >= 20x)  "
-          f"largest relative adev difference {agreement('dense.json', 'numpy_dense.stdout'):.1e}")
-    print(f"DAVAR 50000/5000 over one OADEV run: {davar:6.2f}x  (goal <= 1.5x)")
-    print(f"peak memory of stochnav / data size: {memory:6.2f}   (goal <= 1.2)")
+    print(f"OADEV octave, speed-up over numpy:  {octave:6.1f}x  "
+          f"(goal >= 20x: {verdict(octave >= 20)}); "
+          f"{over_limit('stochnav allan octave'):.1f}x a read+sum; largest relative adev "
+          f"difference {agreement('octave.json', 'numpy_octave.stdout'):.1e}")
+    print(f"OADEV dense,  speed-up over numpy:  {dense:6.1f}x  "
+          f"(goal >= 20x: {verdict(dense >= 20)}); "
+          f"{over_limit('stochnav allan dense'):.1f}x a read+sum; largest relative adev "
+          f"difference {agreement('dense.json', 'numpy_dense.stdout'):.1e}")
+    print(f"DAVAR 50000/5000 over one OADEV run: {davar:6.2f}x  (goal <= 1.5x: "
+          f"{verdict(davar <= 1.5)}); {over_limit('stochnav davar'):.1f}x a read+sum")
+    print(f"peak memory of stochnav / data size: {memory:6.2f}   (goal <= 1.2: "
+          f"{verdict(memory <= 1.2)})")
     for path in os.listdir(work):
         os.remove(os.path.join(work, path))
     os.rmdir(work)
