@@ -258,9 +258,8 @@ class DavarAccumulator::Impl {
     while (!pending_.empty() && pending_.front().window_index < complete_before) {
       DavarRow& row = pending_.front();
       const double start = static_cast<double>(row.window_index * options_.step);
-      const double offset =
-          options_.causal ? static_cast<double>(options_.window)
-                          : 0.5 * static_cast<double>(options_.window);
+      const double offset = options_.causal ? static_cast<double>(options_.window)
+                                            : 0.5 * static_cast<double>(options_.window);
       row.time_s = start_time_s_ + (start + offset) * tau0_;
       sink_(row);
       pending_.pop_front();

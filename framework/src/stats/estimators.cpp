@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "fused_passes.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/parallel.hpp"
 #include "vector_clones.hpp"
@@ -25,7 +26,6 @@ constexpr std::size_t kBlockTerms = 2048;
 
 /// Blocks per task of the pass along the record: 2^16 terms, about 150 tasks on 1e7 points.
 constexpr std::size_t kBlocksPerTask = 32;
-
 
 /// sum_{i = begin}^{end - 1} (x[i+2m] - 2 x[i+m] + x[i])^2. Eight independent accumulators
 /// let the compiler keep the adds in vector registers (no reassociation is needed).
@@ -166,8 +166,11 @@ double sum_differences(int d, const double* x, std::size_t m, std::size_t begin,
 ///    walking along the record would fetch each far offset anew (4 of 22 octave factors of a
 ///    1e7 record cost as much as the other 18 that way).
 /// Other large factors (all-tau sets) go with the first pass.
+/// With a `job`, its block b runs right after along-record task b (the same start indices), and
+/// its blocks beyond the last such task as tasks of their own.
 std::vector<double> overlapping_sums(int d, std::span<const double> phase,
-                                     std::span<const std::size_t> m_values) {
+                                     std::span<const std::size_t> m_values,
+                                     const AlongsideJob* job) {
   constexpr std::size_t kRowFactor = std::size_t{1} << 16;
   const std::size_t n = phase.size();
   const auto order = static_cast<std::size_t>(d);
@@ -240,11 +243,17 @@ std::vector<double> overlapping_sums(int d, std::span<const double> phase,
       begin += row_length;
     }
   };
-  parallel_for(record_tasks + column_tasks, [&](std::size_t task) {
+  static_assert(kTaskTerms == kAlongsideBlockPoints, "a job block is the stretch of one task");
+  const std::size_t job_blocks = job != nullptr ? job->blocks : 0;
+  const std::size_t job_tasks = job_blocks > record_tasks ? job_blocks - record_tasks : 0;
+  parallel_for(record_tasks + column_tasks + job_tasks, [&](std::size_t task) {
     if (task < record_tasks) {
       along_record_task(task);
-    } else {
+      if (task < job_blocks) job->run(task);
+    } else if (task < record_tasks + column_tasks) {
       down_rows_task(task - record_tasks);
+    } else {
+      job->run(record_tasks + (task - record_tasks - column_tasks));
     }
   });
 
@@ -311,14 +320,6 @@ double modified_sum(std::span<const double> x, std::size_t m, std::size_t terms)
   return total;
 }
 
-void require_terms(Deviation kind, std::size_t m, std::size_t phase_count) {
-  if (term_count(kind, m, phase_count) == 0) {
-    throw std::invalid_argument(
-        std::string(deviation_name(kind)) + ": averaging factor m = " + std::to_string(m) +
-        " leaves no terms on " + std::to_string(phase_count) + " phase points");
-  }
-}
-
 /// Variance sum -> deviation, with the normalisation of each estimator.
 double to_deviation(Deviation kind, double sum, double tau0_s, std::size_t m, std::size_t terms) {
   const double tau = static_cast<double>(m) * tau0_s;
@@ -342,17 +343,18 @@ double to_deviation(Deviation kind, double sum, double tau0_s, std::size_t m, st
   return 0.0;
 }
 
-}  // namespace
-
-std::vector<double> deviation_values(Deviation kind, std::span<const double> phase, double tau0_s,
-                                     std::span<const std::size_t> m_values) {
+/// deviation_values with an optional job run in the same pass (deviation_values_alongside).
+std::vector<double> deviation_values_with(Deviation kind, std::span<const double> phase,
+                                          double tau0_s, std::span<const std::size_t> m_values,
+                                          const AlongsideJob* job) {
   const std::size_t n = phase.size();
-  for (std::size_t m : m_values) require_terms(kind, m, n);
+  for (std::size_t m : m_values) require_deviation_terms(kind, m, n);
 
   std::vector<double> sums;
   if (kind == Deviation::kOadev || kind == Deviation::kOhdev) {
-    sums = overlapping_sums(difference_order(kind), phase, m_values);
+    sums = overlapping_sums(difference_order(kind), phase, m_values, job);
   } else {
+    if (job != nullptr) parallel_for(job->blocks, job->run);
     // One task per factor: each sum is computed whole by one thread, as before.
     sums.assign(m_values.size(), 0.0);
     parallel_for(m_values.size(), [&](std::size_t k) {
@@ -368,6 +370,27 @@ std::vector<double> deviation_values(Deviation kind, std::span<const double> pha
     deviations[k] = to_deviation(kind, sums[k], tau0_s, m, term_count(kind, m, n));
   }
   return deviations;
+}
+
+}  // namespace
+
+void require_deviation_terms(Deviation kind, std::size_t m, std::size_t phase_count) {
+  if (term_count(kind, m, phase_count) == 0) {
+    throw std::invalid_argument(
+        std::string(deviation_name(kind)) + ": averaging factor m = " + std::to_string(m) +
+        " leaves no terms on " + std::to_string(phase_count) + " phase points");
+  }
+}
+
+std::vector<double> deviation_values(Deviation kind, std::span<const double> phase, double tau0_s,
+                                     std::span<const std::size_t> m_values) {
+  return deviation_values_with(kind, phase, tau0_s, m_values, nullptr);
+}
+
+std::vector<double> deviation_values_alongside(Deviation kind, std::span<const double> phase,
+                                               double tau0_s, std::span<const std::size_t> m_values,
+                                               const AlongsideJob& job) {
+  return deviation_values_with(kind, phase, tau0_s, m_values, &job);
 }
 
 double deviation_value(Deviation kind, std::span<const double> phase, double tau0_s,

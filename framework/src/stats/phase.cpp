@@ -8,8 +8,8 @@
 #endif
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -148,10 +148,10 @@ CompensatedSum wide_chunk_sum(const double* values, std::size_t count) {
 /// multiply-subtract into a fused one: the clones must round as the default code does.
 /// rate and x point at the first sample of the first chunk; start_high/low: the compensated
 /// sums before each chunk; first_position: the 1-based index of the first sample.
-STOCHNAV_WIDE_VECTOR_CLONES __attribute__((optimize("fp-contract=off")))
-void running_sums_of_eight_chunks(const double* rate, double* x, const double* start_high,
-                                  const double* start_low, double first_position,
-                                  double mean_high, double mean_low, double tau0_s) {
+STOCHNAV_WIDE_VECTOR_CLONES __attribute__((optimize("fp-contract=off"))) void
+running_sums_of_eight_chunks(const double* rate, double* x, const double* start_high,
+                             const double* start_low, double first_position, double mean_high,
+                             double mean_low, double tau0_s) {
   Vector8 high;
   Vector8 low;
   load8(high, start_high);
