@@ -199,12 +199,14 @@ template <int Order>
 }
 
 /// add_order_sums<0> and <1> in one loop: three loads per point serve both (bitwise the same
-/// sums as the two loops).
+/// sums as the two loops). ZeroShift: the order-0 shift mean[0] is 0 (a phase integrated from
+/// rates starts at 0), so subtracting it, exact, is left out: two additions of seven fewer.
+template <bool ZeroShift>
 [[gnu::always_inline]] inline void add_order_sums_0_1(const double* z, std::size_t count,
                                                       const PerDifference& mean, LaneSums& lagged,
                                                       LaneSums& squares,
                                                       std::array<double, kLag1Lanes>& values) {
-  const double mu0 = mean[0];
+  const double mu0 = ZeroShift ? 0.0 : mean[0];
   const double mu1 = mean[1];
   std::array<double, kLag1Lanes> lag0 = lagged[0];
   std::array<double, kLag1Lanes> square0 = squares[0];
@@ -215,8 +217,8 @@ template <int Order>
     const double e0 = z[t];
     const double e1 = *(z + t - 1);
     const double e2 = *(z + t - 2);
-    const double now0 = e0 - mu0;
-    lag0[lane] += (e1 - mu0) * now0;
+    const double now0 = ZeroShift ? e0 : e0 - mu0;
+    lag0[lane] += (ZeroShift ? e1 : e1 - mu0) * now0;
     square0[lane] += now0 * now0;
     sum0[lane] += now0;
     const double now1 = (e0 - e1) - mu1;
@@ -243,7 +245,11 @@ void add_piece_sums(const double* z, std::size_t count, const PerDifference& mea
                     int highest, LaneSums& lagged, LaneSums& squares,
                     std::array<double, kLag1Lanes>& values) {
   if (lowest == 0 && highest >= 1) {
-    add_order_sums_0_1(z, count, mean, lagged, squares, values);
+    if (mean[0] == 0.0) {
+      add_order_sums_0_1<true>(z, count, mean, lagged, squares, values);
+    } else {
+      add_order_sums_0_1<false>(z, count, mean, lagged, squares, values);
+    }
     lowest = 2;
   }
   for (int order = lowest; order <= highest; ++order) {
