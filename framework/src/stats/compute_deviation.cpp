@@ -1,5 +1,6 @@
 // A Stable32-style result table: deviation, noise type, EDF and confidence interval per tau.
 
+#include "fused_passes.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/edf.hpp"
 #include "stochnav/stats/noise_id.hpp"
@@ -9,15 +10,20 @@ namespace stochnav {
 std::vector<DeviationPoint> compute_deviation(Deviation kind, std::span<const double> phase,
                                               double tau0_s, std::span<const std::size_t> m_values,
                                               double confidence) {
-  const std::vector<double> values = deviation_values(kind, phase, tau0_s, m_values);
-  // The noise types Stable32 identifies (not those it carries over), all together.
+  // Every factor's terms checked first: a factor too long for both gives the estimator's error.
+  for (std::size_t m : m_values) require_deviation_terms(kind, m, phase.size());
+  // The noise types Stable32 identifies (not those it carries over), all together; their pass
+  // over the record runs inside the pass of the deviation sums (fused_passes.hpp).
   std::vector<std::size_t> identified_m;
   for (std::size_t k = 0; k < m_values.size(); ++k) {
     if (k == 0 || !keeps_previous_noise_type(kind, m_values[k], phase.size())) {
       identified_m.push_back(m_values[k]);
     }
   }
-  const std::vector<NoiseId> identified = identify_noises(kind, phase, identified_m);
+  NoiseIdentification identification(kind, phase, identified_m);
+  const std::vector<double> values =
+      deviation_values_alongside(kind, phase, tau0_s, m_values, identification.lag1_job());
+  const std::vector<NoiseId> identified = identification.finish();
   std::size_t next_identified = 0;
   std::vector<DeviationPoint> points;
   points.reserve(m_values.size());

@@ -30,16 +30,17 @@ struct CompensatedSum {
   }
 };
 
-/// sum_{i < count} (x[i+2m] - 2 x[i+m] + x[i])^2 with eight independent accumulators, so the
-/// compiler keeps the additions in vector registers.
+/// sum_{i < count} (x[i+2m] - 2 x[i+m] + x[i])^2 with 32 independent accumulators: four
+/// vectors of eight, so four chains of additions keep the vector units busy.
 STOCHNAV_WIDE_VECTOR_CLONES
 double sum_squared_second_differences(const double* x, std::size_t m, std::size_t count) {
+  constexpr std::size_t kLanes = 32;
   const double* x1 = x + m;
   const double* x2 = x1 + m;
-  std::array<double, 8> acc{};
+  std::array<double, kLanes> acc{};
   std::size_t i = 0;
-  for (; i + 8 <= count; i += 8) {
-    for (std::size_t lane = 0; lane < 8; ++lane) {
+  for (; i + kLanes <= count; i += kLanes) {
+    for (std::size_t lane = 0; lane < kLanes; ++lane) {
       const double d = x2[i + lane] - 2.0 * x1[i + lane] + x[i + lane];
       acc[lane] += d * d;
     }
@@ -48,7 +49,10 @@ double sum_squared_second_differences(const double* x, std::size_t m, std::size_
     const double d = x2[i] - 2.0 * x1[i] + x[i];
     acc[0] += d * d;
   }
-  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+  for (std::size_t width = kLanes / 2; width >= 1; width /= 2) {  // pairwise
+    for (std::size_t lane = 0; lane < width; ++lane) acc[lane] += acc[lane + width];
+  }
+  return acc[0];
 }
 
 /// A window's sum at one averaging factor, waiting to go into its row.
@@ -71,6 +75,12 @@ struct TauLane {
   std::size_t next_end_window = 0;         // window whose sum ends next
   std::vector<WindowSum> finished;         // sums completed by the current push
 };
+
+/// Lane groups of a push (tasks), and the terms of one piece of a group's sweep: with every
+/// averaging factor of a 50,000-sample window the piece and its offsets (up to 2m) stay in the
+/// L2 cache.
+constexpr std::size_t kLaneGroups = 4;
+constexpr std::size_t kPieceTerms = 4096;
 
 }  // namespace
 
@@ -123,8 +133,28 @@ class DavarAccumulator::Impl {
     append_phase(samples);
     const std::size_t available_end = phase_base_ + phase_.size();  // one past last phase index
     // The lanes are independent: each runs on one thread, its window sums kept aside, then
-    // filed into the rows in lane order (the same rows for every thread count).
-    parallel_for(lanes_.size(), [&](std::size_t lane) { advance(lane, available_end); });
+    // filed into the rows in lane order (the same rows for every thread count). A task takes a
+    // fixed group of lanes through the new terms a cache-sized piece at a time, all its lanes
+    // per piece: the piece comes from memory once for the group, not once per lane. A lane's
+    // sums do not depend on the grouping.
+    const std::size_t groups = std::min(lanes_.size(), kLaneGroups);
+    parallel_for(groups, [&](std::size_t group) {
+      std::size_t first_term = available_end;
+      std::size_t last_end = 0;
+      for (std::size_t lane = group; lane < lanes_.size(); lane += groups) {
+        first_term = std::min(first_term, lanes_[lane].next_term);
+        if (available_end >= 2 * lanes_[lane].m + 1) {
+          last_end = std::max(last_end, available_end - 2 * lanes_[lane].m);
+        }
+      }
+      for (std::size_t limit = (first_term / kPieceTerms + 1) * kPieceTerms;;
+           limit += kPieceTerms) {
+        for (std::size_t lane = group; lane < lanes_.size(); lane += groups) {
+          advance(lane, available_end, limit);
+        }
+        if (limit >= last_end) break;
+      }
+    });
     for (std::size_t lane = 0; lane < lanes_.size(); ++lane) {
       for (const WindowSum& done : lanes_[lane].finished) {
         record_window_sum(lane, done.window, done.sum);
@@ -158,14 +188,23 @@ class DavarAccumulator::Impl {
       have_reference_ = true;
       phase_.push_back(0.0);
     }
-    for (double y : samples) {
-      phase_sum_.add((y - rate_reference_) * tau0_);
-      phase_.push_back(phase_sum_.high + phase_sum_.low);
+    // Written through a pointer into room made first (no push_back per sample), with the
+    // running sum in locals: the loop is then bound by its chain of additions only.
+    const std::size_t old_size = phase_.size();
+    phase_.resize(old_size + samples.size());
+    double* out = phase_.data() + old_size;
+    CompensatedSum sum = phase_sum_;
+    const double reference = rate_reference_;
+    const double tau0 = tau0_;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      sum.add((samples[i] - reference) * tau0);
+      out[i] = sum.high + sum.low;
     }
+    phase_sum_ = sum;
   }
 
-  // Processes every term of lane `lane_index` whose phase points have arrived.
-  void advance(std::size_t lane_index, std::size_t available_end) {
+  // Processes every term of lane `lane_index` before `limit` whose phase points have arrived.
+  void advance(std::size_t lane_index, std::size_t available_end, std::size_t limit) {
     TauLane& lane = lanes_[lane_index];
     const std::size_t m = lane.m;
     if (available_end < 2 * m + 1) return;
@@ -186,9 +225,9 @@ class DavarAccumulator::Impl {
         ++lane.next_start_window;
         continue;
       }
-      std::size_t segment_end = std::min(last_term_end, start_position);
+      std::size_t segment_end = std::min({last_term_end, start_position, limit});
       if (!lane.open_starts.empty()) segment_end = std::min(segment_end, end_position);
-      if (segment_end == lane.next_term) break;  // waiting for more data
+      if (segment_end <= lane.next_term) break;  // waiting for more data, or past `limit`
       lane.prefix.add(sum_of_squared_terms(m, lane.next_term, segment_end));
       lane.next_term = segment_end;
     }
@@ -219,9 +258,8 @@ class DavarAccumulator::Impl {
     while (!pending_.empty() && pending_.front().window_index < complete_before) {
       DavarRow& row = pending_.front();
       const double start = static_cast<double>(row.window_index * options_.step);
-      const double offset =
-          options_.causal ? static_cast<double>(options_.window)
-                          : 0.5 * static_cast<double>(options_.window);
+      const double offset = options_.causal ? static_cast<double>(options_.window)
+                                            : 0.5 * static_cast<double>(options_.window);
       row.time_s = start_time_s_ + (start + offset) * tau0_;
       sink_(row);
       pending_.pop_front();

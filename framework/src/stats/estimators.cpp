@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "fused_passes.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/parallel.hpp"
 #include "vector_clones.hpp"
@@ -25,7 +26,6 @@ constexpr std::size_t kBlockTerms = 2048;
 
 /// Blocks per task of the pass along the record: 2^16 terms, about 150 tasks on 1e7 points.
 constexpr std::size_t kBlocksPerTask = 32;
-
 
 /// sum_{i = begin}^{end - 1} (x[i+2m] - 2 x[i+m] + x[i])^2. Eight independent accumulators
 /// let the compiler keep the adds in vector registers (no reassociation is needed).
@@ -73,6 +73,84 @@ double sum_third_differences(const double* x, std::size_t m, std::size_t begin, 
   return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
 }
 
+/// Factors summed together in one sweep over a block (sum_second_differences_of_four).
+constexpr std::size_t kGroup = 4;
+
+/// sum_second_differences of four factors m[0..3] at once, each over [begin, end) (all of them
+/// must have that many terms): per factor the very same operations in the same order, so the
+/// sums are bitwise those of four single calls. Four independent chains of additions instead of
+/// one keep the vector units busy, and x[i] is loaded once for all four; where each factor is
+/// twice the one before (octave and decade runs: m, 2m, 4m, 8m), x[i + 2m] of one is x[i + m]
+/// of the next, so 6 loads serve 4 terms instead of 12.
+STOCHNAV_WIDE_VECTOR_CLONES
+void sum_second_differences_of_four(const double* x, const std::size_t* m, std::size_t begin,
+                                    std::size_t end, double* sums) {
+  const double* x0 = x + begin;
+  const std::size_t count = end - begin;
+  std::array<std::array<double, 8>, kGroup> acc{};
+  const auto reduce = [](const std::array<double, 8>& a) {
+    return ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+  };
+  std::size_t i = 0;
+  if (m[1] == 2 * m[0] && m[2] == 2 * m[1] && m[3] == 2 * m[2]) {
+    // x0 + k m[0] for k = 1, 2, 4, 8, 16.
+    const double* a1 = x0 + m[0];
+    const double* a2 = x0 + m[1];
+    const double* a4 = x0 + m[2];
+    const double* a8 = x0 + m[3];
+    const double* a16 = x0 + 2 * m[3];
+    for (; i + 8 <= count; i += 8) {
+      for (std::size_t lane = 0; lane < 8; ++lane) {
+        const double z = x0[i + lane];
+        const double v1 = a1[i + lane];
+        const double v2 = a2[i + lane];
+        const double v4 = a4[i + lane];
+        const double v8 = a8[i + lane];
+        const double v16 = a16[i + lane];
+        const double d0 = v2 - 2.0 * v1 + z;
+        const double d1 = v4 - 2.0 * v2 + z;
+        const double d2 = v8 - 2.0 * v4 + z;
+        const double d3 = v16 - 2.0 * v8 + z;
+        acc[0][lane] += d0 * d0;
+        acc[1][lane] += d1 * d1;
+        acc[2][lane] += d2 * d2;
+        acc[3][lane] += d3 * d3;
+      }
+    }
+  } else {
+    const double* b0 = x0 + m[0];
+    const double* b1 = x0 + m[1];
+    const double* b2 = x0 + m[2];
+    const double* b3 = x0 + m[3];
+    const double* c0 = b0 + m[0];
+    const double* c1 = b1 + m[1];
+    const double* c2 = b2 + m[2];
+    const double* c3 = b3 + m[3];
+    for (; i + 8 <= count; i += 8) {
+      for (std::size_t lane = 0; lane < 8; ++lane) {
+        const double z = x0[i + lane];
+        const double d0 = c0[i + lane] - 2.0 * b0[i + lane] + z;
+        const double d1 = c1[i + lane] - 2.0 * b1[i + lane] + z;
+        const double d2 = c2[i + lane] - 2.0 * b2[i + lane] + z;
+        const double d3 = c3[i + lane] - 2.0 * b3[i + lane] + z;
+        acc[0][lane] += d0 * d0;
+        acc[1][lane] += d1 * d1;
+        acc[2][lane] += d2 * d2;
+        acc[3][lane] += d3 * d3;
+      }
+    }
+  }
+  for (std::size_t k = 0; k < kGroup; ++k) {
+    const double* x1 = x0 + m[k];
+    const double* x2 = x1 + m[k];
+    for (std::size_t j = i; j < count; ++j) {
+      const double diff = x2[j] - 2.0 * x1[j] + x0[j];
+      acc[k][0] += diff * diff;
+    }
+    sums[k] = reduce(acc[k]);
+  }
+}
+
 double sum_differences(int d, const double* x, std::size_t m, std::size_t begin, std::size_t end) {
   return d == 2 ? sum_second_differences(x, m, begin, end)
                 : sum_third_differences(x, m, begin, end);
@@ -88,8 +166,11 @@ double sum_differences(int d, const double* x, std::size_t m, std::size_t begin,
 ///    walking along the record would fetch each far offset anew (4 of 22 octave factors of a
 ///    1e7 record cost as much as the other 18 that way).
 /// Other large factors (all-tau sets) go with the first pass.
+/// With a `job`, its block b runs right after along-record task b (the same start indices), and
+/// its blocks beyond the last such task as tasks of their own.
 std::vector<double> overlapping_sums(int d, std::span<const double> phase,
-                                     std::span<const std::size_t> m_values) {
+                                     std::span<const std::size_t> m_values,
+                                     const AlongsideJob* job) {
   constexpr std::size_t kRowFactor = std::size_t{1} << 16;
   const std::size_t n = phase.size();
   const auto order = static_cast<std::size_t>(d);
@@ -115,39 +196,64 @@ std::vector<double> overlapping_sums(int d, std::span<const double> phase,
   const std::size_t factors = m_values.size();
   std::vector<double> partial((record_tasks + column_tasks) * factors, 0.0);
 
+  // Adds to out[k] the terms [begin, begin + width) of each listed factor k (fewer where the
+  // factor has fewer terms); false if none of them has a term there. Factors with every term of
+  // the block go four at a time (second differences), in the same order as one by one.
+  const auto add_block = [&](std::span<const std::size_t> listed, std::size_t begin,
+                             std::size_t width, double* out) {
+    std::array<std::size_t, kGroup> group_k{};
+    std::array<std::size_t, kGroup> group_m{};
+    std::size_t grouped = 0;
+    bool any_term = false;
+    for (std::size_t k : listed) {
+      const std::size_t terms = terms_of(m_values[k]);
+      if (begin >= terms) continue;
+      any_term = true;
+      const std::size_t end = std::min(begin + width, terms);
+      if (d == 2 && end == begin + width) {
+        group_k[grouped] = k;
+        group_m[grouped] = m_values[k];
+        if (++grouped == kGroup) {
+          std::array<double, kGroup> sums{};
+          sum_second_differences_of_four(phase.data(), group_m.data(), begin, end, sums.data());
+          for (std::size_t j = 0; j < kGroup; ++j) out[group_k[j]] += sums[j];
+          grouped = 0;
+        }
+      } else {
+        out[k] += sum_differences(d, phase.data(), m_values[k], begin, end);
+      }
+    }
+    for (std::size_t j = 0; j < grouped; ++j) {
+      out[group_k[j]] += sum_second_differences(phase.data(), group_m[j], begin, begin + width);
+    }
+    return any_term;
+  };
   const auto along_record_task = [&](std::size_t task) {
     double* out = partial.data() + task * factors;
     const std::size_t task_end = std::min(most_terms, (task + 1) * kTaskTerms);
     for (std::size_t begin = task * kTaskTerms; begin < task_end; begin += kBlockTerms) {
-      for (std::size_t k : along_record) {
-        const std::size_t terms = terms_of(m_values[k]);
-        if (begin >= terms) continue;
-        const std::size_t end = std::min(begin + kBlockTerms, terms);
-        out[k] += sum_differences(d, phase.data(), m_values[k], begin, end);
-      }
+      add_block(along_record, begin, kBlockTerms, out);
     }
   };
   const auto down_rows_task = [&](std::size_t task) {
     double* out = partial.data() + (record_tasks + task) * factors;
     const std::size_t column = task * kBlockTerms;
     const std::size_t width = std::min(kBlockTerms, row_length - column);
-    for (std::size_t begin = column;; begin += row_length) {
-      bool any_term = false;
-      for (std::size_t k : down_rows) {
-        const std::size_t terms = terms_of(m_values[k]);
-        if (begin >= terms) continue;
-        any_term = true;
-        const std::size_t end = std::min(begin + width, terms);
-        out[k] += sum_differences(d, phase.data(), m_values[k], begin, end);
-      }
-      if (!any_term) break;
+    for (std::size_t begin = column; add_block(down_rows, begin, width, out);) {
+      begin += row_length;
     }
   };
-  parallel_for(record_tasks + column_tasks, [&](std::size_t task) {
+  static_assert(kTaskTerms == kAlongsideBlockPoints, "a job block is the stretch of one task");
+  const std::size_t job_blocks = job != nullptr ? job->blocks : 0;
+  const std::size_t job_tasks = job_blocks > record_tasks ? job_blocks - record_tasks : 0;
+  parallel_for(record_tasks + column_tasks + job_tasks, [&](std::size_t task) {
     if (task < record_tasks) {
       along_record_task(task);
-    } else {
+      if (task < job_blocks) job->run(task);
+    } else if (task < record_tasks + column_tasks) {
       down_rows_task(task - record_tasks);
+    } else {
+      job->run(record_tasks + (task - record_tasks - column_tasks));
     }
   });
 
@@ -214,14 +320,6 @@ double modified_sum(std::span<const double> x, std::size_t m, std::size_t terms)
   return total;
 }
 
-void require_terms(Deviation kind, std::size_t m, std::size_t phase_count) {
-  if (term_count(kind, m, phase_count) == 0) {
-    throw std::invalid_argument(
-        std::string(deviation_name(kind)) + ": averaging factor m = " + std::to_string(m) +
-        " leaves no terms on " + std::to_string(phase_count) + " phase points");
-  }
-}
-
 /// Variance sum -> deviation, with the normalisation of each estimator.
 double to_deviation(Deviation kind, double sum, double tau0_s, std::size_t m, std::size_t terms) {
   const double tau = static_cast<double>(m) * tau0_s;
@@ -245,17 +343,18 @@ double to_deviation(Deviation kind, double sum, double tau0_s, std::size_t m, st
   return 0.0;
 }
 
-}  // namespace
-
-std::vector<double> deviation_values(Deviation kind, std::span<const double> phase, double tau0_s,
-                                     std::span<const std::size_t> m_values) {
+/// deviation_values with an optional job run in the same pass (deviation_values_alongside).
+std::vector<double> deviation_values_with(Deviation kind, std::span<const double> phase,
+                                          double tau0_s, std::span<const std::size_t> m_values,
+                                          const AlongsideJob* job) {
   const std::size_t n = phase.size();
-  for (std::size_t m : m_values) require_terms(kind, m, n);
+  for (std::size_t m : m_values) require_deviation_terms(kind, m, n);
 
   std::vector<double> sums;
   if (kind == Deviation::kOadev || kind == Deviation::kOhdev) {
-    sums = overlapping_sums(difference_order(kind), phase, m_values);
+    sums = overlapping_sums(difference_order(kind), phase, m_values, job);
   } else {
+    if (job != nullptr) parallel_for(job->blocks, job->run);
     // One task per factor: each sum is computed whole by one thread, as before.
     sums.assign(m_values.size(), 0.0);
     parallel_for(m_values.size(), [&](std::size_t k) {
@@ -271,6 +370,27 @@ std::vector<double> deviation_values(Deviation kind, std::span<const double> pha
     deviations[k] = to_deviation(kind, sums[k], tau0_s, m, term_count(kind, m, n));
   }
   return deviations;
+}
+
+}  // namespace
+
+void require_deviation_terms(Deviation kind, std::size_t m, std::size_t phase_count) {
+  if (term_count(kind, m, phase_count) == 0) {
+    throw std::invalid_argument(
+        std::string(deviation_name(kind)) + ": averaging factor m = " + std::to_string(m) +
+        " leaves no terms on " + std::to_string(phase_count) + " phase points");
+  }
+}
+
+std::vector<double> deviation_values(Deviation kind, std::span<const double> phase, double tau0_s,
+                                     std::span<const std::size_t> m_values) {
+  return deviation_values_with(kind, phase, tau0_s, m_values, nullptr);
+}
+
+std::vector<double> deviation_values_alongside(Deviation kind, std::span<const double> phase,
+                                               double tau0_s, std::span<const std::size_t> m_values,
+                                               const AlongsideJob& job) {
+  return deviation_values_with(kind, phase, tau0_s, m_values, &job);
 }
 
 double deviation_value(Deviation kind, std::span<const double> phase, double tau0_s,

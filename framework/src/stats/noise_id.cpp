@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "fused_passes.hpp"
 #include "stochnav/stats/parallel.hpp"
 #include "vector_clones.hpp"
 
@@ -113,10 +117,12 @@ NoiseId lag1_noise_id(std::span<const double> phase, std::size_t m, int max_diff
 // shifted-data correction), and one more for orders 2 and 3 of the few factors that need them.
 // The block partial sums are added in block order: the same result for every thread count.
 
-/// Phase points per block: 256 KB, an L2-sized piece of the record.
-constexpr std::size_t kLag1BlockPoints = std::size_t{1} << 15;
-/// Independent accumulators per sum: they break the serial chain of additions.
-constexpr std::size_t kLag1Lanes = 4;
+/// Phase points per block: 512 KB, the stretch of the record one task of the overlapping
+/// deviation sums starts its terms in (compute_deviation runs the two passes as one).
+constexpr std::size_t kLag1BlockPoints = kAlongsideBlockPoints;
+/// Independent accumulators per sum: sixteen break the serial chains of additions (two AVX-512
+/// or four AVX2 registers per sum).
+constexpr std::size_t kLag1Lanes = 16;
 
 /// The decimated indices k of factor m whose phase index k m lies in [first, last): [begin, end).
 struct DecimatedRange {
@@ -149,6 +155,88 @@ PerDifference differences_ending_at(const double* x, std::size_t m, std::size_t 
 /// Accumulators of the centred lag products and squares: [order d][lane].
 using LaneSums = std::array<std::array<double, kLag1Lanes>, kMaxDifferences + 1>;
 
+/// Adds the centred products c(t - 1) c(t) and squares c(t)^2 of one order's differences,
+/// c(t) = D(t) - mu, t = 0 .. count - 1, where D(t) is the Order-th backward difference of z
+/// ending at z[t] (z[-(Order + 1)] .. z[count - 1] readable); for order 0 also the sum of c(t).
+/// c(t - 1) is recomputed rather than kept: the loop has no carried value but its sums. Always
+/// inlined, so it is compiled for the instruction set of its caller's clone.
+template <int Order>
+[[gnu::always_inline]] inline void add_order_sums(const double* z, std::size_t count, double mu,
+                                                  std::array<double, kLag1Lanes>& lagged,
+                                                  std::array<double, kLag1Lanes>& squares,
+                                                  std::array<double, kLag1Lanes>& values) {
+  const auto centred = [z, mu](std::ptrdiff_t t) {
+    const double* e = z + t;
+    if constexpr (Order == 0) return e[0] - mu;
+    if constexpr (Order == 1) return (e[0] - e[-1]) - mu;
+    if constexpr (Order == 2) return (e[0] - 2.0 * e[-1] + e[-2]) - mu;
+    return (e[0] - 3.0 * e[-1] + 3.0 * e[-2] - e[-3]) - mu;
+  };
+  // Local copies: the references might alias each other, which would pin them in memory.
+  std::array<double, kLag1Lanes> lag = lagged;
+  std::array<double, kLag1Lanes> square = squares;
+  std::array<double, kLag1Lanes> sum = values;
+  std::size_t t = 0;
+  for (; t + kLag1Lanes <= count; t += kLag1Lanes) {
+    for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) {
+      const auto at = static_cast<std::ptrdiff_t>(t + lane);
+      const double now = centred(at);
+      lag[lane] += centred(at - 1) * now;
+      square[lane] += now * now;
+      if constexpr (Order == 0) sum[lane] += now;
+    }
+  }
+  for (; t < count; ++t) {
+    const auto at = static_cast<std::ptrdiff_t>(t);
+    const double now = centred(at);
+    lag[0] += centred(at - 1) * now;
+    square[0] += now * now;
+    if constexpr (Order == 0) sum[0] += now;
+  }
+  lagged = lag;
+  squares = square;
+  if constexpr (Order == 0) values = sum;
+}
+
+/// add_order_sums<0> and <1> in one loop: three loads per point serve both (bitwise the same
+/// sums as the two loops). ZeroShift: the order-0 shift mean[0] is 0 (a phase integrated from
+/// rates starts at 0), so subtracting it, exact, is left out: two additions of seven fewer.
+template <bool ZeroShift>
+[[gnu::always_inline]] inline void add_order_sums_0_1(const double* z, std::size_t count,
+                                                      const PerDifference& mean, LaneSums& lagged,
+                                                      LaneSums& squares,
+                                                      std::array<double, kLag1Lanes>& values) {
+  const double mu0 = ZeroShift ? 0.0 : mean[0];
+  const double mu1 = mean[1];
+  std::array<double, kLag1Lanes> lag0 = lagged[0];
+  std::array<double, kLag1Lanes> square0 = squares[0];
+  std::array<double, kLag1Lanes> sum0 = values;
+  std::array<double, kLag1Lanes> lag1 = lagged[1];
+  std::array<double, kLag1Lanes> square1 = squares[1];
+  const auto add = [&](std::size_t t, std::size_t lane) {
+    const double e0 = z[t];
+    const double e1 = *(z + t - 1);
+    const double e2 = *(z + t - 2);
+    const double now0 = ZeroShift ? e0 : e0 - mu0;
+    lag0[lane] += (ZeroShift ? e1 : e1 - mu0) * now0;
+    square0[lane] += now0 * now0;
+    sum0[lane] += now0;
+    const double now1 = (e0 - e1) - mu1;
+    lag1[lane] += ((e1 - e2) - mu1) * now1;
+    square1[lane] += now1 * now1;
+  };
+  std::size_t t = 0;
+  for (; t + kLag1Lanes <= count; t += kLag1Lanes) {
+    for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) add(t + lane, lane);
+  }
+  for (; t < count; ++t) add(t, 0);
+  lagged[0] = lag0;
+  squares[0] = square0;
+  values = sum0;
+  lagged[1] = lag1;
+  squares[1] = square1;
+}
+
 /// One contiguous piece of decimated points: z[-(highest + 1) .. count - 1] readable. Adds the
 /// centred products D_d(t - 1) D_d(t) and squares D_d(t)^2, t = 0 .. count - 1, for the orders
 /// lowest <= d <= highest. Every loop is contiguous, so it vectorises.
@@ -156,54 +244,48 @@ STOCHNAV_WIDE_VECTOR_CLONES
 void add_piece_sums(const double* z, std::size_t count, const PerDifference& mean, int lowest,
                     int highest, LaneSums& lagged, LaneSums& squares,
                     std::array<double, kLag1Lanes>& values) {
-  constexpr std::size_t kPiece = 512;
-  std::array<double, kPiece + 1> centred;
-  const double* e = z - 1;  // e[t] = z(t - 1), t = 0 .. count
+  if (lowest == 0 && highest >= 1) {
+    if (mean[0] == 0.0) {
+      add_order_sums_0_1<true>(z, count, mean, lagged, squares, values);
+    } else {
+      add_order_sums_0_1<false>(z, count, mean, lagged, squares, values);
+    }
+    lowest = 2;
+  }
   for (int order = lowest; order <= highest; ++order) {
-    const double mu = mean[static_cast<std::size_t>(order)];
+    const auto d = static_cast<std::size_t>(order);
     switch (order) {
       case 0:
-        for (std::size_t t = 0; t <= count; ++t) centred[t] = e[t] - mu;
+        add_order_sums<0>(z, count, mean[d], lagged[d], squares[d], values);
         break;
       case 1:
-        for (std::size_t t = 0; t <= count; ++t) centred[t] = (e[t] - *(e + t - 1)) - mu;
+        add_order_sums<1>(z, count, mean[d], lagged[d], squares[d], values);
         break;
       case 2:
-        for (std::size_t t = 0; t <= count; ++t) {
-          centred[t] = (e[t] - 2.0 * *(e + t - 1) + *(e + t - 2)) - mu;
-        }
+        add_order_sums<2>(z, count, mean[d], lagged[d], squares[d], values);
         break;
       default:
-        for (std::size_t t = 0; t <= count; ++t) {
-          centred[t] = (e[t] - 3.0 * *(e + t - 1) + 3.0 * *(e + t - 2) - *(e + t - 3)) - mu;
-        }
+        add_order_sums<3>(z, count, mean[d], lagged[d], squares[d], values);
         break;
     }
-    // Local copies: the inputs might alias the caller's arrays, which would pin them in memory.
-    std::array<double, kLag1Lanes> lag = lagged[static_cast<std::size_t>(order)];
-    std::array<double, kLag1Lanes> square = squares[static_cast<std::size_t>(order)];
-    std::size_t t = 0;
-    for (; t + kLag1Lanes <= count; t += kLag1Lanes) {
-      for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) {
-        lag[lane] += centred[t + lane] * centred[t + lane + 1];
-        square[lane] += centred[t + lane + 1] * centred[t + lane + 1];
-      }
-    }
-    for (; t < count; ++t) {
-      lag[0] += centred[t] * centred[t + 1];
-      square[0] += centred[t + 1] * centred[t + 1];
-    }
-    if (order == 0) {
-      std::array<double, kLag1Lanes> sum = values;
-      t = 0;
-      for (; t + kLag1Lanes <= count; t += kLag1Lanes) {
-        for (std::size_t lane = 0; lane < kLag1Lanes; ++lane) sum[lane] += centred[t + lane + 1];
-      }
-      for (; t < count; ++t) sum[0] += centred[t + 1];
-      values = sum;
-    }
-    lagged[static_cast<std::size_t>(order)] = lag;
-    squares[static_cast<std::size_t>(order)] = square;
+  }
+}
+
+/// z[t] = from[t m], t < count: the decimated points of one piece, made contiguous. The strides
+/// 2 and 4 (the costliest after m = 1: half and a quarter of the record) are constants in their
+/// loops, so they vectorise (loads and shuffles instead of one load per point).
+STOCHNAV_WIDE_VECTOR_CLONES
+void gather_decimated(const double* from, std::size_t m, std::size_t count, double* z) {
+  switch (m) {
+    case 2:
+      for (std::size_t t = 0; t < count; ++t) z[t] = from[2 * t];
+      break;
+    case 4:
+      for (std::size_t t = 0; t < count; ++t) z[t] = from[4 * t];
+      break;
+    default:
+      for (std::size_t t = 0; t < count; ++t) z[t] = from[t * m];
+      break;
   }
 }
 
@@ -235,74 +317,134 @@ Lag1Sums lag1_sums(const double* x, std::size_t m, DecimatedRange range, const P
   LaneSums lagged{};
   LaneSums squares{};
   std::array<double, kLag1Lanes> values{};
+  if (m == 1 && k < range.end) {
+    // The decimated points are the phase itself: no copy.
+    add_piece_sums(x + k, range.end - k, mean, lowest, highest, lagged, squares, values);
+    k = range.end;
+  }
   while (k < range.end) {
     const std::size_t count = std::min(kPiece, range.end - k);
     const double* from = x + (k - kBack) * m;
-    for (std::size_t t = 0; t < count + kBack; ++t) z[t] = from[t * m];
+    gather_decimated(from, m, count + kBack, z.data());
     add_piece_sums(z.data() + kBack, count, mean, lowest, highest, lagged, squares, values);
     k += count;
   }
+  // Pairwise: lanes (2j, 2j + 1), then pairs of those, and so on.
+  const auto reduce = [](std::array<double, kLag1Lanes> a) {
+    for (std::size_t width = kLag1Lanes / 2; width >= 1; width /= 2) {
+      for (std::size_t lane = 0; lane < width; ++lane) a[lane] = a[2 * lane] + a[2 * lane + 1];
+    }
+    return a[0];
+  };
   for (std::size_t d = low; d <= high; ++d) {
-    sums.lagged[d] += (lagged[d][0] + lagged[d][1]) + (lagged[d][2] + lagged[d][3]);
-    sums.squares[d] += (squares[d][0] + squares[d][1]) + (squares[d][2] + squares[d][3]);
+    sums.lagged[d] += reduce(lagged[d]);
+    sums.squares[d] += reduce(squares[d]);
   }
-  sums.values += (values[0] + values[1]) + (values[2] + values[3]);
+  sums.values += reduce(values);
   return sums;
 }
 
-/// r1[d] of every factor, as lag1_of_decimated_differences<MaxD> gives (up to rounding).
-template <int MaxD>
-std::vector<PerDifference> lag1_of_many(std::span<const double> phase,
-                                        std::span<const std::size_t> m_values) {
-  const std::size_t factors = m_values.size();
-  const std::size_t blocks = (phase.size() + kLag1BlockPoints - 1) / kLag1BlockPoints;
-  std::vector<std::size_t> points(factors);
-  for (std::size_t j = 0; j < factors; ++j) points[j] = (phase.size() - 1) / m_values[j] + 1;
-  const auto range_in_block = [&](std::size_t j, std::size_t block) {
-    const std::size_t first = block * kLag1BlockPoints;
-    const std::size_t last = std::min(phase.size(), first + kLag1BlockPoints);
-    return decimated_range(m_values[j], points[j], first, last);
-  };
+/// r1[d] of many factors, as lag1_of_decimated_differences<MaxD> gives each (up to rounding),
+/// in two steps: the blocks of the pass for orders 0 and 1 (add_block, any order, any thread),
+/// then finish().
+class Lag1OfMany {
+ public:
+  virtual ~Lag1OfMany() = default;
+  virtual std::size_t blocks() const = 0;
+  virtual void add_block(std::size_t block) = 0;
+  virtual std::vector<PerDifference> finish() = 0;
+};
 
-  // The means of the differences d >= 1 telescope to their end points. For d = 0 the sums are
-  // taken about K = z(0) and corrected afterwards (shifted data: z(0) lies within the spread of
-  // a phase record, so nothing cancels badly): one pass over the record fewer.
-  std::vector<PerDifference> means(factors);
-  for (std::size_t j = 0; j < factors; ++j) {
-    const std::size_t m = m_values[j];
-    const auto z = [&](std::size_t k) { return phase[k * m]; };
-    const std::size_t last = points[j] - 1;
-    PerDifference& mean = means[j];
-    mean[0] = z(0);  // the shift K
-    mean[1] = (z(last) - z(0)) / static_cast<double>(points[j] - 1);
-    mean[2] = ((z(last) - z(last - 1)) - (z(1) - z(0))) / static_cast<double>(points[j] - 2);
-    if constexpr (MaxD >= 3) {
-      mean[3] = ((z(last) - 2.0 * z(last - 1) + z(last - 2)) - (z(2) - 2.0 * z(1) + z(0))) /
-                static_cast<double>(points[j] - 3);
+template <int MaxD>
+class Lag1OfManyOf final : public Lag1OfMany {
+ public:
+  Lag1OfManyOf(std::span<const double> phase, std::vector<std::size_t> m_values)
+      : phase_(phase),
+        m_values_(std::move(m_values)),
+        factors_(m_values_.size()),
+        blocks_((phase.size() + kLag1BlockPoints - 1) / kLag1BlockPoints),
+        points_(factors_),
+        means_(factors_),
+        block_sums_(blocks_ * factors_) {
+    // The means of the differences d >= 1 telescope to their end points. For d = 0 the sums are
+    // taken about K = z(0) and corrected afterwards (shifted data: z(0) lies within the spread
+    // of a phase record, so nothing cancels badly): one pass over the record fewer.
+    for (std::size_t j = 0; j < factors_; ++j) {
+      const std::size_t m = m_values_[j];
+      points_[j] = (phase.size() - 1) / m + 1;
+      const auto z = [&](std::size_t k) { return phase[k * m]; };
+      const std::size_t last = points_[j] - 1;
+      PerDifference& mean = means_[j];
+      mean[0] = z(0);  // the shift K
+      mean[1] = (z(last) - z(0)) / static_cast<double>(points_[j] - 1);
+      mean[2] = ((z(last) - z(last - 1)) - (z(1) - z(0))) / static_cast<double>(points_[j] - 2);
+      if constexpr (MaxD >= 3) {
+        mean[3] = ((z(last) - 2.0 * z(last - 1) + z(last - 2)) - (z(2) - 2.0 * z(1) + z(0))) /
+                  static_cast<double>(points_[j] - 3);
+      }
     }
   }
 
-  // Pass 2: the centred lag products and squares, of orders 0 and 1 for every factor; then of
-  // the higher orders for the factors whose differences still look correlated (usually a few
-  // long taus with few points). noise_from_lag1 reads no order beyond the one it stops at.
-  std::vector<PerDifference> r1(factors);
-  const auto add_orders = [&](int lowest, int highest, const std::vector<std::size_t>& which) {
-    const std::size_t count = which.size();
-    std::vector<Lag1Sums> block_lag1(blocks * count);
-    parallel_for(blocks, [&](std::size_t block) {
-      for (std::size_t i = 0; i < count; ++i) {
-        const std::size_t j = which[i];
-        const DecimatedRange range = range_in_block(j, block);
-        if (range.begin < range.end) {
-          block_lag1[block * count + i] =
-              lag1_sums<MaxD>(phase.data(), m_values[j], range, means[j], lowest, highest);
-        }
+  std::size_t blocks() const override { return blocks_; }
+
+  /// The centred lag products and squares of orders 0 and 1, every factor, one block.
+  void add_block(std::size_t block) override {
+    add_orders_in_block(block, 0, 1, all(), block_sums_);
+  }
+
+  /// Orders 0 and 1 from the block sums; then the higher orders for the factors whose
+  /// differences still look correlated (usually a few long taus with few points), in a pass of
+  /// their own. noise_from_lag1 reads no order beyond the one it stops at.
+  std::vector<PerDifference> finish() override {
+    std::vector<PerDifference> r1(factors_);
+    const std::vector<std::size_t> every = all();
+    add_totals(0, 1, every, block_sums_, r1);
+    std::vector<std::size_t> correlated;
+    const auto white = [](double r) { return r / (1.0 + r) < 0.25; };  // as noise_from_lag1
+    for (std::size_t j = 0; j < factors_; ++j) {
+      if (!white(r1[j][0]) && !white(r1[j][1])) correlated.push_back(j);
+    }
+    if (!correlated.empty()) {
+      std::vector<Lag1Sums> sums(blocks_ * correlated.size());
+      parallel_for(blocks_, [&](std::size_t block) {
+        add_orders_in_block(block, 2, MaxD, correlated, sums);
+      });
+      add_totals(2, MaxD, correlated, sums, r1);
+    }
+    return r1;
+  }
+
+ private:
+  std::vector<std::size_t> all() const {
+    std::vector<std::size_t> every(factors_);
+    for (std::size_t j = 0; j < factors_; ++j) every[j] = j;
+    return every;
+  }
+
+  /// sums[block * which.size() + i]: orders lowest .. highest of factor which[i] in the block.
+  void add_orders_in_block(std::size_t block, int lowest, int highest,
+                           const std::vector<std::size_t>& which,
+                           std::vector<Lag1Sums>& sums) const {
+    const std::size_t first = block * kLag1BlockPoints;
+    const std::size_t last = std::min(phase_.size(), first + kLag1BlockPoints);
+    for (std::size_t i = 0; i < which.size(); ++i) {
+      const std::size_t j = which[i];
+      const DecimatedRange range = decimated_range(m_values_[j], points_[j], first, last);
+      if (range.begin < range.end) {
+        sums[block * which.size() + i] =
+            lag1_sums<MaxD>(phase_.data(), m_values_[j], range, means_[j], lowest, highest);
       }
-    });
+    }
+  }
+
+  /// The block sums added in block order (the same for every thread count), into r1.
+  void add_totals(int lowest, int highest, const std::vector<std::size_t>& which,
+                  const std::vector<Lag1Sums>& sums, std::vector<PerDifference>& r1) const {
+    const std::size_t count = which.size();
     for (std::size_t i = 0; i < count; ++i) {
       Lag1Sums total;
-      for (std::size_t block = 0; block < blocks; ++block) {
-        const Lag1Sums& part = block_lag1[block * count + i];
+      for (std::size_t block = 0; block < blocks_; ++block) {
+        const Lag1Sums& part = sums[block * count + i];
         for (auto d = static_cast<std::size_t>(lowest); d <= static_cast<std::size_t>(highest);
              ++d) {
           total.lagged[d] += part.lagged[d];
@@ -310,33 +452,37 @@ std::vector<PerDifference> lag1_of_many(std::span<const double> phase,
         }
         total.values += part.values;
       }
+      const std::size_t j = which[i];
       if (lowest == 0) {
         // From sums about K to sums about the mean: u = z - K, S = sum u, c = S / n = mean - K,
         // u(0) = 0. sum (u - c)^2 = Q - S c; sum over pairs (u_(k-1) - c)(u_k - c)
         // = L - c (2 S - u(n-1)) + (n - 1) c^2.
-        const std::size_t j = which[i];
-        const double n = static_cast<double>(points[j]);
+        const double n = static_cast<double>(points_[j]);
         const double shift_sum = total.values;
         const double c = shift_sum / n;
-        const double u_last = phase[(points[j] - 1) * m_values[j]] - means[j][0];
+        const double u_last = phase_[(points_[j] - 1) * m_values_[j]] - means_[j][0];
         total.squares[0] -= shift_sum * c;
         total.lagged[0] += -c * (2.0 * shift_sum - u_last) + (n - 1.0) * c * c;
       }
       for (auto d = static_cast<std::size_t>(lowest); d <= static_cast<std::size_t>(highest); ++d) {
-        r1[which[i]][d] = total.squares[d] > 0.0 ? total.lagged[d] / total.squares[d] : 0.0;
+        r1[j][d] = total.squares[d] > 0.0 ? total.lagged[d] / total.squares[d] : 0.0;
       }
     }
-  };
-  std::vector<std::size_t> all(factors);
-  for (std::size_t j = 0; j < factors; ++j) all[j] = j;
-  add_orders(0, 1, all);
-  std::vector<std::size_t> correlated;
-  const auto white = [](double r) { return r / (1.0 + r) < 0.25; };  // as noise_from_lag1
-  for (std::size_t j = 0; j < factors; ++j) {
-    if (!white(r1[j][0]) && !white(r1[j][1])) correlated.push_back(j);
   }
-  if (!correlated.empty()) add_orders(2, MaxD, correlated);
-  return r1;
+
+  std::span<const double> phase_;
+  std::vector<std::size_t> m_values_;
+  std::size_t factors_;
+  std::size_t blocks_;
+  std::vector<std::size_t> points_;
+  std::vector<PerDifference> means_;
+  std::vector<Lag1Sums> block_sums_;  // orders 0 and 1: [block * factors + j]
+};
+
+std::unique_ptr<Lag1OfMany> make_lag1_of_many(int max_differences, std::span<const double> phase,
+                                              std::vector<std::size_t> m_values) {
+  if (max_differences >= 3) return std::make_unique<Lag1OfManyOf<3>>(phase, std::move(m_values));
+  return std::make_unique<Lag1OfManyOf<2>>(phase, std::move(m_values));
 }
 
 /// Allan-variance tau exponent mu -> noise alpha; mu = -2 is white or flicker PM (alpha 2, 1).
@@ -436,35 +582,69 @@ NoiseId identify_noise(Deviation kind, std::span<const double> phase, std::size_
 
 namespace stochnav {
 
-std::vector<NoiseId> identify_noises(Deviation kind, std::span<const double> phase,
-                                     std::span<const std::size_t> m_values) {
+struct NoiseIdentification::Impl {
+  Deviation kind;
+  std::span<const double> phase;
+  std::span<const std::size_t> m_values;
+  std::vector<std::size_t> lag1_slots;   // places in m_values of the factors of the lag-1 method
+  std::vector<std::size_t> other_slots;  // the others (B1 ratio)
+  std::unique_ptr<Lag1OfMany> lag1;      // null without lag-1 factors
+};
+
+NoiseIdentification::NoiseIdentification(Deviation kind, std::span<const double> phase,
+                                         std::span<const std::size_t> m_values)
+    : impl_(std::make_unique<Impl>()) {
   for (std::size_t m : m_values) require_identifiable(phase, m);
-  std::vector<NoiseId> ids(m_values.size());
-  std::vector<std::size_t> lag1_factors;  // the m of the lag-1 method
-  std::vector<std::size_t> lag1_slots;    // their places in m_values
-  std::vector<std::size_t> other_slots;
+  impl_->kind = kind;
+  impl_->phase = phase;
+  impl_->m_values = m_values;
+  std::vector<std::size_t> lag1_factors;
   for (std::size_t j = 0; j < m_values.size(); ++j) {
     if ((phase.size() - 1) / m_values[j] + 1 >= kMinLag1Points) {
       lag1_factors.push_back(m_values[j]);
-      lag1_slots.push_back(j);
+      impl_->lag1_slots.push_back(j);
     } else {
-      other_slots.push_back(j);
+      impl_->other_slots.push_back(j);
     }
   }
-  // The B1 identifications: few averages each, one task per factor.
-  parallel_for(other_slots.size(), [&](std::size_t i) {
-    ids[other_slots[i]] = identify_noise(kind, phase, m_values[other_slots[i]]);
-  });
   if (!lag1_factors.empty()) {
-    const int max_differences = difference_order(kind);
-    const std::vector<PerDifference> r1 = max_differences >= 3
-                                              ? lag1_of_many<3>(phase, lag1_factors)
-                                              : lag1_of_many<2>(phase, lag1_factors);
-    for (std::size_t i = 0; i < lag1_factors.size(); ++i) {
-      ids[lag1_slots[i]] = noise_from_lag1(r1[i], max_differences);
+    impl_->lag1 = make_lag1_of_many(difference_order(kind), phase, std::move(lag1_factors));
+  }
+}
+
+NoiseIdentification::~NoiseIdentification() = default;
+
+AlongsideJob NoiseIdentification::lag1_job() {
+  static_assert(kLag1BlockPoints == kAlongsideBlockPoints, "lag-1 blocks are job blocks");
+  if (!impl_->lag1) return {};
+  Lag1OfMany* lag1 = impl_->lag1.get();
+  return {lag1->blocks(), [lag1](std::size_t block) { lag1->add_block(block); }};
+}
+
+std::vector<NoiseId> NoiseIdentification::finish() {
+  const Impl& plan = *impl_;
+  std::vector<NoiseId> ids(plan.m_values.size());
+  // The B1 identifications: few averages each, one task per factor.
+  parallel_for(plan.other_slots.size(), [&](std::size_t i) {
+    const std::size_t slot = plan.other_slots[i];
+    ids[slot] = identify_noise(plan.kind, plan.phase, plan.m_values[slot]);
+  });
+  if (plan.lag1) {
+    const int max_differences = difference_order(plan.kind);
+    const std::vector<PerDifference> r1 = plan.lag1->finish();
+    for (std::size_t i = 0; i < plan.lag1_slots.size(); ++i) {
+      ids[plan.lag1_slots[i]] = noise_from_lag1(r1[i], max_differences);
     }
   }
   return ids;
+}
+
+std::vector<NoiseId> identify_noises(Deviation kind, std::span<const double> phase,
+                                     std::span<const std::size_t> m_values) {
+  NoiseIdentification identification(kind, phase, m_values);
+  const AlongsideJob job = identification.lag1_job();
+  parallel_for(job.blocks, [&job](std::size_t block) { job.run(block); });
+  return identification.finish();
 }
 
 }  // namespace stochnav

@@ -7,7 +7,9 @@
 #include <sys/mman.h>
 #endif
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -19,6 +21,7 @@
 #include "stochnav/io/mapped_file.hpp"
 #include "stochnav/io/sample_reader.hpp"
 #include "stochnav/stats/parallel.hpp"
+#include "vector_clones.hpp"
 
 namespace stochnav {
 namespace {
@@ -59,7 +62,7 @@ struct SplitMean {
 /// Rate samples per chunk of the two parallel passes, and chunks per task. Fixed, so the
 /// result does not depend on the thread count.
 constexpr std::size_t kChunk = std::size_t{1} << 14;
-constexpr std::size_t kChunksPerTask = 4;
+constexpr std::size_t kChunksPerTask = 8;
 
 /// Compensated sum of one chunk (or of a whole record): four independent lanes, so the
 /// additions pipeline.
@@ -76,8 +79,110 @@ CompensatedSum chunk_sum(const double* values, std::size_t count) {
   return lanes[0];
 }
 
+/// Eight doubles in one vector (GCC's vector extension): one AVX-512 register, two AVX2 ones,
+/// four SSE2 ones in the default clone.
+using Vector8 = double __attribute__((vector_size(64)));
+using Index8 = long long __attribute__((vector_size(64)));
+
+// Passed by reference: a vector argument or result would change the ABI with the instruction set.
+[[gnu::always_inline]] inline void load8(Vector8& v, const double* from) {
+  std::memcpy(&v, from, sizeof v);
+}
+[[gnu::always_inline]] inline void store8(double* to, const Vector8& v) {
+  std::memcpy(to, &v, sizeof v);
+}
+
+/// chunk_sum with sixteen lanes (two vectors of eight), for the parallel integration: the same
+/// error bound, and the additions fill the vector units (the four scalar lanes of chunk_sum keep
+/// the reference algorithm of phase_from_rate bitwise as it always was).
+STOCHNAV_WIDE_VECTOR_CLONES
+CompensatedSum wide_chunk_sum(const double* values, std::size_t count) {
+  std::array<Vector8, 2> high{};
+  std::array<Vector8, 2> low{};
+  std::size_t i = 0;
+  for (; i + 16 <= count; i += 16) {
+    for (std::size_t half = 0; half < 2; ++half) {  // CompensatedSum::add, lane by lane
+      Vector8 value;
+      load8(value, values + i + 8 * half);
+      const Vector8 sum = high[half] + value;
+      const Vector8 value_part = sum - high[half];
+      low[half] += (high[half] - (sum - value_part)) + (value - value_part);
+      high[half] = sum;
+    }
+  }
+  std::array<CompensatedSum, 16> lanes;
+  for (std::size_t lane = 0; lane < 16; ++lane) {
+    lanes[lane] = {high[lane / 8][lane % 8], low[lane / 8][lane % 8]};
+  }
+  for (; i < count; ++i) lanes[0].add(values[i]);
+  for (std::size_t width = 8; width >= 1; width /= 2) {
+    for (std::size_t lane = 0; lane < width; ++lane) lanes[lane].merge(lanes[lane + width]);
+  }
+  return lanes[0];
+}
+
+/// Transposes the 8 x 8 matrix of rows r[0..7] in place: three rounds of pairwise shuffles.
+[[gnu::always_inline]] inline void transpose8(std::array<Vector8, 8>& r) {
+  std::array<Vector8, 8> t;
+  for (std::size_t k = 0; k < 8; k += 2) {  // 2 x 2 blocks of single elements
+    t[k] = __builtin_shuffle(r[k], r[k + 1], Index8{0, 8, 2, 10, 4, 12, 6, 14});
+    t[k + 1] = __builtin_shuffle(r[k], r[k + 1], Index8{1, 9, 3, 11, 5, 13, 7, 15});
+  }
+  for (std::size_t k = 0; k < 8; k += 4) {  // of pairs
+    for (std::size_t j = 0; j < 2; ++j) {
+      r[k + j] = __builtin_shuffle(t[k + j], t[k + j + 2], Index8{0, 1, 8, 9, 4, 5, 12, 13});
+      r[k + j + 2] = __builtin_shuffle(t[k + j], t[k + j + 2], Index8{2, 3, 10, 11, 6, 7, 14, 15});
+    }
+  }
+  for (std::size_t j = 0; j < 4; ++j) {  // of quadruples
+    t[j] = __builtin_shuffle(r[j], r[j + 4], Index8{0, 1, 2, 3, 8, 9, 10, 11});
+    t[j + 4] = __builtin_shuffle(r[j], r[j + 4], Index8{4, 5, 6, 7, 12, 13, 14, 15});
+  }
+  r = t;
+}
+
+/// The running sums of eight whole chunks at once, chunk L in vector lane L: per chunk the same
+/// operations in the same order as CompensatedSum::add one sample after another, so the phase is
+/// bitwise the same, but eight chains of additions advance in one instruction each. Blocks of
+/// 8 x 8 samples are transposed in registers on the way in and out. No contraction of the
+/// multiply-subtract into a fused one: the clones must round as the default code does.
+/// rate and x point at the first sample of the first chunk; start_high/low: the compensated
+/// sums before each chunk; first_position: the 1-based index of the first sample.
+STOCHNAV_WIDE_VECTOR_CLONES __attribute__((optimize("fp-contract=off"))) void
+running_sums_of_eight_chunks(const double* rate, double* x, const double* start_high,
+                             const double* start_low, double first_position, double mean_high,
+                             double mean_low, double tau0_s) {
+  Vector8 high;
+  Vector8 low;
+  load8(high, start_high);
+  load8(low, start_low);
+  Vector8 position;
+  for (std::size_t lane = 0; lane < 8; ++lane) {
+    position[lane] = first_position + static_cast<double>(lane * kChunk);
+  }
+  std::array<Vector8, 8> block;
+  for (std::size_t i = 0; i < kChunk; i += 8) {
+    for (std::size_t lane = 0; lane < 8; ++lane) load8(block[lane], rate + lane * kChunk + i);
+    transpose8(block);  // block[j]: sample i + j of every chunk
+    for (std::size_t j = 0; j < 8; ++j) {
+      const Vector8 value = block[j] - mean_high;
+      const Vector8 sum = high + value;
+      const Vector8 value_part = sum - high;
+      low += (high - (sum - value_part)) + (value - value_part);
+      high = sum;
+      block[j] = ((high + low) - position * mean_low) * tau0_s;
+      position += 1.0;
+    }
+    transpose8(block);
+    for (std::size_t lane = 0; lane < 8; ++lane) store8(x + lane * kChunk + i, block[lane]);
+  }
+}
+
 /// x[i + 1] = (sum_{j <= i} (y[j] - mean)) tau0 for the n rates y; x may be y (in place).
-/// `done(first, count)` is called once rates [first, first + count) have been read for good.
+/// `done(first, count)` is called when a pass has read rates [first, first + count): once after
+/// the sums of pass 1 and once after the running sums of pass 2. A mapped file's pages can be
+/// dropped then (pass 2 maps them again from the page cache): the file's resident pages and
+/// the phase array then never add up to more than about one copy of the data.
 /// Returns false, having written nothing, when the rates do not sum to a finite number (a NaN
 /// or infinite sample, or overflow).
 bool integrate(const double* rate, double* x_after_first, std::size_t n, double tau0_s,
@@ -91,8 +196,9 @@ bool integrate(const double* rate, double* x_after_first, std::size_t n, double 
   parallel_for(tasks, [&](std::size_t task) {
     const std::size_t last = std::min(chunks, (task + 1) * kChunksPerTask);
     for (std::size_t c = task * kChunksPerTask; c < last; ++c) {
-      sums[c] = chunk_sum(rate + c * kChunk, chunk_size(c));
+      sums[c] = wide_chunk_sum(rate + c * kChunk, chunk_size(c));
     }
+    if (done) done(task * kChunksPerTask * kChunk, (last - task * kChunksPerTask) * kChunk);
   });
   CompensatedSum total;
   for (const auto& sum : sums) total.merge(sum);
@@ -116,24 +222,35 @@ bool integrate(const double* rate, double* x_after_first, std::size_t n, double 
     prefix.merge(sums[c]);
   }
 
-  // Pass 2: the running sums, each chunk from its exact start. A task runs its chunks
-  // interleaved: independent chains of additions, the same operations as one by one.
-  const auto step = [&](CompensatedSum& running, std::size_t i) {
-    running.add(rate[i] - mean.high);
-    x_after_first[i] = (running.value() - static_cast<double>(i + 1) * mean.low) * tau0_s;
+  // Pass 2: the running sums, each chunk from its exact start. A task runs its eight chunks
+  // side by side in vector lanes (running_sums_of_eight_chunks), the same operations as one by
+  // one; a last, shorter task goes one chunk after another.
+  static_assert(kChunksPerTask == 8, "running_sums_of_eight_chunks takes eight chunks");
+  // Locals, not captures by reference: the stores to x could alias those, which would reload
+  // them from memory at every step. The index goes through int64_t: a signed conversion is one
+  // instruction, an unsigned one a branch (the same value: i + 1 < 2^53).
+  const double mean_high = mean.high;
+  const double mean_low = mean.low;
+  const auto step = [rate, x_after_first, mean_high, mean_low, tau0_s](CompensatedSum& running,
+                                                                       std::size_t i) {
+    running.add(rate[i] - mean_high);
+    const auto position = static_cast<double>(static_cast<std::int64_t>(i + 1));
+    x_after_first[i] = (running.value() - position * mean_low) * tau0_s;
   };
   parallel_for(tasks, [&](std::size_t task) {
     const std::size_t first = task * kChunksPerTask;
     const std::size_t last = std::min(chunks, first + kChunksPerTask);
     if (last - first == kChunksPerTask && chunk_size(last - 1) == kChunk) {
-      std::array<CompensatedSum, kChunksPerTask> running;
-      for (std::size_t lane = 0; lane < kChunksPerTask; ++lane)
-        running[lane] = starts[first + lane];
-      for (std::size_t i = 0; i < kChunk; ++i) {
-        for (std::size_t lane = 0; lane < kChunksPerTask; ++lane) {
-          step(running[lane], (first + lane) * kChunk + i);
-        }
+      std::array<double, kChunksPerTask> high;
+      std::array<double, kChunksPerTask> low;
+      for (std::size_t lane = 0; lane < kChunksPerTask; ++lane) {
+        high[lane] = starts[first + lane].high();
+        low[lane] = starts[first + lane].low();
       }
+      running_sums_of_eight_chunks(
+          rate + first * kChunk, x_after_first + first * kChunk, high.data(), low.data(),
+          static_cast<double>(static_cast<std::int64_t>(first * kChunk + 1)), mean_high, mean_low,
+          tau0_s);
     } else {
       for (std::size_t c = first; c < last; ++c) {
         CompensatedSum running = starts[c];
@@ -187,14 +304,19 @@ bool is_single_float64_channel(const ReadOptions& options) {
 }  // namespace
 
 /// Uninitialised storage for n doubles in transparent huge pages where the kernel allows: the
-/// pages are first touched, and zeroed, by the threads that fill them.
+/// pages are first touched, and zeroed, by the threads that fill them. Only whole huge pages
+/// inside the data are advised: the tail stays in small pages, so the resident memory is the
+/// data's size, not up to one huge page (2 MB) more.
 std::shared_ptr<double[]> huge_page_array(std::size_t n) {
   constexpr std::size_t kHugePage = std::size_t{1} << 21;
-  const std::size_t bytes = (n * sizeof(double) + kHugePage - 1) / kHugePage * kHugePage;
-  void* memory = std::aligned_alloc(kHugePage, bytes);
-  if (memory == nullptr) throw std::bad_alloc();
+  constexpr std::size_t kPage = std::size_t{1} << 12;
+  const std::size_t bytes = (n * sizeof(double) + kPage - 1) / kPage * kPage;
+  // posix_memalign: the size need not be a multiple of the alignment (aligned_alloc's rule).
+  void* memory = nullptr;
+  if (::posix_memalign(&memory, kHugePage, bytes) != 0) throw std::bad_alloc();
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  ::madvise(memory, bytes, MADV_HUGEPAGE);  // a hint only
+  const std::size_t whole_huge_pages = n * sizeof(double) / kHugePage * kHugePage;
+  if (whole_huge_pages > 0) ::madvise(memory, whole_huge_pages, MADV_HUGEPAGE);  // a hint only
 #endif
   return std::shared_ptr<double[]>(static_cast<double*>(memory), [](double* p) { std::free(p); });
 }

@@ -86,10 +86,10 @@ double deviation_value(Deviation kind, std::span<const double> phase, double tau
 /// overlapping Allan and Hadamard sums of all factors are accumulated block by block, so each
 /// cache-sized block of the phase is read from memory once for all of them. Same throws.
 /// Cost O(N) per factor, no allocation per factor; prefer it to a loop of deviation_value for
-/// long records (the 22 octave OADEV factors of 1e7 points: about 0.03 s on one core here, 0.015 s
-/// on two). The work runs over the stats threads (parallel.hpp) in tasks fixed by the record
-/// length: bitwise the same result for every thread count. ADEV, HDEV, MDEV, TDEV: one task per
-/// factor.
+/// long records (the 22 octave OADEV factors of 1e7 points: about 0.02 s of CPU here, four
+/// factors per sweep of a block). The work runs over the stats threads (parallel.hpp) in tasks
+/// fixed by the record length: bitwise the same result for every thread count. ADEV, HDEV, MDEV,
+/// TDEV: one task per factor.
 std::vector<double> deviation_values(Deviation kind, std::span<const double> phase, double tau0_s,
                                      std::span<const std::size_t> m_values);
 
@@ -110,7 +110,8 @@ struct DeviationPoint {
 /// very few averages takes the noise type of the one before it (keeps_previous_noise_type), so
 /// pass a run's factors in ascending order. `confidence` is the two-sided probability of
 /// [lower, upper]; Stable32 uses 0.683. Throws std::invalid_argument when an m leaves no terms.
-/// Cost: the deviations (see deviation_values) plus O(N / m) per factor for the noise type.
+/// Cost: the deviations (see deviation_values) plus O(N / m) per factor for the noise type, whose
+/// pass over the phase runs inside the deviations' pass (each stretch read once for both).
 std::vector<DeviationPoint> compute_deviation(Deviation kind, std::span<const double> phase,
                                               double tau0_s, std::span<const std::size_t> m_values,
                                               double confidence = kStable32Confidence);
