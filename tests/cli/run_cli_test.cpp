@@ -130,6 +130,11 @@ TEST_F(RunCli, RecordingWithoutTruthStartsFromTheAlignment) {
   const auto metrics = nlohmann::json::parse(read(out / "metrics.json"));
   EXPECT_TRUE(metrics["metrics"].is_null());
   EXPECT_TRUE(metrics["consistency"].is_null());
+  // Without truth the run judges itself by its innovations.
+  EXPECT_EQ(metrics["self_check"]["source"], "innovations");
+  EXPECT_FALSE(metrics["self_check"]["optimistic"].get<bool>()) << metrics["self_check"];
+  EXPECT_NE(result.out.find("consistency (innovations, no truth): ok"), std::string::npos)
+      << result.out;
   ASSERT_EQ(metrics["aids"].size(), 1u);
   EXPECT_EQ(metrics["aids"][0]["type"], "zupt");
   EXPECT_EQ(metrics["aids"][0]["dof"], 3);
@@ -144,6 +149,26 @@ TEST_F(RunCli, RecordingWithoutTruthStartsFromTheAlignment) {
                                    360.0);
   EXPECT_NEAR(heading, 60.0, 3.0 * metrics["initial"]["attitude_sigma_deg"][2].get<double>() + 0.5);
   EXPECT_NE(result.out.find("no truth"), std::string::npos) << result.out;
+}
+
+TEST_F(RunCli, RecordingWithoutTruthFlagsAnOverconfidentModelByItsInnovations) {
+  // The same recording with a noise model a thousand times too confident: no truth to score
+  // against, but the ZUPT innovations leave their predicted 3 sigma and the run says so.
+  nlohmann::json config = recording_config();
+  config["noise"] = {{"gyro", {{"plugin", "white"}, {"params", {{"N", 5e-6}}}}},
+                     {"accel", {{"plugin", "white"}, {"params", {{"N", 3e-5}}}}}};
+  const fs::path out = dir_->path() / "out_overconfident";
+  const auto result = run_cli("run '" + write_config("overconfident.json", config) + "' --out '" +
+                                  out.string() + "' --data '" +
+                                  (dir_->path() / "recording").string() + "'",
+                              dir_->path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto metrics = nlohmann::json::parse(read(out / "metrics.json"));
+  EXPECT_EQ(metrics["self_check"]["source"], "innovations");
+  EXPECT_TRUE(metrics["self_check"]["optimistic"].get<bool>()) << metrics["self_check"];
+  EXPECT_NE(result.out.find("consistency (innovations, no truth): OPTIMISTIC (zupt innovations"),
+            std::string::npos)
+      << result.out;
 }
 
 TEST_F(RunCli, InitialErrorIsRemovedAndTheRunChecksItself) {

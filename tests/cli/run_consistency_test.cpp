@@ -69,5 +69,48 @@ TEST(RunConsistency, AidStatisticsAndWarnings) {
   EXPECT_EQ(aids[0]["dof"], 3);
 }
 
+InnovationRecord innovation(int aid, double z, double sigma, bool accepted = true) {
+  InnovationRecord record{.t_s = 0.0, .aid_index = aid, .accepted = accepted, .nis = 1.0,
+                          .size = 2};
+  record.innovation[0] = z;
+  record.innovation[1] = -z;
+  record.innovation_sigma[0] = sigma;
+  record.innovation_sigma[1] = sigma;
+  return record;
+}
+
+TEST(RunConsistency, WithoutTruthTheInnovationsJudgeTheRun) {
+  RunConsistency check({"rop", "zupt"}, {2, 2});
+  EXPECT_EQ(check.self_check_json()["source"], "none");
+  EXPECT_EQ(check.consistency_line(), "");
+  // rop: 90 of 100 attempts inside 3 sigma (the 10 outside rejected by the gate); zupt: all.
+  for (int k = 0; k < 100; ++k) {
+    const InnovationRecord records[] = {innovation(0, k < 90 ? 2.9 : 3.1, 1.0, k < 90),
+                                        innovation(1, 0.5, 1.0)};
+    check.add_innovations(records);
+  }
+  EXPECT_DOUBLE_EQ(check.aids()[0].inside_3sigma(), 0.9);
+  EXPECT_DOUBLE_EQ(check.aids()[1].inside_3sigma(), 1.0);
+  const nlohmann::json self = check.self_check_json();
+  EXPECT_EQ(self["source"], "innovations");
+  EXPECT_TRUE(self["optimistic"].get<bool>());
+  EXPECT_EQ(check.consistency_line(),
+            "consistency (innovations, no truth): OPTIMISTIC (rop innovations inside 3-sigma only "
+            "90 % of 200 components)");
+  EXPECT_DOUBLE_EQ(check.aids_json()[0]["inside_3sigma"].get<double>(), 0.9);
+
+  RunConsistency good({"zupt"}, {2});
+  const InnovationRecord records[] = {innovation(0, 0.5, 1.0)};
+  good.add_innovations(records);
+  EXPECT_FALSE(good.self_check_json()["optimistic"].get<bool>());
+  EXPECT_EQ(good.consistency_line(),
+            "consistency (innovations, no truth): ok (inside 3-sigma: zupt 100.0 %)");
+
+  // With truth, truth decides.
+  good.add_epoch(filled(0.5), filled(1.0), 9.0);
+  EXPECT_EQ(good.self_check_json()["source"], "truth");
+  EXPECT_EQ(good.consistency_line().rfind("consistency: ok", 0), 0u);
+}
+
 }  // namespace
 }  // namespace stochnav

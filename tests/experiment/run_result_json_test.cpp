@@ -46,6 +46,7 @@ NavigationRunResult awkward_run() {
                      {"inside_3sigma", {{"lat_err_m", 0.97}, {"toolface_err_deg", kNaN}}}};
   run.aids = nlohmann::json::array({{{"type", "zupt"}, {"dof", 3}, {"nis_mean", -kInf}}});
   run.consistency_line = "consistency: ok";
+  run.self_check = {{"source", "truth"}, {"optimistic", false}, {"reason", ""}};
   run.warnings = {"aid zupt rejected 12 %"};
   run.survey_stations = 4;
   return run;
@@ -88,6 +89,7 @@ TEST(RunResultJson, ReadsBackBitForBit) {
   EXPECT_EQ(back.aids[0]["nis_mean"].get<double>(), -kInf);
   EXPECT_EQ(back.aids[0]["dof"].get<int>(), 3);
   EXPECT_EQ(back.consistency_line, run.consistency_line);
+  EXPECT_EQ(back.self_check, run.self_check);
   EXPECT_EQ(back.warnings, run.warnings);
   EXPECT_EQ(back.survey_stations, 4u);
   // Read back, the run writes the same text again.

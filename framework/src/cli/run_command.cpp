@@ -32,10 +32,10 @@ void print_summary(const NavigationRunResult& result, const std::string& out) {
       std::cout << fmt::format("{:<22} {:>14.6g} {:>14.6g}\n", kErrorMetricNames[i],
                                result.statistics.max_abs(i), result.statistics.rms(i));
     }
-    if (!result.consistency_line.empty()) std::cout << result.consistency_line << '\n';
   } else {
-    std::cout << "no truth: errors not scored; aid statistics in metrics.json\n";
+    std::cout << "no truth: errors not scored; the aids' innovations judge the run\n";
   }
+  if (!result.consistency_line.empty()) std::cout << result.consistency_line << '\n';
   for (const std::string& warning : result.warnings) std::cout << warning << '\n';
   std::cout << fmt::format("{} survey station(s)\n", result.survey_stations);
   std::cout << "wrote " << out << "/{nav,biases,"

@@ -114,6 +114,7 @@ nlohmann::json NavigationRunResult::metrics_json() const {
   out["wall_seconds"] = wall_seconds;
   out["noise_models"] = noise_models;
   out["consistency"] = consistency;
+  out["self_check"] = self_check;
   out["aids"] = aids;
   out["survey_stations"] = survey_stations;
   const MwdAttitude attitude = mwd_from_quaternion(start.q_nb);
@@ -288,6 +289,7 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   result.consistency = consistency.consistency_json();
   result.aids = consistency.aids_json();
   result.consistency_line = consistency.consistency_line();
+  result.self_check = consistency.self_check_json();
   result.warnings = consistency.aid_warnings();
   result.survey_stations = survey.stations().size();
   result.wall_seconds =

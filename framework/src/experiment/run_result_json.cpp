@@ -127,6 +127,7 @@ nlohmann::json run_result_to_json(const NavigationRunResult& run, bool with_erro
           {"fit_quality", with_non_finite_marked(run.fit_quality)},
           {"consistency", with_non_finite_marked(run.consistency)},
           {"aids", with_non_finite_marked(run.aids)},
+          {"self_check", run.self_check},
           {"consistency_line", run.consistency_line},
           {"warnings", run.warnings},
           {"survey_stations", run.survey_stations}};
@@ -161,6 +162,7 @@ NavigationRunResult run_result_from_json(const nlohmann::json& json, const std::
     run.fit_quality = with_non_finite_restored(member(json, "fit_quality", where));
     run.consistency = with_non_finite_restored(member(json, "consistency", where));
     run.aids = with_non_finite_restored(member(json, "aids", where));
+    run.self_check = member(json, "self_check", where);
     run.consistency_line = member(json, "consistency_line", where).get<std::string>();
     run.warnings = member(json, "warnings", where).get<std::vector<std::string>>();
     run.survey_stations = member(json, "survey_stations", where).get<std::size_t>();

@@ -82,6 +82,7 @@ struct NavigationRunResult {
   nlohmann::json fit_quality;             ///< {"gyro": fit_quality(), "accel": ...} (null: none)
   nlohmann::json consistency;             ///< RunConsistency::consistency_json()
   nlohmann::json aids;                    ///< RunConsistency::aids_json()
+  nlohmann::json self_check;              ///< RunConsistency::self_check_json()
   std::string consistency_line;           ///< "consistency: ok" / "... OPTIMISTIC ..." / ""
   std::vector<std::string> warnings;      ///< aids rejected too often
   std::size_t survey_stations = 0;        ///< stations in survey.csv

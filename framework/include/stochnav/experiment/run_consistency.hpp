@@ -8,10 +8,16 @@
 // epochs makes the run OPTIMISTIC: its covariance claims more than it delivers.
 //
 // With or without truth, per aid: the number of update attempts, the share rejected by the NIS
-// gate (or with a singular S), and the mean NIS of the accepted updates against its degrees of
-// freedom (the measurement size: a consistent filter's mean NIS equals it). An aid rejected
-// more than kRejectionWarningShare of the time is flagged: either it or the filter's noise model
-// is wrong.
+// gate (or with a singular S), the mean NIS of the accepted updates against its degrees of
+// freedom (the measurement size: a consistent filter's mean NIS equals it), and the share of
+// innovation components (of every attempt, rejected ones included) inside 3 sqrt(S_ii). An aid
+// rejected more than kRejectionWarningShare of the time is flagged: either it or the filter's
+// noise model is wrong.
+//
+// Without truth (a user's own recording) the innovations are the run's only check of itself:
+// an aid whose innovation components are inside their 3 sigma on fewer than kConsistentShare of
+// the attempts makes the run OPTIMISTIC (the filter predicts the aids better than it does). The
+// check cannot see an error the aids do not observe (a heading error under position-only aids).
 //
 // Costs a few additions per epoch; used by `stochnav run` (metrics.json) and reusable by compare.
 
@@ -37,11 +43,15 @@ struct AidStatistics {
   std::uint64_t attempts = 0;  ///< update attempts
   std::uint64_t rejected = 0;  ///< gate rejections and singular S
   double nis_sum = 0.0;        ///< sum of the accepted updates' NIS
+  std::uint64_t components = 0;         ///< innovation components with a finite z and sigma
+  std::uint64_t components_inside = 0;  ///< of them, |z| <= 3 sigma
   double rejected_share() const {
     return attempts > 0 ? static_cast<double>(rejected) / static_cast<double>(attempts) : 0.0;
   }
   /// Mean NIS of the accepted updates (NaN when there is none).
   double nis_mean() const;
+  /// Share of innovation components inside 3 sigma (NaN when there is none).
+  double inside_3sigma() const;
 };
 
 class RunConsistency final {
@@ -66,10 +76,16 @@ class RunConsistency final {
   /// {"inside_3sigma": {metric: share}, "nees_mean": x, "nees_dof": 9, "nees_samples": N}, or
   /// null without truth.
   nlohmann::json consistency_json() const;
-  /// [{"type", "dof", "attempts", "rejected_share", "nis_mean"}] per aid.
+  /// [{"type", "dof", "attempts", "rejected_share", "nis_mean", "inside_3sigma"}] per aid.
   nlohmann::json aids_json() const;
-  /// "consistency: ok" or "consistency: OPTIMISTIC (lat_err_m inside 3-sigma only 41 % of
-  /// epochs)" (the worst metric); empty without truth.
+  /// The run's verdict on itself: {"source": "truth" | "innovations" | "none", "optimistic":
+  /// bool, "reason": "" or what failed}; from truth when the run has it, else from the aids'
+  /// innovations ("none": neither truth nor aid updates).
+  nlohmann::json self_check_json() const;
+  /// With truth: "consistency: ok (NEES mean ...)" or "consistency: OPTIMISTIC (lat_err_m
+  /// inside 3-sigma only 41 % of epochs)" (the worst metric). Without: "consistency
+  /// (innovations, no truth): ok (...)" or "... OPTIMISTIC (rop innovations inside 3-sigma only
+  /// 80 % of 3000 components)"; empty without truth and aid updates.
   std::string consistency_line() const;
   /// One warning line per aid rejected more than kRejectionWarningShare of the time.
   std::vector<std::string> aid_warnings() const;
@@ -80,6 +96,11 @@ class RunConsistency final {
   double nees_sum_ = 0.0;
   std::uint64_t nees_count_ = 0;
   std::vector<AidStatistics> aids_;
+
+  /// The truth-based worst metric (kErrorMetricCount when none is below kConsistentShare).
+  std::size_t worst_metric() const;
+  /// The aid with the smallest innovation share below kConsistentShare, or aids_.size().
+  std::size_t worst_aid() const;
 };
 
 }  // namespace stochnav
