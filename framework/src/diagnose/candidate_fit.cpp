@@ -50,4 +50,34 @@ std::optional<CandidateFit> fit_candidate(const NoiseModel& model, const FitData
   return result;
 }
 
+std::optional<CandidateFit> refit_jointly(const NoiseModel& model, const FitData& data,
+                                          double duration_s) {
+  const StationaryEquivalent equivalent = stationary_equivalent(model, duration_s);
+  FitOptions options;
+  for (const NoiseTerm& term : equivalent.model.terms) {
+    if (term_type(term) == TermType::kNonstationary) continue;
+    options.terms.push_back(term_type(term));
+  }
+  if (options.terms.empty()) return std::nullopt;
+  FitResult fitted;
+  try {
+    fitted = fit_noise_terms(data, options);
+  } catch (const ConfigError&) {
+    return std::nullopt;
+  }
+  if (!fitted.diagnostics.at_bound.empty()) return std::nullopt;  // a term the data drop
+  if (fitted.model.terms.size() != options.terms.size()) return std::nullopt;
+  const double back = 1.0 / std::sqrt(equivalent.variance_factor);
+  CandidateFit result;
+  result.refitted = true;
+  result.model = NoiseModel{model.unit, model.rate_hz, {}};
+  for (const NoiseTerm& term : fitted.model.terms) {
+    result.model.terms.push_back(scale_amplitude(term, back));
+  }
+  if (const NonstationaryTerm* nonstationary = find_nonstationary(model)) {
+    result.model.terms.push_back(*nonstationary);
+  }
+  return result;
+}
+
 }  // namespace stochnav

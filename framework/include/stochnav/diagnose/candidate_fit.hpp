@@ -32,4 +32,12 @@ struct CandidateFit {
 std::optional<CandidateFit> fit_candidate(const NoiseModel& model, const FitData& data,
                                           TermType type, bool refit, double duration_s);
 
+/// All stationary terms of `model` refitted together (the same term types, repeats kept; a
+/// nonstationary term is kept as it is and the fit works on the stationary equivalent, as
+/// above): the joint refit at the end of the workflow, after terms were added one at a time with
+/// the others held. nullopt when Ceres finds no usable solution, a parameter ends on its search
+/// bound, or the model has no stationary term. `term` of the result is unused.
+std::optional<CandidateFit> refit_jointly(const NoiseModel& model, const FitData& data,
+                                          double duration_s);
+
 }  // namespace stochnav
