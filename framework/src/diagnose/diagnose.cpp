@@ -692,7 +692,8 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     double chosen_score = criterion(last.gap, last.model);
     const RandomWalkTest last_walk = walk_test(last.model);
     for (std::size_t v = 0; v < layouts.size(); ++v) {
-      auto refit = refit_jointly(layouts[v], measured.dense_fit, measured.duration_s);
+      auto refit =
+          refit_jointly(layouts[v], measured.dense_fit, measured.duration_s, substitute_of[v]);
       if (!refit) continue;
       try {
         Variant variant;
