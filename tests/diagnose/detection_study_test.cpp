@@ -39,9 +39,29 @@ namespace {
 
 using diagnose_testing::simulated_record;
 
-constexpr double kRate = 10.0;
-constexpr std::size_t kSamples = 144000;  // 4 h
-constexpr double kDuration = static_cast<double>(kSamples) / kRate;
+// 4 h at 10 Hz; STOCHNAV_DIAGNOSE_STUDY_RECORD=RATE_HZ,DURATION_S sets another record (the
+// README compares the 1000-s, 100-Hz records of the earlier study). Quantization's reference
+// tau is one sample, so at 100 Hz it is 0.01 s as before.
+struct RecordShape {
+  double rate_hz = 10.0;
+  std::size_t samples = 144000;
+};
+RecordShape record_shape() {
+  RecordShape shape;
+  if (const char* text = std::getenv("STOCHNAV_DIAGNOSE_STUDY_RECORD")) {
+    double rate = 0.0;
+    double duration = 0.0;
+    if (std::sscanf(text, "%lf,%lf", &rate, &duration) == 2 && rate > 0.0 && duration > 0.0) {
+      shape.rate_hz = rate;
+      shape.samples = static_cast<std::size_t>(rate * duration);
+    }
+  }
+  return shape;
+}
+const RecordShape kShape = record_shape();
+const double kRate = kShape.rate_hz;
+const std::size_t kSamples = kShape.samples;
+const double kDuration = static_cast<double>(kSamples) / kRate;
 
 double natural(ParameterDimension dimension, double reported) {
   return to_natural(Quantity::kAngularRate, dimension, reported);
