@@ -222,8 +222,8 @@ Tally run(const Scenario& scenario, int seeds, std::uint64_t first_seed) {
     }
     if (all) ++tally.detected;
     for (TermType type : kept) {
-      const bool hidden = std::find(scenario.hidden.begin(), scenario.hidden.end(), type) !=
-                          scenario.hidden.end();
+      const bool hidden =
+          std::find(scenario.hidden.begin(), scenario.hidden.end(), type) != scenario.hidden.end();
       const bool in_base =
           std::any_of(scenario.base.terms.begin(), scenario.base.terms.end(),
                       [&](const NoiseTerm& term) { return term_type(term) == type; });
@@ -347,9 +347,10 @@ TEST(DiagnoseDetectionStudy, RatesOverHiddenEffectsPairsAndControls) {
               singles_strong.runs);
   std::printf("[ study ] pairs: both found %d/%d (%.0f %%)\n", pairs.detected, pairs.runs,
               rate(pairs.detected, pairs.runs));
-  std::printf("[ study ] final models with a term type neither hidden nor in the base: singles "
-              "weak %d, strong %d, pairs %d\n",
-              singles_weak.extra, singles_strong.extra, pairs.extra);
+  std::printf(
+      "[ study ] final models with a term type neither hidden nor in the base: singles "
+      "weak %d, strong %d, pairs %d\n",
+      singles_weak.extra, singles_strong.extra, pairs.extra);
   std::printf("[ study ] controls: false alarms %d/%d (%.0f %%)\n", controls.any_iteration,
               controls.runs, rate(controls.any_iteration, controls.runs));
 

@@ -41,9 +41,10 @@ TEST(DiagnoseTwoEffects, RateRandomWalkAndSlowSinusoidAreBothNamed) {
   constexpr int kSeeds = 6;
   // A FOG with 0.05 deg/sqrt(h) white noise; hidden: K = 0.3 deg/h/sqrt(h) and a 1.3 deg/h
   // sinusoid at a 600-s period.
-  const NoiseModel base{Unit::kDegPerHour,
-                        kRate,
-                        {AngleRandomWalkTerm{natural(ParameterDimension::kAnglePerRootTime, 0.05)}}};
+  const NoiseModel base{
+      Unit::kDegPerHour,
+      kRate,
+      {AngleRandomWalkTerm{natural(ParameterDimension::kAnglePerRootTime, 0.05)}}};
   NoiseModel truth = base;
   truth.terms.push_back(RateRandomWalkTerm{natural(ParameterDimension::kRatePerRootTime, 0.3)});
   truth.terms.push_back(SinusoidTerm{natural(ParameterDimension::kRate, 1.3), 1.0 / 600.0, {}});

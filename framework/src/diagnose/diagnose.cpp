@@ -671,8 +671,7 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
         // candidate of its size; what the end can revisit is a two-parameter term (a
         // Gauss-Markov of long correlation time, a sinusoid) standing in for a simpler one once
         // the rest is in.
-        if (added_parameters(placeholder_term(type)) >=
-            added_parameters(placeholder_term(added))) {
+        if (added_parameters(placeholder_term(type)) >= added_parameters(placeholder_term(added))) {
           continue;
         }
         NoiseModel variant = layout;
@@ -698,8 +697,7 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
       try {
         Variant variant;
         variant.gap = combine_gap(avar_gap(refit->model, measured.octave_avar),
-                                  stationarity_test(measured.windows, refit->model),
-                                  options.alpha);
+                                  stationarity_test(measured.windows, refit->model), options.alpha);
         if (!std::isfinite(variant.gap.value)) continue;
         // The same terms refitted must fit better; a substitution may fit a little worse with
         // fewer parameters (the criterion decides), but must not widen an inconsistent gap.
@@ -709,9 +707,8 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
         // of long correlation time, a flicker floor, a random walk) apart where the last
         // octaves cannot: added to the criterion as the change from the step-by-step model.
         variant.walk = walk_test(refit->model);
-        const double variant_score =
-            criterion(variant.gap, refit->model) +
-            (variant.walk.minus_two_log_l - last_walk.minus_two_log_l);
+        const double variant_score = criterion(variant.gap, refit->model) +
+                                     (variant.walk.minus_two_log_l - last_walk.minus_two_log_l);
         if (!(variant_score < chosen_score)) continue;
         const bool variant_consistent = variant.gap.consistent && !variant.walk.significant;
         if (result.consistent && !variant_consistent) continue;
@@ -752,8 +749,8 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
         step.refitted = true;
         step.gap_before = gap_before;
         step.gap_after = chosen->gap.value;
-        step.signature = read_signature(last.gap.avar, dense_tau, dense_avar, dense_edf,
-                                        last.model);
+        step.signature =
+            read_signature(last.gap.avar, dense_tau, dense_avar, dense_edf, last.model);
         step.evidence = fmt::format(
             "Final model selection: with all terms refitted jointly, the {} term added earlier "
             "is better described as {}: pooled chi-square {:.1f} -> {:.1f} on {:.0f} dof with "
@@ -761,8 +758,8 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
             "{}.",
             term_type_name(*chosen->replaced), term_type_name(step.effect), last.gap.chi_square,
             chosen->gap.chi_square, chosen->gap.dof, total_parameters(last.model),
-            total_parameters(chosen->model), options.parameter_price, gap_before,
-            chosen->gap.value, describe_term_short(step.added_term, measured.unit));
+            total_parameters(chosen->model), options.parameter_price, gap_before, chosen->gap.value,
+            describe_term_short(step.added_term, measured.unit));
         step.after = std::move(assessment);
         result.iterations.push_back(std::move(step));
       } else {
@@ -797,8 +794,8 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
             " Final model selection dropped the {} term (the others refitted without it "
             "explain the record as well: pooled chi-square {:.1f} -> {:.1f}, one term fewer): "
             "gap {:.3g} -> {:.3g}.",
-            term_type_name(*chosen->dropped), last_chi_square, chosen->gap.chi_square,
-            gap_before, chosen->gap.value);
+            term_type_name(*chosen->dropped), last_chi_square, chosen->gap.chi_square, gap_before,
+            chosen->gap.value);
       } else {
         result.conclusion += fmt::format(" A joint refit of all terms: gap {:.3g} -> {:.3g}.",
                                          gap_before, chosen->gap.value);
