@@ -17,11 +17,13 @@
 //      nonstationary term), then, only if none of those is accepted, all of them (refits too: a
 //      refit can soak a second effect into the old coefficients, so it is the fallback for a
 //      model whose own coefficients are off): rank by pooled chi-square (diagnose/gap.hpp) plus
-//      `parameter_price` per parameter of the new term, assess the best three exactly, and keep
-//      the best if it shrinks the gap significantly: the pooled chi-square drops by more than
-//      the (1 - alpha) quantile of chi2(p), p the new term's parameter count, the gap itself
-//      shrinks, and the chi-square beyond its dof shrinks by at least `min_relative_shrink`;
-//      otherwise stop (nothing helps, and no term is added that does not shrink the gap);
+//      `parameter_price` per parameter of the new term, assess the best three exactly (the
+//      rest too, in that order, when none of the three is accepted), and keep the best accepted
+//      one: accepted when it shrinks the gap significantly: the pooled chi-square drops by more
+//      than the (1 - alpha) quantile of chi2(p), p the new term's parameter count, the gap
+//      itself shrinks, and the chi-square beyond its dof shrinks by at least
+//      `min_relative_shrink`; otherwise (after step 6) stop (nothing helps, and no term is added
+//      that does not shrink the gap);
 //   6. when no Allan-variance candidate is accepted but the time-domain test finds a rate random
 //      walk the model lacks (diagnose/deterministic_effects.hpp, test_rate_random_walk: the
 //      exact likelihood of the block means, far more powerful at long taus than the last
