@@ -71,6 +71,7 @@ struct GlsFit {
   Eigen::VectorXd beta;
   Eigen::MatrixXd beta_covariance;
   double k_share = 0.0;
+  double scale2 = 1.0;  ///< the profiled s^2
 };
 
 class DifferenceModel {
@@ -78,7 +79,8 @@ class DifferenceModel {
   DifferenceModel(Eigen::VectorXd d, const Eigen::MatrixXd& s0, const Eigen::MatrixXd& s_k)
       : d_(std::move(d)) {
     // k on a log grid relative to the white level of S0 (plus k = 0).
-    const double scale = s0.diagonal().mean() / std::max(s_k.diagonal().mean(), 1e-300);
+    scale_ = s0.diagonal().mean() / std::max(s_k.diagonal().mean(), 1e-300);
+    const double scale = scale_;
     std::vector<double> shares{0.0};
     for (double e = -4.0; e <= 3.01; e += 0.25) shares.push_back(std::pow(10.0, e));
     for (double share : shares) {
@@ -118,10 +120,14 @@ class DifferenceModel {
         const double dof = std::max(1.0, n - static_cast<double>(x.cols()));
         best.beta_covariance = xtx_inverse * (residual.squaredNorm() / dof);
         best.k_share = factor.share;
+        best.scale2 = s2;
       }
     }
     return best;
   }
+
+  /// k of S0 + k S_K for a grid share (S_K: the covariance of a unit rate random walk).
+  double k_of_share(double share) const { return share * scale_; }
 
  private:
   struct Factor {
@@ -131,7 +137,61 @@ class DifferenceModel {
   };
   Eigen::VectorXd d_;
   std::vector<Factor> factors_;
+  double scale_ = 1.0;
 };
+
+// The block layout and the covariances of the block-mean differences under `model` (S0) and
+// under a unit rate random walk (S_K).
+struct BlockSetup {
+  std::size_t blocks = 0;
+  std::size_t per_block = 0;
+  double block_s = 0.0;
+  double duration_s = 0.0;
+  Eigen::MatrixXd s0;
+  Eigen::MatrixXd s_k;
+};
+
+BlockSetup block_setup(std::size_t samples, double rate_hz, const NoiseModel& model,
+                       std::size_t max_blocks) {
+  BlockSetup setup;
+  setup.blocks = std::min(max_blocks, samples / kMinBlockSamples);
+  if (setup.blocks < kMinBlocks) {
+    throw ConfigError(fmt::format(
+        "diagnose: {} samples are too few for the time-domain tests ({} blocks of {} samples)",
+        samples, kMinBlocks, kMinBlockSamples));
+  }
+  setup.per_block = samples / setup.blocks;
+  setup.block_s = static_cast<double>(setup.per_block) / rate_hz;
+  setup.duration_s = static_cast<double>(setup.blocks) * setup.block_s;
+  // The stochastic model, nonstationary segments folded into an equivalent stationary one.
+  NoiseModel stochastic{model.unit, model.rate_hz, {}};
+  for (const auto& term : model.terms) {
+    if (!is_deterministic(term_type(term))) stochastic.terms.push_back(term);
+  }
+  stochastic = stationary_equivalent(stochastic, setup.duration_s).model;
+  const std::size_t n = setup.blocks - 1;
+  setup.s0 = difference_covariance(n, setup.block_s,
+                                   [&](double h) { return phase_covariance(stochastic, h); });
+  if (!(setup.s0.diagonal().minCoeff() > 0.0)) {
+    // No stochastic level at the block scale: white at the sample level is the null.
+    setup.s0 = difference_covariance(n, setup.block_s, [](double h) { return -0.5 * std::abs(h); });
+  }
+  setup.s_k = difference_covariance(n, setup.block_s,
+                                    [](double h) { return std::pow(std::abs(h), 3) / 12.0; });
+  return setup;
+}
+
+// First differences of the block means of `values`.
+Eigen::VectorXd block_differences(const std::vector<double>& values, const BlockSetup& setup) {
+  Eigen::VectorXd y(static_cast<Eigen::Index>(setup.blocks));
+  for (std::size_t j = 0; j < setup.blocks; ++j) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < setup.per_block; ++i) sum += values[j * setup.per_block + i];
+    y(static_cast<Eigen::Index>(j)) = sum / static_cast<double>(setup.per_block);
+  }
+  const auto m = static_cast<Eigen::Index>(setup.blocks);
+  return y.tail(m - 1) - y.head(m - 1);
+}
 
 // Part of each block after time t (s), and its first differences.
 Eigen::VectorXd step_column(double t, std::size_t blocks, double block_s) {
@@ -199,57 +259,48 @@ std::vector<double> remove_deterministic(const std::vector<double>& rate, double
   return out;
 }
 
+RandomWalkTest test_rate_random_walk(const std::vector<double>& rate, double rate_hz,
+                                     const NoiseModel& model, double alpha,
+                                     std::size_t max_blocks) {
+  const BlockSetup setup = block_setup(rate.size(), rate_hz, model, max_blocks);
+  const DifferenceModel gls(block_differences(rate, setup), setup.s0, setup.s_k);
+  const Eigen::MatrixXd none(static_cast<Eigen::Index>(setup.blocks - 1), 0);
+  const GlsFit white = gls.fit(none, false);
+  const GlsFit walk = gls.fit(none, true);
+  RandomWalkTest test;
+  test.blocks = setup.blocks;
+  test.block_s = setup.block_s;
+  test.statistic = std::max(0.0, white.minus_two_log_l - walk.minus_two_log_l);
+  test.threshold = chi2_quantile(1.0 - alpha);
+  test.k = std::sqrt(walk.scale2 * gls.k_of_share(walk.k_share));
+  test.white_scale = walk.scale2;
+  test.minus_two_log_l = white.minus_two_log_l;
+  test.significant = test.statistic > test.threshold && walk.k_share > 0.0;
+  return test;
+}
+
 std::vector<DeterministicFinding> find_deterministic_effects(
     const std::vector<double>& rate, double rate_hz, const NoiseModel& model,
     const std::vector<AuxChannel>& aux, const DeterministicOptions& options) {
   const std::size_t samples = rate.size();
-  const std::size_t blocks = std::min(options.max_blocks, samples / kMinBlockSamples);
-  if (blocks < kMinBlocks) {
-    throw ConfigError(fmt::format(
-        "diagnose: {} samples are too few for the time-domain tests ({} blocks of {} samples)",
-        samples, kMinBlocks, kMinBlockSamples));
-  }
   for (const auto& channel : aux) {
     if (channel.values.size() < samples) {
       throw ConfigError(fmt::format("diagnose: aux channel \"{}\" has {} values for {} samples",
                                     channel.name, channel.values.size(), samples));
     }
   }
-  const std::size_t per_block = samples / blocks;
-  const double block_s = static_cast<double>(per_block) / rate_hz;
-  const double duration_s = static_cast<double>(blocks) * block_s;
-  const auto block_means = [&](const std::vector<double>& values) {
-    Eigen::VectorXd y(blocks);
-    for (std::size_t j = 0; j < blocks; ++j) {
-      double sum = 0.0;
-      for (std::size_t i = 0; i < per_block; ++i) sum += values[j * per_block + i];
-      y(static_cast<Eigen::Index>(j)) = sum / static_cast<double>(per_block);
-    }
-    return y;
+  const BlockSetup setup = block_setup(samples, rate_hz, model, options.max_blocks);
+  const std::size_t blocks = setup.blocks;
+  const double block_s = setup.block_s;
+  const double duration_s = setup.duration_s;
+  const auto differences = [&](const std::vector<double>& values) {
+    return block_differences(values, setup);
   };
-  const auto differences = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
-    return y.tail(blocks - 1) - y.head(blocks - 1);
-  };
-
-  // The stochastic model, nonstationary segments folded into an equivalent stationary one.
-  NoiseModel stochastic{model.unit, model.rate_hz, {}};
-  for (const auto& term : model.terms) {
-    if (!is_deterministic(term_type(term))) stochastic.terms.push_back(term);
-  }
-  stochastic = stationary_equivalent(stochastic, duration_s).model;
   const std::size_t n = blocks - 1;
-  Eigen::MatrixXd s0 =
-      difference_covariance(n, block_s, [&](double h) { return phase_covariance(stochastic, h); });
-  if (!(s0.diagonal().minCoeff() > 0.0)) {
-    // No stochastic level at the block scale: white at the sample level is the null.
-    s0 = difference_covariance(n, block_s, [](double h) { return -0.5 * std::abs(h); });
-  }
-  const Eigen::MatrixXd s_k =
-      difference_covariance(n, block_s, [](double h) { return std::pow(std::abs(h), 3) / 12.0; });
-  const DifferenceModel gls(differences(block_means(rate)), s0, s_k);
+  const DifferenceModel gls(differences(rate), setup.s0, setup.s_k);
 
   std::vector<Eigen::VectorXd> aux_columns;
-  for (const auto& channel : aux) aux_columns.push_back(differences(block_means(channel.values)));
+  for (const auto& channel : aux) aux_columns.push_back(differences(channel.values));
   const Eigen::VectorXd ramp_column = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(n), 1.0);
 
   const double ramp_threshold = chi2_quantile(1.0 - options.alpha);
@@ -293,17 +344,25 @@ std::vector<DeterministicFinding> find_deterministic_effects(
     const double walk_price = ramp_threshold;
     const double best_stochastic = std::min(null_white.minus_two_log_l,
                                       null_walk.minus_two_log_l + walk_price);
+    // Gate: a deterministic candidate must beat every stochastic alternative with its full
+    // price (its threshold). Among those that pass, the choice is by likelihood with Akaike's
+    // price per parameter (a step has two, its time and size; a ramp or an aux column one): once
+    // a step is shown to exist, its Bonferroni price over the scanned times says nothing about
+    // whether it is a step or a ramp, and a step half-way explains most of what a ramp does.
     std::optional<Selected> best;
-    double best_score = best_stochastic;
+    double best_choice = std::numeric_limits<double>::infinity();
     const auto consider = [&](Selected candidate, const Eigen::VectorXd& column, double threshold) {
       const Eigen::MatrixXd xc = with_column(x, column);
+      const double parameters = candidate.kind == Kind::kStep ? 2.0 : 1.0;
       for (bool walk : {false, true}) {
         const GlsFit fit = gls.fit(xc, walk);
         const double ratio =
             (walk ? null_walk : null_white).minus_two_log_l - fit.minus_two_log_l;
-        const double score = fit.minus_two_log_l + threshold + (walk ? walk_price : 0.0);
-        if (ratio > threshold && score < best_score) {
-          best_score = score;
+        const double walk_cost = walk ? walk_price : 0.0;
+        const double score = fit.minus_two_log_l + threshold + walk_cost;
+        const double choice = fit.minus_two_log_l + 2.0 * parameters + walk_cost;
+        if (ratio > threshold && score < best_stochastic && choice < best_choice) {
+          best_choice = choice;
           candidate.statistic = ratio;
           candidate.threshold = threshold;
           candidate.k_share = fit.k_share;

@@ -114,6 +114,28 @@ double largest_share(const NoiseTerm& term, const NoiseModel& model,
   return share;
 }
 
+// A term of `type` whose values do not matter (refit_jointly reads the types only).
+NoiseTerm placeholder_term(TermType type) {
+  switch (type) {
+    case TermType::kQuantization:
+      return QuantizationTerm{};
+    case TermType::kAngleRandomWalk:
+      return AngleRandomWalkTerm{};
+    case TermType::kBiasInstability:
+      return BiasInstabilityTerm{};
+    case TermType::kRateRandomWalk:
+      return RateRandomWalkTerm{};
+    case TermType::kRateRamp:
+      return RateRampTerm{};
+    case TermType::kGaussMarkov:
+      return GaussMarkovTerm{};
+    case TermType::kSinusoid:
+      return SinusoidTerm{};
+    default:
+      return AngleRandomWalkTerm{};
+  }
+}
+
 struct Trial {
   CandidateOutcome outcome;
   NoiseModel model;
@@ -279,7 +301,8 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
         record.rate_hz, stochastic, aux_rate, deterministic_options);
   }
   // `current` points into iterations: no reallocation while the loop runs.
-  result.iterations.reserve(static_cast<std::size_t>(options.max_iterations) + findings.size());
+  // (+1: a substitution of the final model selection)
+  result.iterations.reserve(static_cast<std::size_t>(options.max_iterations) + findings.size() + 1);
   {
     const ModelAssessment* previous = &result.initial;
     std::vector<NoiseTerm> removed = result.deterministic;
@@ -308,13 +331,27 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     }
   }
   const MeasuredStatistics& measured = result.measured;
+  // The stochastic remainder in natural units, for the time-domain rate-random-walk test.
+  const std::vector<double> stochastic_rate =
+      options.try_time_domain_walk
+          ? remove_deterministic(rate, record.rate_hz, result.deterministic, aux_rate)
+          : std::vector<double>{};
+  const auto walk_test = [&](const NoiseModel& m) {
+    if (!options.try_time_domain_walk) return RandomWalkTest{};
+    try {
+      return test_rate_random_walk(stochastic_rate, record.rate_hz, m, options.alpha);
+    } catch (const ConfigError&) {
+      return RandomWalkTest{};  // a record too short for blocks: the test is not run
+    }
+  };
   const std::vector<double> dense_tau = measured.dense_fit.tau_s;
   const std::vector<double> dense_avar = measured.dense_fit.avar;
   const std::vector<double> dense_edf = measured.dense_fit.edf;
 
   const ModelAssessment* current =
       result.iterations.empty() ? &result.initial : &result.iterations.back().after;
-  if (current->gap.consistent) {
+  RandomWalkTest walk = walk_test(current->model);
+  if (current->gap.consistent && !walk.significant) {
     result.consistent = true;
     result.conclusion =
         result.iterations.empty()
@@ -323,6 +360,12 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
             : fmt::format("After {} deterministic term(s) the model is consistent with the record "
                           "(gap {:.3g}).",
                           result.iterations.size(), current->gap.value);
+  }
+  if (current->gap.consistent && walk.significant) {
+    result.conclusion = fmt::format(
+        "The gap ({:.3g}) passes, but the time-domain test finds a rate random walk the model "
+        "lacks (likelihood ratio {:.1f} against {:.1f}).",
+        current->gap.value, walk.statistic, walk.threshold);
   }
   for (int iteration = 0; !result.consistent && iteration < options.max_iterations; ++iteration) {
     const Gap& before = current->gap;
@@ -408,11 +451,14 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
       // Ranked by the pooled chi-square plus a price per parameter of the new term.
       std::sort(contenders.begin(), contenders.end(),
                 [&](const Trial* a, const Trial* b) { return score(a) < score(b); });
-      // The best few by screening get the exact gap (their own estimator covariance).
+      // The best few by screening get the exact gap (their own estimator covariance); when
+      // none of them is accepted, the rest too: every usable candidate has its chance.
       constexpr std::size_t kExactlyAssessed = 3;
-      if (contenders.size() > kExactlyAssessed) contenders.resize(kExactlyAssessed);
       const Trial* tier_best = nullptr;
-      for (Trial* trial : contenders) {
+      const Trial* tier_accepted = nullptr;
+      for (std::size_t index = 0; index < contenders.size(); ++index) {
+        if (index >= kExactlyAssessed && tier_accepted != nullptr) break;
+        Trial* trial = contenders[index];
         if (!trial->outcome.exact) {
           try {
             trial->gap =
@@ -425,26 +471,100 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
           trial->outcome.exact = true;
         }
         if (tier_best == nullptr || score(trial) < score(tier_best)) tier_best = trial;
+        if (accepts(trial) && (tier_accepted == nullptr || score(trial) < score(tier_accepted))) {
+          tier_accepted = trial;
+        }
       }
       if (tier_best != nullptr && (best == nullptr || score(tier_best) < score(best))) {
         best = tier_best;
       }
-      if (tier_best != nullptr && accepts(tier_best)) {
-        best = tier_best;
+      if (tier_accepted != nullptr) {
+        best = tier_accepted;
         accepted = true;
         break;
+      }
+    }
+    // The time-domain fallback: a rate random walk the block means show but the last octaves
+    // of the Allan variance cannot resolve.
+    bool by_walk_test = false;
+    RandomWalkTest walk_after;
+    if (!accepted && walk.significant) {
+      std::vector<Trial*> walkers;
+      Trial from_blocks;
+      {
+        NoiseModel candidate = base;
+        double k2 = walk.k * walk.k;
+        bool merged = false;
+        for (NoiseTerm& term : candidate.terms) {
+          if (auto* old = std::get_if<RateRandomWalkTerm>(&term)) {
+            k2 += old->k * old->k;
+            old->k = std::sqrt(k2);
+            merged = true;
+          }
+        }
+        if (!merged) candidate.terms.push_back(RateRandomWalkTerm{walk.k});
+        from_blocks.outcome.type = TermType::kRateRandomWalk;
+        from_blocks.outcome.refitted = false;
+        from_blocks.outcome.usable = walk.k > 0.0;
+        from_blocks.term = RateRandomWalkTerm{std::sqrt(k2)};
+        from_blocks.model = std::move(candidate);
+      }
+      if (from_blocks.outcome.usable) walkers.push_back(&from_blocks);
+      // The Allan fits of a rate random walk too, even when screened out as immaterial there:
+      // the time domain is the evidence here.
+      for (Trial& trial : trials) {
+        if (trial.outcome.type == TermType::kRateRandomWalk && !trial.model.terms.empty() &&
+            std::isfinite(trial.gap.value)) {
+          walkers.push_back(&trial);
+        }
+      }
+      Trial* walk_best = nullptr;
+      for (Trial* trial : walkers) {
+        if (!trial->outcome.exact) {
+          try {
+            trial->gap =
+                combine_gap(avar_gap(trial->model, measured.octave_avar),
+                            stationarity_test(measured.windows, trial->model), options.alpha);
+          } catch (const ConfigError&) {
+            continue;
+          }
+          trial->outcome.gap = trial->gap.value;
+          trial->outcome.exact = true;
+        }
+        if (!std::isfinite(trial->gap.value) || !(trial->gap.value < before.value)) continue;
+        const RandomWalkTest after = walk_test(trial->model);
+        if (after.statistic > walk.statistic - walk.threshold) continue;
+        if (walk_best == nullptr || trial->gap.chi_square < walk_best->gap.chi_square) {
+          walk_best = trial;
+          walk_after = after;
+        }
+      }
+      if (walk_best != nullptr) {
+        walk_best->outcome.usable = true;
+        if (walk_best == &from_blocks) trials.push_back(std::move(from_blocks));
+        best = walk_best == &from_blocks ? &trials.back() : walk_best;
+        accepted = true;
+        by_walk_test = true;
       }
     }
     std::vector<CandidateOutcome> outcomes;
     for (const Trial& trial : trials) outcomes.push_back(trial.outcome);
     if (!accepted) {
-      result.conclusion = fmt::format(
-          "No candidate shrinks the gap significantly (best: {}), so none was added; the model "
-          "stays inconsistent (gap {:.3g}).",
-          best != nullptr
-              ? fmt::format("{} at {:.3g}", term_type_name(best->outcome.type), best->gap.value)
-              : std::string("none usable"),
-          before.value);
+      if (before.consistent) {
+        result.conclusion = fmt::format(
+            "The time-domain test finds a rate random walk (likelihood ratio {:.1f} against "
+            "{:.1f}), but no rate random walk term shrinks the gap ({:.3g}), so none was added; "
+            "the model stays inconsistent.",
+            walk.statistic, walk.threshold, before.value);
+      } else {
+        result.conclusion = fmt::format(
+            "No candidate shrinks the gap significantly (best: {}), so none was added; the model "
+            "stays inconsistent (gap {:.3g}).",
+            best != nullptr
+                ? fmt::format("{} at {:.3g}", term_type_name(best->outcome.type), best->gap.value)
+                : std::string("none usable"),
+            before.value);
+      }
       break;
     }
     DiagnoseIteration step;
@@ -462,6 +582,16 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     }
     step.evidence =
         evidence_text(signature, before, *best, outcomes, step.time_range_s, measured.unit);
+    if (by_walk_test) {
+      step.evidence += fmt::format(
+          " No Allan-variance candidate was accepted, but the block means ({} of {:.4g} s) show a "
+          "rate random walk the model lacks: likelihood ratio {:.1f} against {:.1f} (alpha "
+          "{:.0e}), profiled K = {:.3g} {}; with the term the ratio is {:.1f}.",
+          walk.blocks, walk.block_s, walk.statistic, walk.threshold, options.alpha,
+          to_reported(quantity_of(measured.unit), ParameterDimension::kRatePerRootTime, walk.k),
+          reported_unit_name(quantity_of(measured.unit), ParameterDimension::kRatePerRootTime),
+          walk_after.statistic);
+    }
     step.after.model = best->model;
     step.after.gap = best->gap;
     if (options.seeds > 0) {
@@ -470,7 +600,8 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     }
     result.iterations.push_back(std::move(step));
     current = &result.iterations.back().after;
-    if (current->gap.consistent) {
+    walk = walk_test(current->model);
+    if (current->gap.consistent && !walk.significant) {
       result.consistent = true;
       result.conclusion =
           fmt::format("After {} step(s) the model is consistent with the record (gap {:.3g}).",
@@ -484,6 +615,194 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
   if (!result.consistent && options.max_iterations == 0) {
     result.conclusion = "The model is inconsistent with the record; no steps were allowed.";
   }
+  // Final model selection: the terms were added one at a time with the others held. Refitted
+  // together (the same types), or with one added term replaced by another candidate type (a
+  // Gauss-Markov term taken early can stand for a rate random walk once the rest is in), the
+  // model may explain the record better. Each variant is refitted jointly and assessed exactly;
+  // the one with the lowest pooled chi-square plus parameter_price per parameter is kept, when
+  // it lowers the pooled chi-square, does not widen the gap and a consistent model stays
+  // consistent.
+  const bool added_stochastic =
+      std::any_of(result.iterations.begin(), result.iterations.end(),
+                  [](const DiagnoseIteration& step) { return !is_deterministic(step.effect); });
+  if (options.joint_refit && added_stochastic) {
+    const ModelAssessment& last = result.final_assessment();
+    const auto total_parameters = [](const NoiseModel& m) {
+      std::size_t p = 0;
+      for (const NoiseTerm& term : m.terms) p += added_parameters(term);
+      return static_cast<double>(p);
+    };
+    const auto criterion = [&](const Gap& gap, const NoiseModel& m) {
+      return gap.chi_square + options.parameter_price * total_parameters(m);
+    };
+    struct Variant {
+      NoiseModel model;
+      Gap gap;
+      RandomWalkTest walk;
+      std::optional<TermType> replaced;  // the added type replaced, if any
+      std::optional<NoiseTerm> substitute;
+      std::optional<TermType> dropped;  // the added type dropped, if any
+    };
+    std::vector<NoiseModel> layouts{last.model};
+    std::vector<std::optional<TermType>> replaced_of{std::nullopt};
+    std::vector<std::optional<TermType>> substitute_of{std::nullopt};
+    // One added term at a time replaced by each other candidate type.
+    const NoiseModel& layout = last.model;
+    for (const DiagnoseIteration& step : result.iterations) {
+      const TermType added = step.effect;
+      if (is_deterministic(added) || added == TermType::kNonstationary) continue;
+      {
+        // The added term dropped: a term that only carried a refit of the others.
+        NoiseModel variant = layout;
+        for (auto it = variant.terms.rbegin(); it != variant.terms.rend(); ++it) {
+          if (term_type(*it) == added) {
+            variant.terms.erase(std::next(it).base());
+            break;
+          }
+        }
+        layouts.push_back(std::move(variant));
+        replaced_of.push_back(added);
+        substitute_of.push_back(std::nullopt);
+      }
+      for (TermType type : options.candidates) {
+        if (type == added || is_deterministic(type)) continue;
+        if (has_type(layout, type) && !repeatable(type)) continue;
+        // Only by a term of fewer parameters: the step chose its term against every other
+        // candidate of its size; what the end can revisit is a two-parameter term (a
+        // Gauss-Markov of long correlation time, a sinusoid) standing in for a simpler one once
+        // the rest is in.
+        if (added_parameters(placeholder_term(type)) >= added_parameters(placeholder_term(added))) {
+          continue;
+        }
+        NoiseModel variant = layout;
+        // The last term of the added type is the one the step added.
+        for (auto it = variant.terms.rbegin(); it != variant.terms.rend(); ++it) {
+          if (term_type(*it) == added) {
+            *it = placeholder_term(type);
+            break;
+          }
+        }
+        layouts.push_back(std::move(variant));
+        replaced_of.push_back(added);
+        substitute_of.push_back(type);
+      }
+    }
+    std::optional<Variant> chosen;
+    double chosen_score = criterion(last.gap, last.model);
+    const RandomWalkTest last_walk = walk_test(last.model);
+    for (std::size_t v = 0; v < layouts.size(); ++v) {
+      auto refit =
+          refit_jointly(layouts[v], measured.dense_fit, measured.duration_s, substitute_of[v]);
+      if (!refit) continue;
+      try {
+        Variant variant;
+        variant.gap = combine_gap(avar_gap(refit->model, measured.octave_avar),
+                                  stationarity_test(measured.windows, refit->model), options.alpha);
+        if (!std::isfinite(variant.gap.value)) continue;
+        // The same terms refitted must fit better; a substitution may fit a little worse with
+        // fewer parameters (the criterion decides), but must not widen an inconsistent gap.
+        if (!replaced_of[v] && !(variant.gap.chi_square < last.gap.chi_square)) continue;
+        if (!(variant.gap.value <= last.gap.value) && !variant.gap.consistent) continue;
+        // The block means' exact likelihood tells long-tau alternatives (a Gauss-Markov term
+        // of long correlation time, a flicker floor, a random walk) apart where the last
+        // octaves cannot: added to the criterion as the change from the step-by-step model.
+        variant.walk = walk_test(refit->model);
+        const double variant_score = criterion(variant.gap, refit->model) +
+                                     (variant.walk.minus_two_log_l - last_walk.minus_two_log_l);
+        if (!(variant_score < chosen_score)) continue;
+        const bool variant_consistent = variant.gap.consistent && !variant.walk.significant;
+        if (result.consistent && !variant_consistent) continue;
+        variant.replaced = replaced_of[v];
+        if (variant.replaced) {
+          for (const NoiseTerm& term : refit->model.terms) {
+            if (term_type(term) == *substitute_of[v]) variant.substitute = term;
+          }
+        }
+        variant.model = std::move(refit->model);
+        chosen_score = variant_score;
+        chosen = std::move(variant);
+      } catch (const ConfigError&) {
+        // no usable assessment: this variant is out
+      }
+    }
+    if (chosen) {
+      ModelAssessment assessment;
+      assessment.model = chosen->model;
+      assessment.gap = chosen->gap;
+      if (options.seeds > 0) {
+        assessment.band = simulate_band(assessment.model, measured.samples, measured.rate_hz,
+                                        band_factors(measured), options.seeds, options.seed);
+      }
+      const double gap_before = last.gap.value;
+      const bool now_consistent = chosen->gap.consistent && !chosen->walk.significant;
+      walk = chosen->walk;
+      const double last_chi_square = last.gap.chi_square;
+      if (chosen->replaced && !chosen->substitute) {
+        chosen->dropped = chosen->replaced;
+        chosen->replaced.reset();
+      }
+      if (chosen->replaced && chosen->substitute) {
+        // A substitution is a step: the new term is named, the replaced one said.
+        DiagnoseIteration step;
+        step.effect = term_type(*chosen->substitute);
+        step.added_term = *chosen->substitute;
+        step.refitted = true;
+        step.gap_before = gap_before;
+        step.gap_after = chosen->gap.value;
+        step.signature =
+            read_signature(last.gap.avar, dense_tau, dense_avar, dense_edf, last.model);
+        step.evidence = fmt::format(
+            "Final model selection: with all terms refitted jointly, the {} term added earlier "
+            "is better described as {}: pooled chi-square {:.1f} -> {:.1f} on {:.0f} dof with "
+            "{:.0f} -> {:.0f} parameters (price {:.0f} each); gap {:.3g} -> {:.3g}. Replaced by: "
+            "{}.",
+            term_type_name(*chosen->replaced), term_type_name(step.effect), last.gap.chi_square,
+            chosen->gap.chi_square, chosen->gap.dof, total_parameters(last.model),
+            total_parameters(chosen->model), options.parameter_price, gap_before, chosen->gap.value,
+            describe_term_short(step.added_term, measured.unit));
+        step.after = std::move(assessment);
+        result.iterations.push_back(std::move(step));
+      } else {
+        result.joint_refit = std::move(assessment);
+      }
+      if (chosen->replaced) {
+        result.final_selection = fmt::format(
+            "replaced {} by {} (all terms refitted jointly): gap {:.3g} -> {:.3g}",
+            term_type_name(*chosen->replaced), term_type_name(result.iterations.back().effect),
+            gap_before, chosen->gap.value);
+      } else if (chosen->dropped) {
+        result.final_selection = fmt::format(
+            "dropped {} (the other terms refitted jointly without it): gap {:.3g} -> {:.3g}",
+            term_type_name(*chosen->dropped), gap_before, chosen->gap.value);
+      } else {
+        result.final_selection = fmt::format("all terms refitted jointly: gap {:.3g} -> {:.3g}",
+                                             gap_before, chosen->gap.value);
+      }
+      if (now_consistent && !result.consistent) {
+        result.consistent = true;
+        result.conclusion = fmt::format(
+            "After {} step(s) and the final joint refit the model is consistent with the "
+            "record (gap {:.3g}).",
+            result.iterations.size(), chosen->gap.value);
+      } else if (chosen->replaced) {
+        result.conclusion += fmt::format(
+            " Final model selection replaced the {} term by {}: gap {:.3g} -> {:.3g}.",
+            term_type_name(*chosen->replaced), term_type_name(result.iterations.back().effect),
+            gap_before, chosen->gap.value);
+      } else if (chosen->dropped) {
+        result.conclusion += fmt::format(
+            " Final model selection dropped the {} term (the others refitted without it "
+            "explain the record as well: pooled chi-square {:.1f} -> {:.1f}, one term fewer): "
+            "gap {:.3g} -> {:.3g}.",
+            term_type_name(*chosen->dropped), last_chi_square, chosen->gap.chi_square, gap_before,
+            chosen->gap.value);
+      } else {
+        result.conclusion += fmt::format(" A joint refit of all terms: gap {:.3g} -> {:.3g}.",
+                                         gap_before, chosen->gap.value);
+      }
+    }
+  }
+  result.final_walk_test = walk;
   const ModelAssessment& last = result.final_assessment();
   result.final_signature =
       read_signature(last.gap.avar, dense_tau, dense_avar, dense_edf, last.model);

@@ -145,7 +145,19 @@ std::string diagnose_report_markdown(const DiagnoseResult& result, const std::st
     md += "## Dynamic Allan deviation\n\n";
     md += fmt::format("![DAVAR]({})\n\n", plots.davar);
   }
-  md += "## Final model\n\n" + model_lines(result.final_model()) + "\n";
+  md += "## Final model\n\n";
+  if (!result.final_selection.empty()) {
+    md += "Final model selection: " + result.final_selection + ".\n\n";
+  }
+  if (result.final_walk_test.blocks > 0) {
+    md += fmt::format(
+        "Time-domain rate-random-walk test of the final model ({} block means of {:.4g} s): "
+        "likelihood ratio {:.2f} against {:.2f}{}.\n\n",
+        result.final_walk_test.blocks, result.final_walk_test.block_s,
+        result.final_walk_test.statistic, result.final_walk_test.threshold,
+        result.final_walk_test.significant ? " (significant: a rate random walk is missing)" : "");
+  }
+  md += model_lines(result.final_model()) + "\n";
   const Signature& left = result.final_signature;
   if (!result.consistent && left.found) {
     md += fmt::format(

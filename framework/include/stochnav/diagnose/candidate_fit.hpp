@@ -32,4 +32,15 @@ struct CandidateFit {
 std::optional<CandidateFit> fit_candidate(const NoiseModel& model, const FitData& data,
                                           TermType type, bool refit, double duration_s);
 
+/// All stationary terms of `model` refitted together (the same term types, repeats kept; a
+/// nonstationary term is kept as it is and the fit works on the stationary equivalent, as
+/// above): the joint refit at the end of the workflow, after terms were added one at a time with
+/// the others held. A term left on a search bound is held at its value in `model` and the rest
+/// refitted once more. nullopt when Ceres finds no usable solution, a parameter still ends on a
+/// bound, the type `must_fit` (a term whose value in `model` is a placeholder) ends on one, or
+/// the model has no stationary term. `term` of the result is unused.
+std::optional<CandidateFit> refit_jointly(const NoiseModel& model, const FitData& data,
+                                          double duration_s,
+                                          std::optional<TermType> must_fit = std::nullopt);
+
 }  // namespace stochnav

@@ -71,6 +71,30 @@ std::vector<DeterministicFinding> find_deterministic_effects(
     const std::vector<double>& rate, double rate_hz, const NoiseModel& model,
     const std::vector<AuxChannel>& aux, const DeterministicOptions& options = {});
 
+/// The time-domain test for a rate random walk the model lacks (or understates): the block
+/// differences above under `model` with a free white scale s^2 (covariance s^2 S0) against
+/// the same with a free rate random walk (s^2 (S0 + k S_K), k >= 0 profiled on the grid), a
+/// likelihood ratio against chi2_1 at 1 - alpha (conservative: k = 0 is on the boundary, so the
+/// false-alarm probability is about alpha / 2). Far more powerful at the long taus than the
+/// Allan variance, whose last octaves have few degrees of freedom each. Deterministic terms of
+/// `model` are ignored (remove them from `rate` first). Throws ConfigError as
+/// find_deterministic_effects for a record too short.
+struct RandomWalkTest {
+  double statistic = 0.0;    ///< -2 ln L ratio, >= 0
+  double threshold = 0.0;    ///< chi2_1 quantile at 1 - alpha
+  double k = 0.0;            ///< the profiled K, natural units (signal / sqrt(s)); 0: none
+  double white_scale = 1.0;  ///< the profiled s^2 with the random walk
+  /// -2 ln L of the block differences under the model with its free white scale (up to a
+  /// constant common to all models of the same record): compares models in the time domain.
+  double minus_two_log_l = 0.0;
+  bool significant = false;  ///< statistic > threshold
+  std::size_t blocks = 0;    ///< M
+  double block_s = 0.0;      ///< T (s)
+};
+RandomWalkTest test_rate_random_walk(const std::vector<double>& rate, double rate_hz,
+                                     const NoiseModel& model, double alpha,
+                                     std::size_t max_blocks = 128);
+
 /// rate minus the deterministic terms (rate_ramp, bias_step, aux_sensitivity) among `terms`,
 /// sample k at record time (k + 1/2) / rate_hz as the simulator writes them. Throws ConfigError
 /// when an aux_sensitivity term's column is not among `aux`.

@@ -17,12 +17,33 @@
 //      nonstationary term), then, only if none of those is accepted, all of them (refits too: a
 //      refit can soak a second effect into the old coefficients, so it is the fallback for a
 //      model whose own coefficients are off): rank by pooled chi-square (diagnose/gap.hpp) plus
-//      `parameter_price` per parameter of the new term, assess the best three exactly, and keep
-//      the best if it shrinks the gap significantly: the pooled chi-square drops by more than
-//      the (1 - alpha) quantile of chi2(p), p the new term's parameter count, the gap itself
-//      shrinks, and the chi-square beyond its dof shrinks by at least `min_relative_shrink`;
-//      otherwise stop (nothing helps, and no term is added that does not shrink the gap);
-//   6. repeat from 2 until consistent or max_iterations.
+//      `parameter_price` per parameter of the new term, assess the best three exactly (the
+//      rest too, in that order, when none of the three is accepted), and keep the best accepted
+//      one: accepted when it shrinks the gap significantly: the pooled chi-square drops by more
+//      than the (1 - alpha) quantile of chi2(p), p the new term's parameter count, the gap
+//      itself shrinks, and the chi-square beyond its dof shrinks by at least
+//      `min_relative_shrink`; otherwise (after step 6) stop (nothing helps, and no term is added
+//      that does not shrink the gap);
+//   6. when no Allan-variance candidate is accepted but the time-domain test finds a rate random
+//      walk the model lacks (diagnose/deterministic_effects.hpp, test_rate_random_walk: the
+//      exact likelihood of the block means, far more powerful at long taus than the last
+//      octaves of the Allan variance), the rate random walk candidates (its time-domain
+//      estimate, and the held and refitted Allan fits) are assessed exactly, and the one with
+//      the lowest pooled chi-square is kept when the gap shrinks and the time-domain statistic
+//      drops by more than its threshold;
+//   7. repeat from 2 while the gap or the time-domain test says inconsistent, up to
+//      max_iterations;
+//   8. final model selection (joint refit): the model's stationary terms refitted together
+//      (diagnose/candidate_fit.hpp, refit_jointly), and variants with one term a step added
+//      dropped or replaced by a candidate of fewer parameters (a Gauss-Markov term of long
+//      correlation time taken early for a rate random walk), each refitted jointly and
+//      assessed exactly. Criterion: pooled chi-square + parameter_price per parameter of the
+//      whole model + the change in the block means' -2 ln L (test_rate_random_walk's
+//      minus_two_log_l, which tells long-tau alternatives apart where the last octaves cannot).
+//      The best variant is kept when it beats the step-by-step model, does not widen an
+//      inconsistent gap, and a consistent model stays consistent (the plain refit must also
+//      lower the pooled chi-square). A replacement is reported as an extra iteration; a refit
+//      or a drop in `joint_refit` and `final_selection`.
 // Before step 2, deterministic effects (rate_ramp, bias_step, aux_sensitivity) are found in
 // the time domain (diagnose/deterministic_effects.hpp: GLS regressions of block means with
 // likelihood-ratio tests against the stochastic alternatives), each reported as an iteration
@@ -74,6 +95,13 @@ struct DiagnoseOptions {
   /// Look for deterministic effects (rate ramp, bias step, aux channels) in the time domain.
   bool try_deterministic = true;
   bool try_nonstationary = true;  ///< offer a nonstationary term when the windows disagree
+  /// Test the model for a missing rate random walk in the time domain
+  /// (diagnose/deterministic_effects.hpp, test_rate_random_walk) besides the gap: the loop goes
+  /// on while either says the model is inconsistent.
+  bool try_time_domain_walk = true;
+  /// Refit all stationary terms together after the loop (kept when the pooled chi-square drops
+  /// and the gap does not widen).
+  bool joint_refit = true;
 
   /// Empty when valid; otherwise the reason, naming the option.
   std::string validate() const;
@@ -128,7 +156,18 @@ struct DiagnoseResult {
   /// `measured` was taken; the assessments hold the stochastic part only.
   std::vector<NoiseTerm> deterministic;
 
+  /// The joint refit of all stationary terms after the loop, when kept (it then is the final
+  /// assessment); gap_before is the last step's gap.
+  std::optional<ModelAssessment> joint_refit;
+  /// What the final model selection did, one line ("all terms refitted jointly: gap a -> b",
+  /// "replaced gauss_markov by rate_random_walk ...", "dropped rate_random_walk ..."); empty when
+  /// it kept the step-by-step model.
+  std::string final_selection;
+  /// The time-domain rate-random-walk test of the final model (statistic 0 when not run).
+  RandomWalkTest final_walk_test;
+
   const ModelAssessment& final_assessment() const {
+    if (joint_refit) return *joint_refit;
     return iterations.empty() ? initial : iterations.back().after;
   }
   /// The final stochastic model with the deterministic terms appended.
