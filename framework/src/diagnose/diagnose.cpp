@@ -114,25 +114,16 @@ double largest_share(const NoiseTerm& term, const NoiseModel& model,
   return share;
 }
 
-// A term of `type` whose values do not matter (refit_jointly reads the types only).
+// A term of `type` whose values do not matter (refit_jointly reads the types only); an angle
+// random walk for the types the Allan loop does not add.
 NoiseTerm placeholder_term(TermType type) {
   switch (type) {
-    case TermType::kQuantization:
-      return QuantizationTerm{};
-    case TermType::kAngleRandomWalk:
+    case TermType::kNonstationary:
+    case TermType::kBiasStep:
+    case TermType::kAuxSensitivity:
       return AngleRandomWalkTerm{};
-    case TermType::kBiasInstability:
-      return BiasInstabilityTerm{};
-    case TermType::kRateRandomWalk:
-      return RateRandomWalkTerm{};
-    case TermType::kRateRamp:
-      return RateRampTerm{};
-    case TermType::kGaussMarkov:
-      return GaussMarkovTerm{};
-    case TermType::kSinusoid:
-      return SinusoidTerm{};
     default:
-      return AngleRandomWalkTerm{};
+      return make_term(type);
   }
 }
 
@@ -424,6 +415,20 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     // nonstationary term); only when none of them is accepted, also those that refit the old
     // terms. A refit can soak up a second effect into the old terms' coefficients, so it is the
     // fallback for a model whose own coefficients are off.
+    // The exact gap of a trial (simulated band and stationarity), once; false when it cannot be
+    // computed for this model.
+    const auto assess_exactly = [&](Trial& trial) {
+      if (trial.outcome.exact) return true;
+      try {
+        trial.gap = combine_gap(avar_gap(trial.model, measured.octave_avar),
+                                stationarity_test(measured.windows, trial.model), options.alpha);
+      } catch (const ConfigError&) {
+        return false;
+      }
+      trial.outcome.gap = trial.gap.value;
+      trial.outcome.exact = true;
+      return true;
+    };
     const double price = options.parameter_price;
     const auto score = [&](const Trial* trial) {
       return trial->gap.chi_square + price * static_cast<double>(added_parameters(trial->term));
@@ -459,17 +464,7 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
       for (std::size_t index = 0; index < contenders.size(); ++index) {
         if (index >= kExactlyAssessed && tier_accepted != nullptr) break;
         Trial* trial = contenders[index];
-        if (!trial->outcome.exact) {
-          try {
-            trial->gap =
-                combine_gap(avar_gap(trial->model, measured.octave_avar),
-                            stationarity_test(measured.windows, trial->model), options.alpha);
-          } catch (const ConfigError&) {
-            continue;
-          }
-          trial->outcome.gap = trial->gap.value;
-          trial->outcome.exact = true;
-        }
+        if (!assess_exactly(*trial)) continue;
         if (tier_best == nullptr || score(trial) < score(tier_best)) tier_best = trial;
         if (accepts(trial) && (tier_accepted == nullptr || score(trial) < score(tier_accepted))) {
           tier_accepted = trial;
@@ -520,17 +515,7 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
       }
       Trial* walk_best = nullptr;
       for (Trial* trial : walkers) {
-        if (!trial->outcome.exact) {
-          try {
-            trial->gap =
-                combine_gap(avar_gap(trial->model, measured.octave_avar),
-                            stationarity_test(measured.windows, trial->model), options.alpha);
-          } catch (const ConfigError&) {
-            continue;
-          }
-          trial->outcome.gap = trial->gap.value;
-          trial->outcome.exact = true;
-        }
+        if (!assess_exactly(*trial)) continue;
         if (!std::isfinite(trial->gap.value) || !(trial->gap.value < before.value)) continue;
         const RandomWalkTest after = walk_test(trial->model);
         if (after.statistic > walk.statistic - walk.threshold) continue;
