@@ -103,7 +103,10 @@ std::vector<double> read_series(ParamReader& reader, std::string_view name, cons
   const std::string item = bound_description(rule.bound, unit_name);
   const std::string expected = fmt::format(
       "{} array ({}each {})", rule.ascending ? "an ascending" : "an",
-      rule.min_size > 0 ? fmt::format("at least {} values; ", rule.min_size) : "", item);
+      rule.min_size > 0
+          ? fmt::format("at least {} value{}; ", rule.min_size, rule.min_size == 1 ? "" : "s")
+          : "",
+      item);
   if (!rule.required && !reader.has(name)) return {};
   const nlohmann::json& json = required_value(reader, name, expected);
   const std::string pointer = reader.pointer(name);
