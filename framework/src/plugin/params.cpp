@@ -44,7 +44,9 @@ std::string bound_text_of(Bound bound, std::string_view unit) {
   return text;
 }
 
-bool within(Bound bound, double value) {
+}  // namespace
+
+bool within_bound(Bound bound, double value) {
   if (!std::isfinite(value)) return false;
   switch (bound) {
     case Bound::kAny:
@@ -58,6 +60,8 @@ bool within(Bound bound, double value) {
   }
   return false;
 }
+
+namespace {
 
 std::string shown(const nlohmann::json& value) {
   std::string text = value.dump();
@@ -114,7 +118,7 @@ std::string ParamReader::pointer(std::string_view key) const {
 double ParamReader::number(std::string_view key, Bound bound, std::string_view unit) {
   const nlohmann::json* value = find(key);
   if (value == nullptr) throw_missing(key, bound_text(bound, unit));
-  if (!value->is_number() || !within(bound, value->get<double>())) {
+  if (!value->is_number() || !within_bound(bound, value->get<double>())) {
     throw ConfigError(pointer(key) + ": found " + shown(*value) + "; expected " +
                       bound_text(bound, unit));
   }
@@ -132,7 +136,7 @@ std::array<double, 3> ParamReader::axes(std::string_view key, Bound bound, std::
       bound_text(bound, unit) + " for all axes, or an array of 3 such numbers [x, y, z]";
   if (value == nullptr) throw_missing(key, expected);
   if (value->is_number()) {
-    if (!within(bound, value->get<double>())) {
+    if (!within_bound(bound, value->get<double>())) {
       throw ConfigError(pointer(key) + ": found " + shown(*value) + "; expected " + expected);
     }
     const double v = value->get<double>();
@@ -144,7 +148,7 @@ std::array<double, 3> ParamReader::axes(std::string_view key, Bound bound, std::
   std::array<double, 3> result{};
   for (std::size_t i = 0; i < 3; ++i) {
     const auto& item = (*value)[i];
-    if (!item.is_number() || !within(bound, item.get<double>())) {
+    if (!item.is_number() || !within_bound(bound, item.get<double>())) {
       throw ConfigError(pointer(key) + "/" + std::to_string(i) + ": found " + shown(item) +
                         "; expected " + bound_text(bound, unit));
     }
@@ -195,6 +199,12 @@ std::string ParamReader::choice_or(std::string_view key, std::string_view fallba
     }
   }
   throw ConfigError(pointer(key) + ": found " + shown(*value) + "; expected one of " + options);
+}
+
+const nlohmann::json& ParamReader::required(std::string_view key, const std::string& expected) {
+  const nlohmann::json* value = find(key);
+  if (value == nullptr) throw_missing(key, expected);
+  return *value;
 }
 
 const nlohmann::json& ParamReader::raw(std::string_view key) {

@@ -77,16 +77,31 @@ double chi_square_quantile(double probability, int dof) {
   return boost::math::quantile(boost::math::chi_squared(dof), probability);
 }
 
-NisGate read_nis_gate(ParamReader& params, int measurement_size) {
+const ParamTable<NisGateParams>& nis_gate_table() {
+  static const ParamTable<NisGateParams> table{
+      flag(&NisGateParams::enabled, "nis_gate", true, "reject updates whose NIS is too large"),
+      scalar(&NisGateParams::probability, "nis_probability", ParamUnit::fixed(""), Bound::kOpenUnit,
+             kDefaultGateProbability,
+             "gate at this chi-square quantile (dof: the measurement size)"),
+      scalar(&NisGateParams::threshold, "nis_threshold", ParamUnit::fixed(""), Bound::kPositive,
+             kDerived, "gate at this NIS, overriding nis_probability"),
+  };
+  return table;
+}
+
+NisGate nis_gate(const NisGateParams& params, int measurement_size) {
   NisGate gate;
-  gate.enabled = params.boolean_or("nis_gate", true);
-  const double probability =
-      params.number_or("nis_probability", kDefaultGateProbability, Bound::kOpenUnit, "");
-  gate.threshold = chi_square_quantile(probability, measurement_size);
-  if (params.has("nis_threshold")) {
-    gate.threshold = params.number("nis_threshold", Bound::kPositive, "");
-  }
+  gate.enabled = params.enabled;
+  gate.threshold = std::isnan(params.threshold)
+                       ? chi_square_quantile(params.probability, measurement_size)
+                       : params.threshold;
   return gate;
+}
+
+NisGate read_nis_gate(ParamReader& params, int measurement_size) {
+  NisGateParams gate;
+  nis_gate_table().read(params, gate);
+  return nis_gate(gate, measurement_size);
 }
 
 }  // namespace stochnav::plugin

@@ -45,16 +45,20 @@ struct PipeLengthParams {
   double sigma_scale;           ///< relative
   double sigma_random_m;        ///< m
   double sigma_displacement_m;  ///< m
+  stochnav::plugin::NisGateParams gate;
 };
 
-const stochnav::plugin::ParamTable<PipeLengthParams> kPipeLengthTable{
-    scalar(&PipeLengthParams::sigma_scale, "sigma_scale", ParamUnit::fixed(""), Bound::kNonNegative,
-           1e-3, "relative 1-sigma of the tally (scale error)"),
-    scalar(&PipeLengthParams::sigma_random_m, "sigma_random_m", ParamUnit::fixed("m"),
-           Bound::kPositive, 0.05, "1-sigma of the random depth error"),
-    scalar(&PipeLengthParams::sigma_displacement_m, "sigma_displacement_m", ParamUnit::fixed("m"),
-           Bound::kNonNegative, 0.0, "1-sigma of the displacement since the last update"),
-};
+const auto kPipeLengthTable =
+    stochnav::plugin::ParamTable<PipeLengthParams>{
+        scalar(&PipeLengthParams::sigma_scale, "sigma_scale", ParamUnit::fixed(""),
+               Bound::kNonNegative, 1e-3, "relative 1-sigma of the tally (scale error)"),
+        scalar(&PipeLengthParams::sigma_random_m, "sigma_random_m", ParamUnit::fixed("m"),
+               Bound::kPositive, 0.05, "1-sigma of the random depth error"),
+        scalar(&PipeLengthParams::sigma_displacement_m, "sigma_displacement_m",
+               ParamUnit::fixed("m"), Bound::kNonNegative, 0.0,
+               "1-sigma of the displacement since the last update"),
+    }
+        .plus(lift(&PipeLengthParams::gate, stochnav::plugin::nis_gate_table()));
 
 class PipeLengthAid final : public stochnav::plugin::AidPlugin {
  public:
@@ -99,10 +103,8 @@ class PipeLengthAid final : public stochnav::plugin::AidPlugin {
   }
 
   std::string describe() const override {
-    return fmt::format(
-        "pipe_length: depth tally against the mean tool-axis velocity, scale sigma {}, random "
-        "sigma {} m, axial displacement sigma {} m",
-        params_.sigma_scale, params_.sigma_random_m, params_.sigma_displacement_m);
+    return "pipe_length: depth tally against the mean tool-axis velocity; " +
+           kPipeLengthTable.describe(params_);
   }
 
  private:
@@ -114,11 +116,8 @@ class PipeLengthAid final : public stochnav::plugin::AidPlugin {
 
 std::unique_ptr<stochnav::plugin::AidPlugin> make_pipe_length(
     const nlohmann::json& json, const stochnav::plugin::AidContext& context) {
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  PipeLengthParams params;
-  kPipeLengthTable.read(reader, params);
-  const auto gate = stochnav::plugin::read_nis_gate(reader, 1);
-  reader.finish();
+  const PipeLengthParams params = kPipeLengthTable.parse(json, context.params_pointer);
+  const auto gate = stochnav::plugin::nis_gate(params.gate, 1);
   return std::make_unique<PipeLengthAid>(
       params, gate, context.data->time_s(),
       context.data->column("measured_depth_m", context.params_pointer));

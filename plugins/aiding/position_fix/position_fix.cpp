@@ -26,7 +26,7 @@
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/aid_schedule.hpp"
-#include "stochnav/plugin/params.hpp"
+#include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 
 namespace {
@@ -35,10 +35,37 @@ namespace cs = stochnav::plugin::core_state;
 
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
-// The six aid-data columns, in this order: latitude (deg), longitude (deg), height (m), sigma
-// east, north, up (m).
-constexpr std::array<std::string_view, 6> kColumnKeys = {
-    "latitude_deg", "longitude_deg", "height_m", "sigma_east_m", "sigma_north_m", "sigma_up_m"};
+// The names of the six aid-data columns.
+struct ColumnNames {
+  std::string latitude_deg, longitude_deg, height_m, sigma_east_m, sigma_north_m, sigma_up_m;
+};
+
+const stochnav::plugin::ParamTable<ColumnNames> kColumnTable{
+    stochnav::plugin::text(&ColumnNames::latitude_deg, "latitude_deg", "fix_latitude_deg",
+                           "column of the fix latitude (deg)"),
+    stochnav::plugin::text(&ColumnNames::longitude_deg, "longitude_deg", "fix_longitude_deg",
+                           "column of the fix longitude (deg)"),
+    stochnav::plugin::text(&ColumnNames::height_m, "height_m", "fix_height_m",
+                           "column of the fix height above the WGS-84 ellipsoid (m)"),
+    stochnav::plugin::text(&ColumnNames::sigma_east_m, "sigma_east_m", "fix_sigma_east_m",
+                           "column of the east 1-sigma (m)"),
+    stochnav::plugin::text(&ColumnNames::sigma_north_m, "sigma_north_m", "fix_sigma_north_m",
+                           "column of the north 1-sigma (m)"),
+    stochnav::plugin::text(&ColumnNames::sigma_up_m, "sigma_up_m", "fix_sigma_up_m",
+                           "column of the up 1-sigma (m)"),
+};
+
+struct PositionFixParams {
+  ColumnNames columns;
+  stochnav::plugin::NisGateParams gate;
+};
+
+const auto kPositionFixTable =
+    stochnav::plugin::ParamTable<PositionFixParams>{
+        group(&PositionFixParams::columns, "columns", kColumnTable,
+              stochnav::plugin::Absent::kDefaults, "names of the aid-data columns"),
+    }
+        .plus(lift(&PositionFixParams::gate, stochnav::plugin::nis_gate_table()));
 
 struct FixColumns {
   std::span<const double> latitude_deg;
@@ -56,9 +83,10 @@ bool carries_fix(const FixColumns& columns, std::size_t row) {
 
 class PositionFixAid final : public stochnav::plugin::AidPlugin {
  public:
-  PositionFixAid(stochnav::plugin::NisGate gate, std::span<const double> times_s,
-                 const FixColumns& columns, std::size_t fix_count)
+  PositionFixAid(const PositionFixParams& params, stochnav::plugin::NisGate gate,
+                 std::span<const double> times_s, const FixColumns& columns, std::size_t fix_count)
       : AidPlugin(gate),
+        params_(params),
         schedule_(stochnav::plugin::AidSchedule::at_rows(times_s)),
         columns_(columns),
         fix_count_(fix_count) {}
@@ -94,11 +122,12 @@ class PositionFixAid final : public stochnav::plugin::AidPlugin {
   }
 
   std::string describe() const override {
-    return fmt::format("position_fix: {} position fixes from the aid data, ENU sigmas per row",
-                       fix_count_);
+    return fmt::format("position_fix: {} position fixes from the aid data, ENU sigmas per row; {}",
+                       fix_count_, kPositionFixTable.describe(params_));
   }
 
  private:
+  PositionFixParams params_;
   stochnav::plugin::AidSchedule schedule_;
   FixColumns columns_;
   std::size_t fix_count_;
@@ -106,27 +135,24 @@ class PositionFixAid final : public stochnav::plugin::AidPlugin {
 
 std::unique_ptr<stochnav::plugin::AidPlugin> make_position_fix(
     const nlohmann::json& json, const stochnav::plugin::AidContext& context) {
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
+  const PositionFixParams params = kPositionFixTable.parse(json, context.params_pointer);
+  const auto gate = stochnav::plugin::nis_gate(params.gate, 3);
+  const stochnav::plugin::AidData& data = *context.data;
   // A missing column is reported at the key that renames it ("<params>/columns/latitude_deg"),
   // whether or not the params have it: that is where the user fixes it.
-  stochnav::plugin::ParamReader renames(reader.raw("columns"), reader.pointer("columns"));
-  std::array<std::string, 6> names;
-  for (std::size_t i = 0; i < kColumnKeys.size(); ++i) {
-    names[i] = renames.text_or(kColumnKeys[i], "fix_" + std::string(kColumnKeys[i]));
-  }
-  renames.finish();
-  const auto gate = stochnav::plugin::read_nis_gate(reader, 3);
-  reader.finish();
-  const stochnav::plugin::AidData& data = *context.data;
-  const auto column = [&](std::size_t i) {
-    return data.column(names[i], renames.pointer(kColumnKeys[i]));
+  const auto column = [&](const std::string& name, std::string_view key) {
+    return data.column(name, context.params_pointer + "/columns/" + std::string(key));
   };
-  const FixColumns columns{column(0), column(1), column(2), column(3), column(4), column(5)};
+  const ColumnNames& names = params.columns;
+  const FixColumns columns{
+      column(names.latitude_deg, "latitude_deg"),   column(names.longitude_deg, "longitude_deg"),
+      column(names.height_m, "height_m"),           column(names.sigma_east_m, "sigma_east_m"),
+      column(names.sigma_north_m, "sigma_north_m"), column(names.sigma_up_m, "sigma_up_m")};
   std::size_t fix_count = 0;
   for (std::size_t row = 0; row < data.rows(); ++row) {
     if (carries_fix(columns, row)) ++fix_count;
   }
-  return std::make_unique<PositionFixAid>(gate, data.time_s(), columns, fix_count);
+  return std::make_unique<PositionFixAid>(params, gate, data.time_s(), columns, fix_count);
 }
 
 }  // namespace

@@ -50,16 +50,19 @@ struct RopParams {
   double sigma_rop_mps;         ///< m/s
   double sigma_lateral_mps;     ///< m/s
   double sigma_displacement_m;  ///< m
+  stochnav::plugin::NisGateParams gate;
 };
 
-const stochnav::plugin::ParamTable<RopParams> kRopTable{
-    scalar(&RopParams::sigma_rop_mps, "sigma_rop_mps", ParamUnit::fixed("m/s"), Bound::kPositive,
-           1.0 / 3600.0, "1-sigma of the measured rate of penetration"),
-    scalar(&RopParams::sigma_lateral_mps, "sigma_lateral_mps", ParamUnit::fixed("m/s"),
-           Bound::kPositive, 1e-3, "1-sigma of the zero lateral velocity"),
-    scalar(&RopParams::sigma_displacement_m, "sigma_displacement_m", ParamUnit::fixed("m"),
-           Bound::kNonNegative, 0.0, "1-sigma of the displacement since the last update"),
-};
+const auto kRopTable =
+    stochnav::plugin::ParamTable<RopParams>{
+        scalar(&RopParams::sigma_rop_mps, "sigma_rop_mps", ParamUnit::fixed("m/s"),
+               Bound::kPositive, 1.0 / 3600.0, "1-sigma of the measured rate of penetration"),
+        scalar(&RopParams::sigma_lateral_mps, "sigma_lateral_mps", ParamUnit::fixed("m/s"),
+               Bound::kPositive, 1e-3, "1-sigma of the zero lateral velocity"),
+        scalar(&RopParams::sigma_displacement_m, "sigma_displacement_m", ParamUnit::fixed("m"),
+               Bound::kNonNegative, 0.0, "1-sigma of the displacement since the last update"),
+    }
+        .plus(lift(&RopParams::gate, stochnav::plugin::nis_gate_table()));
 
 class RopAid final : public stochnav::plugin::AidPlugin {
  public:
@@ -102,10 +105,7 @@ class RopAid final : public stochnav::plugin::AidPlugin {
   }
 
   std::string describe() const override {
-    return fmt::format(
-        "rop: mean tool-axis velocity from rop_mph, sigma {} m/s; lateral sigma {} m/s; "
-        "axial displacement sigma {} m",
-        params_.sigma_rop_mps, params_.sigma_lateral_mps, params_.sigma_displacement_m);
+    return "rop: mean tool-axis velocity from rop_mph; " + kRopTable.describe(params_);
   }
 
  private:
@@ -117,11 +117,8 @@ class RopAid final : public stochnav::plugin::AidPlugin {
 
 std::unique_ptr<stochnav::plugin::AidPlugin> make_rop(const nlohmann::json& json,
                                                       const stochnav::plugin::AidContext& context) {
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  RopParams params;
-  kRopTable.read(reader, params);
-  const auto gate = stochnav::plugin::read_nis_gate(reader, 3);
-  reader.finish();
+  const RopParams params = kRopTable.parse(json, context.params_pointer);
+  const auto gate = stochnav::plugin::nis_gate(params.gate, 3);
   return std::make_unique<RopAid>(params, gate, context.data->time_s(),
                                   context.data->column("rop_mph", context.params_pointer));
 }

@@ -37,26 +37,44 @@ using stochnav::plugin::ParamUnit;
 
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
+struct Site {
+  double latitude_deg = 0.0;
+  double longitude_deg = 0.0;
+  double height_m = 0.0;  ///< above the WGS-84 ellipsoid
+};
+
+const stochnav::plugin::ParamTable<Site> kSiteTable{
+    scalar(&Site::latitude_deg, "latitude_deg", ParamUnit::fixed("deg"), Bound::kAny,
+           stochnav::plugin::kRequired, "latitude"),
+    scalar(&Site::longitude_deg, "longitude_deg", ParamUnit::fixed("deg"), Bound::kAny,
+           stochnav::plugin::kRequired, "longitude"),
+    scalar(&Site::height_m, "height_m", ParamUnit::fixed("m"), Bound::kAny, 0.0,
+           "height above the WGS-84 ellipsoid"),
+};
+
 struct StaticPositionParams {
   double rate_hz;             ///< Hz
   double sigma_position_m;    ///< m
   bool zero_velocity;         ///< also measure the velocity against zero
   double sigma_velocity_mps;  ///< m/s
-  double latitude_rad = 0.0;
-  double longitude_rad = 0.0;
-  double height_m = 0.0;
+  Site site;                  ///< the factory's default: the run's initial position
+  stochnav::plugin::NisGateParams gate;
 };
 
-const stochnav::plugin::ParamTable<StaticPositionParams> kStaticPositionTable{
-    scalar(&StaticPositionParams::rate_hz, "rate_hz", ParamUnit::fixed("Hz"), Bound::kPositive, 1.0,
-           "measurement rate"),
-    scalar(&StaticPositionParams::sigma_position_m, "sigma_position_m", ParamUnit::fixed("m"),
-           Bound::kPositive, 0.01, "1-sigma of the site position"),
-    stochnav::plugin::flag(&StaticPositionParams::zero_velocity, "zero_velocity", true,
-                           "also measure the velocity against zero"),
-    scalar(&StaticPositionParams::sigma_velocity_mps, "sigma_velocity_mps", ParamUnit::fixed("m/s"),
-           Bound::kPositive, 0.001, "1-sigma of the zero velocity"),
-};
+const auto kStaticPositionTable =
+    stochnav::plugin::ParamTable<StaticPositionParams>{
+        scalar(&StaticPositionParams::rate_hz, "rate_hz", ParamUnit::fixed("Hz"), Bound::kPositive,
+               1.0, "measurement rate"),
+        scalar(&StaticPositionParams::sigma_position_m, "sigma_position_m", ParamUnit::fixed("m"),
+               Bound::kPositive, 0.01, "1-sigma of the site position"),
+        stochnav::plugin::flag(&StaticPositionParams::zero_velocity, "zero_velocity", true,
+                               "also measure the velocity against zero"),
+        scalar(&StaticPositionParams::sigma_velocity_mps, "sigma_velocity_mps",
+               ParamUnit::fixed("m/s"), Bound::kPositive, 0.001, "1-sigma of the zero velocity"),
+        group(&StaticPositionParams::site, "site", kSiteTable, stochnav::plugin::Absent::kKeep,
+              "the known position; default the run's initial position"),
+    }
+        .plus(lift(&StaticPositionParams::gate, stochnav::plugin::nis_gate_table()));
 
 class StaticPositionAid final : public stochnav::plugin::AidPlugin {
  public:
@@ -64,6 +82,8 @@ class StaticPositionAid final : public stochnav::plugin::AidPlugin {
                     double start_s)
       : AidPlugin(gate),
         params_(params),
+        latitude_rad_(params.site.latitude_deg * kRadPerDeg),
+        longitude_rad_(params.site.longitude_deg * kRadPerDeg),
         schedule_(stochnav::plugin::AidSchedule::periodic(start_s, params.rate_hz)) {}
 
   std::string_view type() const override { return "static_position"; }
@@ -73,13 +93,11 @@ class StaticPositionAid final : public stochnav::plugin::AidPlugin {
   bool measure(double, const stochnav::NavState& state, const stochnav::plugin::ImuSample&,
                Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
                Eigen::Ref<Eigen::MatrixXd> r) const override {
-    const stochnav::EarthRadii radii = stochnav::earth_radii(params_.latitude_rad);
-    residual(0) =
-        std::remainder(state.longitude_rad - params_.longitude_rad, 2 * std::numbers::pi) *
-        (radii.transverse_m + params_.height_m) * std::cos(params_.latitude_rad);
-    residual(1) =
-        (state.latitude_rad - params_.latitude_rad) * (radii.meridian_m + params_.height_m);
-    residual(2) = state.height_m - params_.height_m;
+    const stochnav::EarthRadii radii = stochnav::earth_radii(latitude_rad_);
+    residual(0) = std::remainder(state.longitude_rad - longitude_rad_, 2 * std::numbers::pi) *
+                  (radii.transverse_m + params_.site.height_m) * std::cos(latitude_rad_);
+    residual(1) = (state.latitude_rad - latitude_rad_) * (radii.meridian_m + params_.site.height_m);
+    residual(2) = state.height_m - params_.site.height_m;
     h.setZero();
     h.block<3, 3>(0, cs::kPosition).setIdentity();
     r.setZero();
@@ -93,37 +111,23 @@ class StaticPositionAid final : public stochnav::plugin::AidPlugin {
   }
 
   std::string describe() const override {
-    const std::string velocity = params_.zero_velocity
-                                     ? fmt::format(", {} m/s", params_.sigma_velocity_mps)
-                                     : std::string(" (position only)");
-    return fmt::format(
-        "static_position: site {:.7f} deg, {:.7f} deg, {:.3f} m; {} Hz; sigma {} m{}",
-        params_.latitude_rad / kRadPerDeg, params_.longitude_rad / kRadPerDeg, params_.height_m,
-        params_.rate_hz, params_.sigma_position_m, velocity);
+    return "static_position: " + kStaticPositionTable.describe(params_);
   }
 
  private:
   StaticPositionParams params_;
+  double latitude_rad_;   ///< of the site
+  double longitude_rad_;  ///< of the site
   stochnav::plugin::AidSchedule schedule_;
 };
 
 std::unique_ptr<stochnav::plugin::AidPlugin> make_static_position(
     const nlohmann::json& json, const stochnav::plugin::AidContext& context) {
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
   StaticPositionParams params;
-  kStaticPositionTable.read(reader, params);
-  params.latitude_rad = context.initial_state.latitude_rad;
-  params.longitude_rad = context.initial_state.longitude_rad;
-  params.height_m = context.initial_state.height_m;
-  if (reader.has("site")) {
-    stochnav::plugin::ParamReader site(reader.raw("site"), reader.pointer("site"));
-    params.latitude_rad = site.number("latitude_deg", Bound::kAny, "deg") * kRadPerDeg;
-    params.longitude_rad = site.number("longitude_deg", Bound::kAny, "deg") * kRadPerDeg;
-    params.height_m = site.number_or("height_m", 0.0, Bound::kAny, "m");
-    site.finish();
-  }
-  const auto gate = stochnav::plugin::read_nis_gate(reader, params.zero_velocity ? 6 : 3);
-  reader.finish();
+  params.site = {context.initial_state.latitude_rad / kRadPerDeg,
+                 context.initial_state.longitude_rad / kRadPerDeg, context.initial_state.height_m};
+  kStaticPositionTable.parse_into(json, context.params_pointer, stochnav::Quantity::kPlain, params);
+  const auto gate = stochnav::plugin::nis_gate(params.gate, params.zero_velocity ? 6 : 3);
   return std::make_unique<StaticPositionAid>(params, gate, context.initial_state.t_s);
 }
 

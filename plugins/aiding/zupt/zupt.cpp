@@ -35,18 +35,25 @@ struct ZuptParams {
   double accel_threshold_mps2;  ///< m/s^2
   double gyro_threshold_radps;  ///< rad/s
   double sigma_velocity_mps;    ///< m/s
+  stochnav::plugin::NisGateParams gate;
 };
 
-const stochnav::plugin::ParamTable<ZuptParams> kZuptTable{
-    scalar(&ZuptParams::rate_hz, "rate_hz", ParamUnit::fixed("Hz"), Bound::kPositive, 1.0,
-           "detector: update rate"),
-    scalar(&ZuptParams::accel_threshold_mps2, "accel_threshold_mps2", ParamUnit::fixed("m/s^2"),
-           Bound::kPositive, 0.05, "detector: largest specific-force deviation at rest"),
-    scalar(&ZuptParams::gyro_threshold_radps, "gyro_threshold_radps", ParamUnit::fixed("rad/s"),
-           Bound::kPositive, 1e-3, "detector: largest angular rate at rest"),
-    scalar(&ZuptParams::sigma_velocity_mps, "sigma_velocity_mps", ParamUnit::fixed("m/s"),
-           Bound::kPositive, 0.001, "1-sigma of the zero velocity"),
-};
+const auto kZuptTable =
+    stochnav::plugin::ParamTable<ZuptParams>{
+        stochnav::plugin::choice(&ZuptParams::detector, "source",
+                                 {{"flags", false}, {"detector", true}}, false,
+                                 "rows flagged in the aid data's \"zupt\" column, or the "
+                                 "stationarity detector"),
+        scalar(&ZuptParams::rate_hz, "rate_hz", ParamUnit::fixed("Hz"), Bound::kPositive, 1.0,
+               "detector: update rate"),
+        scalar(&ZuptParams::accel_threshold_mps2, "accel_threshold_mps2", ParamUnit::fixed("m/s^2"),
+               Bound::kPositive, 0.05, "detector: largest specific-force deviation at rest"),
+        scalar(&ZuptParams::gyro_threshold_radps, "gyro_threshold_radps", ParamUnit::fixed("rad/s"),
+               Bound::kPositive, 1e-3, "detector: largest angular rate at rest"),
+        scalar(&ZuptParams::sigma_velocity_mps, "sigma_velocity_mps", ParamUnit::fixed("m/s"),
+               Bound::kPositive, 0.001, "1-sigma of the zero velocity"),
+    }
+        .plus(lift(&ZuptParams::gate, stochnav::plugin::nis_gate_table()));
 
 class ZuptAid final : public stochnav::plugin::AidPlugin {
  public:
@@ -81,15 +88,7 @@ class ZuptAid final : public stochnav::plugin::AidPlugin {
     return true;
   }
 
-  std::string describe() const override {
-    return params_.detector
-               ? fmt::format(
-                     "zupt: detector at {} Hz (|f|-g < {} m/s^2, |w| < {} rad/s); "
-                     "sigma {} m/s",
-                     params_.rate_hz, params_.accel_threshold_mps2, params_.gyro_threshold_radps,
-                     params_.sigma_velocity_mps)
-               : fmt::format("zupt: aid-data flags; sigma {} m/s", params_.sigma_velocity_mps);
-  }
+  std::string describe() const override { return "zupt: " + kZuptTable.describe(params_); }
 
  private:
   ZuptParams params_;
@@ -99,13 +98,8 @@ class ZuptAid final : public stochnav::plugin::AidPlugin {
 
 std::unique_ptr<stochnav::plugin::AidPlugin> make_zupt(
     const nlohmann::json& json, const stochnav::plugin::AidContext& context) {
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  ZuptParams params;
-  constexpr std::string_view kSources[] = {"flags", "detector"};
-  params.detector = reader.choice_or("source", "flags", kSources) == "detector";
-  kZuptTable.read(reader, params);
-  const auto gate = stochnav::plugin::read_nis_gate(reader, 3);
-  reader.finish();
+  const ZuptParams params = kZuptTable.parse(json, context.params_pointer);
+  const auto gate = stochnav::plugin::nis_gate(params.gate, 3);
   if (params.detector) {
     return std::make_unique<ZuptAid>(
         params, gate,

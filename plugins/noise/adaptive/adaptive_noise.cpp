@@ -139,9 +139,8 @@ class AdaptiveNoise final : public stochnav::plugin::TabulatedNoiseModel<Adaptiv
 };
 
 /// Fills the clamps left to their defaults around N_initial (in reporting units, as given) and
-/// checks N_min <= N_initial <= N_max. `reader` only names the keys in messages.
-AdaptiveParams complete(AdaptiveParams params, SensorGroup group,
-                        const stochnav::plugin::ParamReader& reader) {
+/// checks N_min <= N_initial <= N_max; `pointer` is the params' JSON pointer.
+AdaptiveParams complete(AdaptiveParams params, SensorGroup group, const std::string& pointer) {
   const auto quantity = stochnav::plugin::sensor_quantity(group);
   const double initial_reported = kLevelUnit.to_reported(quantity, params.n_initial);
   if (std::isnan(params.n_min)) {
@@ -153,24 +152,22 @@ AdaptiveParams complete(AdaptiveParams params, SensorGroup group,
   const std::string unit = kLevelUnit.name(quantity);
   if (params.n_min > params.n_initial) {
     throw stochnav::ConfigError(
-        fmt::format("{}: found {:.6g}; expected at most N_initial = {} {}", reader.pointer("N_min"),
+        fmt::format("{}: found {:.6g}; expected at most N_initial = {} {}", pointer + "/N_min",
                     kLevelUnit.to_reported(quantity, params.n_min), initial_reported, unit));
   }
   if (params.n_max < params.n_initial) {
-    throw stochnav::ConfigError(fmt::format(
-        "{}: found {:.6g}; expected at least N_initial = {} {}", reader.pointer("N_max"),
-        kLevelUnit.to_reported(quantity, params.n_max), initial_reported, unit));
+    throw stochnav::ConfigError(
+        fmt::format("{}: found {:.6g}; expected at least N_initial = {} {}", pointer + "/N_max",
+                    kLevelUnit.to_reported(quantity, params.n_max), initial_reported, unit));
   }
   return params;
 }
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_adaptive(
     const nlohmann::json& json, const stochnav::plugin::NoiseModelContext& context) {
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  AdaptiveParams params;
-  kAdaptiveTable.read(reader, stochnav::plugin::sensor_quantity(context.group), params);
-  reader.finish();
-  return std::make_unique<AdaptiveNoise>(context.group, complete(params, context.group, reader));
+  return std::make_unique<AdaptiveNoise>(
+      context.group, complete(stochnav::plugin::parse_params(kAdaptiveTable, json, context),
+                              context.group, context.params_pointer));
 }
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_adaptive(
@@ -195,12 +192,9 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_adaptive(
   }
   // The factory's keys but N_initial, which the fit gives.
   static const auto kFitTable = kAdaptiveTable.without("N_initial");
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  AdaptiveParams params;
-  kFitTable.read(reader, stochnav::plugin::sensor_quantity(record.group), params);
-  reader.finish();
+  AdaptiveParams params = stochnav::plugin::parse_params(kFitTable, json, context);
   params.n_initial = n_initial;
-  params = complete(params, record.group, reader);
+  params = complete(params, record.group, context.params_pointer);
   auto model = std::make_unique<AdaptiveNoise>(record.group, params);
   model->set_fit_quality(stochnav::plugin::calibration_fit_quality(fits));
   return model;

@@ -20,41 +20,53 @@
 
 namespace {
 
-using stochnav::plugin::arma_noise::Kind;
+namespace an = stochnav::plugin::arma_noise;
+using an::Kind;
+using stochnav::ArMethod;
+
+struct ArFitOptions {
+  an::ArmaNoiseParams model;  ///< interval_s and K as given; the axes are fitted
+  ArMethod method = ArMethod::kBurg;
+  int max_order = 8;
+  stochnav::InformationCriterion criterion = stochnav::InformationCriterion::kBic;
+};
+
+const auto kArFitTable =
+    lift(&ArFitOptions::model, an::constant_params_table())
+        .plus(stochnav::plugin::ParamTable<ArFitOptions>{
+            stochnav::plugin::choice(
+                &ArFitOptions::method, "method",
+                {{"burg", ArMethod::kBurg}, {"yule_walker", ArMethod::kYuleWalker}},
+                ArMethod::kBurg, "estimator of the AR coefficients"),
+            stochnav::plugin::integer(&ArFitOptions::max_order, "max_order", 1, 20, 8,
+                                      "largest order tried"),
+            an::criterion_entry(&ArFitOptions::criterion),
+        });
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_ar(
     const nlohmann::json& json, const stochnav::plugin::NoiseModelContext& context) {
-  return stochnav::plugin::arma_noise::make_model(
-      Kind::kAr, context.group,
-      stochnav::plugin::arma_noise::read_model_params(Kind::kAr, json, context));
+  return an::make_model(Kind::kAr, context.group, an::read_model_params(Kind::kAr, json, context));
 }
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_ar(
     const stochnav::plugin::CalibrationRecord& record, const nlohmann::json& json,
     const stochnav::plugin::NoiseModelContext& context) {
-  namespace an = stochnav::plugin::arma_noise;
-  using stochnav::plugin::Bound;
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  an::ArmaNoiseParams params;
-  an::constant_params_table().read(reader, stochnav::plugin::sensor_quantity(record.group), params);
-  static constexpr std::string_view kMethods[] = {"burg", "yule_walker"};
-  const auto method = reader.choice_or("method", "burg", kMethods) == "burg"
-                          ? stochnav::ArMethod::kBurg
-                          : stochnav::ArMethod::kYuleWalker;
-  const int max_order = an::read_integer_or(reader, "max_order", 8, 1, 20);
-  const auto criterion = an::read_criterion(reader);
-  reader.finish();
-  const auto series = an::block_averaged_axes(record, params.interval_s, 10 * (max_order + 1),
-                                              reader.pointer("interval_s"));
+  auto options = kArFitTable.parse(json, context.params_pointer,
+                                   stochnav::plugin::sensor_quantity(record.group));
+  const auto series =
+      an::block_averaged_axes(record, options.model.interval_s, 10 * (options.max_order + 1),
+                              context.params_pointer + "/interval_s");
   for (int axis = 0; axis < 3; ++axis) {
     try {
-      params.axes[axis] = stochnav::select_ar(series[axis], max_order, method, criterion).model;
+      options.model.axes[axis] =
+          stochnav::select_ar(series[axis], options.max_order, options.method, options.criterion)
+              .model;
     } catch (const std::invalid_argument& error) {
       throw stochnav::InputError(record.source + ": cannot fit an AR model to axis " +
                                  std::to_string(axis) + ": " + error.what());
     }
   }
-  return an::make_model(Kind::kAr, record.group, params);
+  return an::make_model(Kind::kAr, record.group, options.model);
 }
 
 }  // namespace

@@ -22,42 +22,54 @@
 
 namespace {
 
-using stochnav::plugin::arma_noise::Kind;
+namespace an = stochnav::plugin::arma_noise;
+using an::Kind;
+
+struct ArmaFitOptions {
+  an::ArmaNoiseParams model;  ///< interval_s and K as given; the axes are fitted
+  int max_p = 3;
+  int max_q = 2;
+  stochnav::InformationCriterion criterion = stochnav::InformationCriterion::kBic;
+};
+
+const auto kArmaFitTable = lift(&ArmaFitOptions::model, an::constant_params_table())
+                               .plus(stochnav::plugin::ParamTable<ArmaFitOptions>{
+                                   stochnav::plugin::integer(&ArmaFitOptions::max_p, "max_p", 0, 3,
+                                                             3, "largest AR order tried"),
+                                   stochnav::plugin::integer(&ArmaFitOptions::max_q, "max_q", 0, 2,
+                                                             2, "largest MA order tried"),
+                                   an::criterion_entry(&ArmaFitOptions::criterion),
+                               });
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_arma(
     const nlohmann::json& json, const stochnav::plugin::NoiseModelContext& context) {
-  return stochnav::plugin::arma_noise::make_model(
-      Kind::kArma, context.group,
-      stochnav::plugin::arma_noise::read_model_params(Kind::kArma, json, context));
+  return an::make_model(Kind::kArma, context.group,
+                        an::read_model_params(Kind::kArma, json, context));
 }
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_arma(
     const stochnav::plugin::CalibrationRecord& record, const nlohmann::json& json,
     const stochnav::plugin::NoiseModelContext& context) {
-  namespace an = stochnav::plugin::arma_noise;
-  using stochnav::plugin::Bound;
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  an::ArmaNoiseParams params;
-  an::constant_params_table().read(reader, stochnav::plugin::sensor_quantity(record.group), params);
-  const int max_p = an::read_integer_or(reader, "max_p", 3, 0, 3);
-  const int max_q = an::read_integer_or(reader, "max_q", 2, 0, 2);
+  auto options = kArmaFitTable.parse(json, context.params_pointer,
+                                     stochnav::plugin::sensor_quantity(record.group));
+  const int max_p = options.max_p, max_q = options.max_q;
   if (max_p + max_q < 1) {
-    throw stochnav::ConfigError(reader.pointer("max_p") +
-                                ": found max_p = max_q = 0; expected max_p + max_q >= 1");
+    throw stochnav::ConfigError(context.params_pointer +
+                                "/max_p: found max_p = max_q = 0; expected max_p + max_q >= 1");
   }
-  const auto criterion = an::read_criterion(reader);
-  reader.finish();
-  const auto series = an::block_averaged_axes(
-      record, params.interval_s, max_p + 10 * (max_p + max_q + 1), reader.pointer("interval_s"));
+  const auto series =
+      an::block_averaged_axes(record, options.model.interval_s, max_p + 10 * (max_p + max_q + 1),
+                              context.params_pointer + "/interval_s");
   for (int axis = 0; axis < 3; ++axis) {
     try {
-      params.axes[axis] = stochnav::select_arma(series[axis], max_p, max_q, criterion).model;
+      options.model.axes[axis] =
+          stochnav::select_arma(series[axis], max_p, max_q, options.criterion).model;
     } catch (const std::invalid_argument& error) {
       throw stochnav::InputError(record.source + ": cannot fit an ARMA model to axis " +
                                  std::to_string(axis) + ": " + error.what());
     }
   }
-  return an::make_model(Kind::kArma, record.group, params);
+  return an::make_model(Kind::kArma, record.group, options.model);
 }
 
 }  // namespace

@@ -9,32 +9,54 @@
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/reporting_units.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 
 namespace stochnav::plugin::arma_noise {
 namespace {
 
 constexpr const char* kAxisNames[] = {"x", "y", "z"};
 
-using stochnav::plugin::parameters_close;
+const ParamUnit kRateUnit = ParamUnit::of(ParameterDimension::kRate);
 
-bool parameters_close(const std::vector<double>& a, const std::vector<double>& b, double rel_tol) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (!parameters_close(a[i], b[i], rel_tol)) return false;
+// One axis of each kind: {"ar": [...], "sigma": s} and {"ar": [...], "ma": [...], "sigma": s}.
+const ParamTable<ArmaModel> kArAxisTable{
+    series(&ArmaModel::ar, "ar", ParamUnit::fixed(""), {.min_size = 1}, "AR coefficients phi_i"),
+    scalar(&ArmaModel::sigma, "sigma", kRateUnit, Bound::kPositive, kRequired,
+           "innovation standard deviation of the block mean"),
+};
+const ParamTable<ArmaModel> kArmaAxisTable{
+    series(&ArmaModel::ar, "ar", ParamUnit::fixed(""), {.min_size = 0, .required = false},
+           "AR coefficients phi_i"),
+    series(&ArmaModel::ma, "ma", ParamUnit::fixed(""), {.min_size = 0, .required = false},
+           "MA coefficients theta_i"),
+    scalar(&ArmaModel::sigma, "sigma", kRateUnit, Bound::kPositive, kRequired,
+           "innovation standard deviation of the block mean"),
+};
+
+/// ConfigError when an axis' AR part is not stationary or it needs too many states.
+void check_axes(const ArmaNoiseParams& params, const std::string& axes_pointer) {
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    const ArmaModel& model = params.axes[axis];
+    const std::string pointer = axes_pointer + "/" + std::to_string(axis);
+    if (!is_stationary(model.ar)) {
+      throw ConfigError(pointer + "/ar: found " + nlohmann::json(model.ar).dump() +
+                        "; expected a stationary AR part (all roots of 1 - sum phi_i z^i outside "
+                        "the unit circle)");
+    }
+    const int r = static_cast<int>(std::max(model.ar.size(), model.ma.size() + 1));
+    if (r > kMaxArmaStateSize) {
+      throw ConfigError(pointer + ": found max(p, q + 1) = " + std::to_string(r) +
+                        " states; expected at most " + std::to_string(kMaxArmaStateSize));
+    }
   }
-  return true;
 }
 
-double reported(SensorGroup group, ParameterDimension dimension, double natural) {
-  return to_reported(sensor_quantity(group), dimension, natural);
-}
-
-class ArmaNoise final : public NoiseModelPlugin {
+class ArmaNoise final : public TabulatedNoiseModel<ArmaNoiseParams> {
  public:
   ArmaNoise(Kind kind, SensorGroup group, const ArmaNoiseParams& params)
-      : NoiseModelPlugin(group), kind_(kind), params_(params) {
+      : TabulatedNoiseModel(group, model_table(kind), params), kind_(kind) {
     for (int axis = 0; axis < 3; ++axis) {
-      spaces_[axis] = state_space(params_.axes[axis]);
+      spaces_[axis] = state_space(params.axes[axis]);
       offsets_[axis] = size_;
       size_ += spaces_[axis].size();
     }
@@ -57,12 +79,12 @@ class ArmaNoise final : public NoiseModelPlugin {
   void bias_walk_covariance(double, double dt_s,
                             Eigen::Ref<Eigen::MatrixXd> q_bias) const override {
     q_bias.setZero();
-    for (int i = 0; i < 3; ++i) q_bias(i, i) = params_.k[i] * params_.k[i] * dt_s;
+    for (int i = 0; i < 3; ++i) q_bias(i, i) = parameters().k[i] * parameters().k[i] * dt_s;
   }
 
   void augmented_transition(double, double dt_s, Eigen::Ref<Eigen::MatrixXd> phi,
                             Eigen::Ref<Eigen::MatrixXd> q_d) const override {
-    const long steps = std::lround(dt_s / params_.interval_s);
+    const long steps = std::lround(dt_s / parameters().interval_s);
     // One cached result per distinct block count (the filter mostly steps one interval).
     if (steps != cached_steps_) {
       for (int axis = 0; axis < 3; ++axis) {
@@ -86,48 +108,22 @@ class ArmaNoise final : public NoiseModelPlugin {
     for (int axis = 0; axis < 3; ++axis) map(axis, offsets_[axis]) = 1.0;
   }
 
-  nlohmann::json params() const override { return write_model_params(kind_, group(), params_); }
-
+  // The table's description after the orders of each axis (a derived summary).
   std::string describe() const override {
-    const auto quantity = sensor_quantity(group());
-    std::string text = fmt::format("{} ({}): interval {:.6g} s;", type(),
-                                   sensor_group_name(group()), params_.interval_s);
+    std::string orders;
     for (int axis = 0; axis < 3; ++axis) {
-      const ArmaModel& model = params_.axes[axis];
-      const std::string orders =
-          kind_ == Kind::kAr
-              ? fmt::format("AR({}) ar = [{:.6g}]", model.ar.size(), fmt::join(model.ar, ", "))
-              : fmt::format("ARMA({}, {}) ar = [{:.6g}], ma = [{:.6g}]", model.ar.size(),
-                            model.ma.size(), fmt::join(model.ar, ", "), fmt::join(model.ma, ", "));
-      text += fmt::format(" {}: {}, sigma = {:.6g} {}, K = {:.6g} {};", kAxisNames[axis], orders,
-                          reported(ParameterDimension::kRate, model.sigma),
-                          reported_unit_name(quantity, ParameterDimension::kRate),
-                          reported(ParameterDimension::kRatePerRootTime, params_.k[axis]),
-                          reported_unit_name(quantity, ParameterDimension::kRatePerRootTime));
+      const ArmaModel& model = parameters().axes[axis];
+      orders += kind_ == Kind::kAr ? fmt::format("{} AR({}), ", kAxisNames[axis], model.ar.size())
+                                   : fmt::format("{} ARMA({}, {}), ", kAxisNames[axis],
+                                                 model.ar.size(), model.ma.size());
     }
-    text.pop_back();
-    return text;
-  }
-
-  bool equals(const NoiseModelPlugin& other, double rel_tol) const override {
-    const auto* that = dynamic_cast<const ArmaNoise*>(&other);
-    if (that == nullptr || that->kind_ != kind_ || that->group() != group() ||
-        !constant_params_table().equal(params_, that->params_, rel_tol)) {
-      return false;
-    }
-    for (int axis = 0; axis < 3; ++axis) {
-      const ArmaModel &a = params_.axes[axis], &b = that->params_.axes[axis];
-      if (!parameters_close(a.ar, b.ar, rel_tol) || !parameters_close(a.ma, b.ma, rel_tol) ||
-          !parameters_close(a.sigma, b.sigma, rel_tol)) {
-        return false;
-      }
-    }
-    return true;
+    const std::string table = TabulatedNoiseModel::describe();
+    const auto colon = table.find(": ");
+    return table.substr(0, colon + 2) + orders + table.substr(colon + 2);
   }
 
  private:
   Kind kind_;
-  ArmaNoiseParams params_;
   std::array<ArmaStateSpace, 3> spaces_;
   std::array<int, 3> offsets_{};  ///< first augmented index of each axis block
   int size_ = 0;
@@ -136,52 +132,6 @@ class ArmaNoise final : public NoiseModelPlugin {
   mutable Eigen::MatrixXd cached_phi_;  ///< A^k per axis block
   mutable Eigen::MatrixXd cached_q_;    ///< k-step noise per axis block, natural units^2
 };
-
-std::vector<double> read_coefficients(ParamReader& reader, std::string_view key, bool required) {
-  const nlohmann::json& value = reader.raw(key);
-  const std::string expected =
-      "an array of numbers (" + std::string(required ? "at least one" : "may be empty") + ")";
-  if (value.is_null()) {
-    if (required) throw ConfigError(reader.pointer(key) + ": missing; expected " + expected);
-    return {};
-  }
-  if (!value.is_array() || (required && value.empty())) {
-    throw ConfigError(reader.pointer(key) + ": found " + value.dump() + "; expected " + expected);
-  }
-  std::vector<double> coefficients;
-  for (std::size_t i = 0; i < value.size(); ++i) {
-    if (!value[i].is_number() || !std::isfinite(value[i].get<double>())) {
-      throw ConfigError(reader.pointer(key) + "/" + std::to_string(i) + ": found " +
-                        value[i].dump() + "; expected a finite number");
-    }
-    coefficients.push_back(value[i].get<double>());
-  }
-  return coefficients;
-}
-
-ArmaModel read_axis(Kind kind, const nlohmann::json& json, const std::string& pointer,
-                    SensorGroup group) {
-  ParamReader reader(json, pointer);
-  ArmaModel model;
-  model.ar = read_coefficients(reader, "ar", kind == Kind::kAr);
-  if (kind == Kind::kArma) model.ma = read_coefficients(reader, "ma", false);
-  const auto quantity = sensor_quantity(group);
-  model.sigma = to_natural(quantity, ParameterDimension::kRate,
-                           reader.number("sigma", Bound::kPositive,
-                                         reported_unit_name(quantity, ParameterDimension::kRate)));
-  reader.finish();
-  if (!is_stationary(model.ar)) {
-    throw ConfigError(reader.pointer("ar") + ": found " + nlohmann::json(model.ar).dump() +
-                      "; expected a stationary AR part (all roots of 1 - sum phi_i z^i outside "
-                      "the unit circle)");
-  }
-  const int r = static_cast<int>(std::max(model.ar.size(), model.ma.size() + 1));
-  if (r > kMaxArmaStateSize) {
-    throw ConfigError(pointer + ": found max(p, q + 1) = " + std::to_string(r) +
-                      " states; expected at most " + std::to_string(kMaxArmaStateSize));
-  }
-  return model;
-}
 
 }  // namespace
 
@@ -209,62 +159,28 @@ const ParamTable<ArmaNoiseParams>& constant_params_table() {
   return table;
 }
 
-InformationCriterion read_criterion(ParamReader& reader) {
-  static constexpr std::string_view kAllowed[] = {"aic", "bic"};
-  return reader.choice_or("criterion", "bic", kAllowed) == "aic" ? InformationCriterion::kAic
-                                                                 : InformationCriterion::kBic;
-}
-
-int read_integer_or(ParamReader& reader, std::string_view key, int fallback, int low, int high) {
-  if (!reader.has(key)) return fallback;
-  const double value = reader.number(key, Bound::kAny, "");
-  if (value != std::round(value) || value < low || value > high) {
-    throw ConfigError(reader.pointer(key) + ": found " + nlohmann::json(value).dump() +
-                      "; expected an integer in [" + std::to_string(low) + ", " +
-                      std::to_string(high) + "]");
-  }
-  return static_cast<int>(value);
+const ParamTable<ArmaNoiseParams>& model_table(Kind kind) {
+  static const auto make = [](const ParamTable<ArmaModel>& axis_table) {
+    return constant_params_table().plus(ParamTable<ArmaNoiseParams>{
+        axis_groups(&ArmaNoiseParams::axes, "axes", axis_table, "the model of each axis"),
+    });
+  };
+  static const ParamTable<ArmaNoiseParams> ar = make(kArAxisTable);
+  static const ParamTable<ArmaNoiseParams> arma = make(kArmaAxisTable);
+  return kind == Kind::kAr ? ar : arma;
 }
 
 ArmaNoiseParams read_model_params(Kind kind, const nlohmann::json& json,
                                   const NoiseModelContext& context) {
   ParamReader reader(json, context.params_pointer);
   ArmaNoiseParams params;
-  constant_params_table().read(reader, sensor_quantity(context.group), params);
+  model_table(kind).read(reader, sensor_quantity(context.group), params);
+  reader.finish();
   if (context.imu_rate_hz > 0.0) {
     samples_per_block(params.interval_s, context.imu_rate_hz, reader.pointer("interval_s"));
   }
-  const nlohmann::json& axes = reader.raw("axes");
-  const std::string axes_pointer = reader.pointer("axes");
-  if (axes.is_null()) {
-    throw ConfigError(axes_pointer + ": missing; expected an array of 3 per-axis objects " +
-                      "{\"ar\": [...], " + (kind == Kind::kArma ? "\"ma\": [...], " : "") +
-                      "\"sigma\": s}");
-  }
-  if (!axes.is_array() || axes.size() != 3) {
-    throw ConfigError(axes_pointer + ": found " + axes.dump() +
-                      "; expected an array of 3 per-axis objects (x, y, z)");
-  }
-  for (std::size_t axis = 0; axis < 3; ++axis) {
-    params.axes[axis] =
-        read_axis(kind, axes[axis], axes_pointer + "/" + std::to_string(axis), context.group);
-  }
-  reader.finish();
+  check_axes(params, reader.pointer("axes"));
   return params;
-}
-
-nlohmann::json write_model_params(Kind kind, SensorGroup group, const ArmaNoiseParams& params) {
-  nlohmann::json axes = nlohmann::json::array();
-  for (int axis = 0; axis < 3; ++axis) {
-    const ArmaModel& model = params.axes[axis];
-    nlohmann::json entry = {{"ar", model.ar},
-                            {"sigma", reported(group, ParameterDimension::kRate, model.sigma)}};
-    if (kind == Kind::kArma) entry["ma"] = model.ma;
-    axes.push_back(entry);
-  }
-  nlohmann::json out = constant_params_table().to_json(params, sensor_quantity(group));
-  out["axes"] = std::move(axes);
-  return out;
 }
 
 std::array<std::vector<double>, 3> block_averaged_axes(const CalibrationRecord& record,

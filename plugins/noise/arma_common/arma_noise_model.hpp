@@ -51,9 +51,6 @@ struct ArmaNoiseParams {
 ArmaNoiseParams read_model_params(Kind kind, const nlohmann::json& params,
                                   const NoiseModelContext& context);
 
-/// params() of a model: the form read_model_params reads.
-nlohmann::json write_model_params(Kind kind, SensorGroup group, const ArmaNoiseParams& params);
-
 /// Number of samples at `rate_hz` in one block of interval_s; ConfigError naming `pointer`
 /// when interval_s is not a whole multiple (within 1e-6 relative) of the sample period.
 int samples_per_block(double interval_s, double rate_hz, const std::string& pointer);
@@ -68,11 +65,16 @@ std::array<std::vector<double>, 3> block_averaged_axes(const CalibrationRecord& 
 /// and "K" (rate random walk of the core bias, reporting units, default 0).
 const ParamTable<ArmaNoiseParams>& constant_params_table();
 
-/// Reads "criterion": "aic" | "bic" (default "bic").
-InformationCriterion read_criterion(ParamReader& reader);
+/// The factory's whole table: constant_params_table() and "axes".
+const ParamTable<ArmaNoiseParams>& model_table(Kind kind);
 
-/// An integer in [low, high] (default `fallback`).
-int read_integer_or(ParamReader& reader, std::string_view key, int fallback, int low, int high);
+/// "criterion": "bic" (default) | "aic", of a fitter's options.
+template <class Options>
+ParamEntry<Options> criterion_entry(InformationCriterion Options::*member) {
+  return choice(member, "criterion",
+                {{"bic", InformationCriterion::kBic}, {"aic", InformationCriterion::kAic}},
+                InformationCriterion::kBic, "the candidate order minimising it is chosen");
+}
 
 std::unique_ptr<NoiseModelPlugin> make_model(Kind kind, SensorGroup group,
                                              const ArmaNoiseParams& params);

@@ -34,8 +34,7 @@
 #include "stochnav/model/sensor_shaping.hpp"
 #include "stochnav/plugin/calibration_fit.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
-#include "stochnav/plugin/param_table.hpp"
-#include "stochnav/plugin/params.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 
 namespace {
 
@@ -55,8 +54,87 @@ struct AugmentedParams {
 using stochnav::plugin::Bound;
 using stochnav::plugin::ParamUnit;
 
-// The constant parameters; the noise models are read below.
-const stochnav::plugin::ParamTable<AugmentedParams> kConstantTable{
+// A noise model for the sensor group, without a nonstationary term.
+NoiseModel read_model(const nlohmann::json& json, const std::string& pointer, SensorGroup group) {
+  NoiseModel model = stochnav::noise_model_from_json(json, pointer);
+  const auto expected = stochnav::plugin::sensor_quantity(group);
+  if (stochnav::quantity_of(model.unit) != expected) {
+    throw stochnav::ConfigError(
+        pointer + "/units: found " + json.at("units").dump() + "; expected " +
+        (expected == stochnav::Quantity::kAngularRate ? "an angular-rate unit (deg/h, deg/s, rad/s)"
+                                                      : "a specific-force unit (m/s^2, g)"));
+  }
+  for (std::size_t t = 0; t < model.terms.size(); ++t) {
+    if (stochnav::term_type(model.terms[t]) == stochnav::TermType::kNonstationary) {
+      throw stochnav::ConfigError(pointer + "/terms/" + std::to_string(t) +
+                                  ": found a nonstationary term; expected stationary terms only "
+                                  "(the oracle plugin follows a schedule)");
+    }
+  }
+  return model;
+}
+
+SensorGroup group_of(stochnav::Quantity quantity) {
+  return quantity == stochnav::Quantity::kAngularRate ? SensorGroup::kGyro : SensorGroup::kAccel;
+}
+
+// "model" (one noise model for every axis) or "models" ([x, y, z]), in the JSON of
+// model/noise_model_json.hpp; params() writes "models".
+const stochnav::plugin::ValueCodec<Models> kModelsCodec{
+    .read =
+        [](stochnav::plugin::ParamReader& reader, stochnav::Quantity quantity) {
+          const bool one = reader.has("model"), each = reader.has("models");
+          if (one == each) {
+            throw stochnav::ConfigError(
+                reader.pointer() + ": found " +
+                (one ? "both \"model\" and \"models\"" : "neither") +
+                "; expected \"model\" (all axes) or \"models\" ([x, y, z])");
+          }
+          if (one) {
+            const NoiseModel model =
+                read_model(reader.raw("model"), reader.pointer("model"), group_of(quantity));
+            return Models{model, model, model};
+          }
+          const nlohmann::json& models = reader.raw("models");
+          if (!models.is_array() || models.size() != 3) {
+            stochnav::plugin::param_table_detail::reject(
+                reader.pointer("models"), models, "an array of three noise models [x, y, z]");
+          }
+          Models read;
+          for (std::size_t i = 0; i < 3; ++i) {
+            read[i] = read_model(models[i], reader.pointer("models") + "/" + std::to_string(i),
+                                 group_of(quantity));
+          }
+          return read;
+        },
+    .write =
+        [](const Models& models, stochnav::Quantity) {
+          nlohmann::json out = nlohmann::json::array();
+          for (const NoiseModel& model : models) out.push_back(stochnav::to_json(model));
+          return out;
+        },
+    .describe =
+        [](const Models& models, stochnav::Quantity) {
+          std::string text = "[";
+          const char* axis_names[] = {"x", "y", "z"};
+          for (std::size_t i = 0; i < 3; ++i) {
+            text += fmt::format("{}{}: {}", i == 0 ? "" : "; ", axis_names[i],
+                                stochnav::describe(models[i]));
+          }
+          return text + "]";
+        },
+    .equal =
+        [](const Models& a, const Models& b, double rel_tol) {
+          for (std::size_t i = 0; i < 3; ++i) {
+            if (!stochnav::equals(a[i], b[i], rel_tol)) return false;
+          }
+          return true;
+        },
+    .form = "a noise model (\"model\", all axes) or three ([x, y, z], \"models\")",
+};
+
+const stochnav::plugin::ParamTable<AugmentedParams> kAugmentedTable{
+    custom(&AugmentedParams::models, "models", kModelsCodec, "the noise model of each axis"),
     scalar(&AugmentedParams::flicker_band_max_s, "flicker_band_max_s", ParamUnit::fixed("s"),
            Bound::kPositive, 3600.0, "upper end of the bias-instability band"),
     scalar(&AugmentedParams::flicker_components_per_decade, "flicker_components_per_decade",
@@ -78,10 +156,10 @@ std::array<ShapingFilter, 3> shaping_filters(const AugmentedParams& params) {
   return filters;
 }
 
-class AugmentedNoise final : public stochnav::plugin::NoiseModelPlugin {
+class AugmentedNoise final : public stochnav::plugin::TabulatedNoiseModel<AugmentedParams> {
  public:
   AugmentedNoise(SensorGroup group, const AugmentedParams& params)
-      : NoiseModelPlugin(group), params_(params), shaping_(shaping_filters(params)) {}
+      : TabulatedNoiseModel(group, kAugmentedTable, params), shaping_(shaping_filters(params)) {}
 
   std::string_view type() const override { return "augmented"; }
   int augmented_size() const override { return shaping_.size(); }
@@ -105,135 +183,66 @@ class AugmentedNoise final : public stochnav::plugin::NoiseModelPlugin {
     shaping_.sensor_map(map);
   }
 
-  nlohmann::json params() const override {
-    nlohmann::json models = nlohmann::json::array();
-    for (const NoiseModel& model : params_.models) models.push_back(stochnav::to_json(model));
-    nlohmann::json out =
-        kConstantTable.to_json(params_, stochnav::plugin::sensor_quantity(group()));
-    out["models"] = std::move(models);
-    return out;
-  }
-
+  // The table's description and the shaping states it gives (derived).
   std::string describe() const override {
-    std::string text = fmt::format(
-        "augmented ({}): {} shaping states; flicker band up to {:.6g} s, {:.6g} states/decade, "
-        "first-order states under {:.6g} s folded into white noise",
-        stochnav::plugin::sensor_group_name(group()), shaping_.size(), params_.flicker_band_max_s,
-        params_.flicker_components_per_decade, params_.fold_below_s);
-    const char* axis_names[] = {"x", "y", "z"};
+    std::string text =
+        TabulatedNoiseModel::describe() +
+        fmt::format("; {} shaping states (x {}, y {}, z {})", shaping_.size(),
+                    shaping_.axis(0).size(), shaping_.axis(1).size(), shaping_.axis(2).size());
     for (int i = 0; i < 3; ++i) {
-      text += fmt::format("\n{} ({} states): {}", axis_names[i], shaping_.axis(i).size(),
-                          stochnav::describe(params_.models[static_cast<std::size_t>(i)]));
       if (shaping_.axis(i).quantization > 0.0) {
-        text += "\n  (quantization is not represented: its angle error does not accumulate)";
+        return text + "; quantization is not represented: its angle error does not accumulate";
       }
     }
     return text;
   }
 
-  bool equals(const NoiseModelPlugin& other, double rel_tol) const override {
-    const auto* that = dynamic_cast<const AugmentedNoise*>(&other);
-    if (that == nullptr || that->group() != group()) return false;
-    for (std::size_t i = 0; i < 3; ++i) {
-      if (!stochnav::equals(params_.models[i], that->params_.models[i], rel_tol)) return false;
-    }
-    return kConstantTable.equal(params_, that->params_, rel_tol);
-  }
-
  private:
-  AugmentedParams params_;
   stochnav::SensorShaping shaping_;
 };
 
-// A noise model for the sensor group, without a nonstationary term.
-NoiseModel read_model(const nlohmann::json& json, const std::string& pointer, SensorGroup group) {
-  NoiseModel model = stochnav::noise_model_from_json(json, pointer);
-  const auto expected = stochnav::plugin::sensor_quantity(group);
-  if (stochnav::quantity_of(model.unit) != expected) {
-    throw stochnav::ConfigError(
-        pointer + "/units: found " + json.at("units").dump() + "; expected " +
-        (expected == stochnav::Quantity::kAngularRate ? "an angular-rate unit (deg/h, deg/s, rad/s)"
-                                                      : "a specific-force unit (m/s^2, g)"));
-  }
-  for (std::size_t t = 0; t < model.terms.size(); ++t) {
-    if (stochnav::term_type(model.terms[t]) == stochnav::TermType::kNonstationary) {
-      throw stochnav::ConfigError(pointer + "/terms/" + std::to_string(t) +
-                                  ": found a nonstationary term; expected stationary terms only "
-                                  "(the oracle plugin follows a schedule)");
-    }
-  }
-  return model;
-}
-
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_augmented(
     const nlohmann::json& json, const stochnav::plugin::NoiseModelContext& context) {
-  using stochnav::plugin::Bound;
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  AugmentedParams params;
-  const bool one = reader.has("model"), each = reader.has("models");
-  if (one == each) {
-    throw stochnav::ConfigError(reader.pointer() + ": found " +
-                                (one ? "both \"model\" and \"models\"" : "neither") +
-                                "; expected \"model\" (all axes) or \"models\" ([x, y, z])");
-  }
-  if (one) {
-    const NoiseModel model =
-        read_model(reader.raw("model"), reader.pointer("model"), context.group);
-    params.models = {model, model, model};
-  } else {
-    const nlohmann::json& models = reader.raw("models");
-    if (!models.is_array() || models.size() != 3) {
-      throw stochnav::ConfigError(reader.pointer("models") + ": found " + models.dump() +
-                                  "; expected an array of three noise models [x, y, z]");
-    }
-    for (std::size_t i = 0; i < 3; ++i) {
-      params.models[i] =
-          read_model(models[i], reader.pointer("models") + "/" + std::to_string(i), context.group);
-    }
-  }
-  kConstantTable.read(reader, stochnav::plugin::sensor_quantity(context.group), params);
-  reader.finish();
-  return std::make_unique<AugmentedNoise>(context.group, params);
+  return std::make_unique<AugmentedNoise>(
+      context.group, stochnav::plugin::parse_params(kAugmentedTable, json, context));
 }
 
-std::vector<stochnav::TermType> read_terms(stochnav::plugin::ParamReader& reader) {
-  if (!reader.has("terms")) return {};
-  const nlohmann::json& terms = reader.raw("terms");
-  const std::string expected =
-      "an array of term names among quantization, angle_random_walk, bias_instability, "
-      "rate_random_walk, rate_ramp, gauss_markov, sinusoid";
-  if (!terms.is_array() || terms.empty()) {
-    throw stochnav::ConfigError(reader.pointer("terms") + ": found " + terms.dump() +
-                                "; expected " + expected);
-  }
-  std::vector<stochnav::TermType> types;
-  for (std::size_t i = 0; i < terms.size(); ++i) {
-    const auto type = terms[i].is_string() ? stochnav::parse_term_type(terms[i].get<std::string>())
-                                           : std::nullopt;
-    if (!type || *type == stochnav::TermType::kNonstationary) {
-      throw stochnav::ConfigError(reader.pointer("terms") + "/" + std::to_string(i) + ": found " +
-                                  terms[i].dump() + "; expected " + expected);
-    }
-    types.push_back(*type);
-  }
-  return types;
-}
+using stochnav::TermType;
+
+struct AugmentedFitOptions {
+  std::vector<TermType> terms;  ///< empty: automatic selection
+  double flicker_components_per_decade = 1.0;
+  double fold_below_s = 0.1;
+};
+
+const stochnav::plugin::ParamTable<AugmentedFitOptions> kAugmentedFitTable{
+    stochnav::plugin::choices(&AugmentedFitOptions::terms, "terms",
+                              {{"quantization", TermType::kQuantization},
+                               {"angle_random_walk", TermType::kAngleRandomWalk},
+                               {"bias_instability", TermType::kBiasInstability},
+                               {"rate_random_walk", TermType::kRateRandomWalk},
+                               {"rate_ramp", TermType::kRateRamp},
+                               {"gauss_markov", TermType::kGaussMarkov},
+                               {"sinusoid", TermType::kSinusoid}},
+                              {}, "terms to fit; default [] (automatic selection by BIC)"),
+    scalar(&AugmentedFitOptions::flicker_components_per_decade, "flicker_components_per_decade",
+           ParamUnit::fixed(""), Bound::kPositive, 1.0, "flicker bank density"),
+    scalar(&AugmentedFitOptions::fold_below_s, "fold_below_s", ParamUnit::fixed("s"),
+           Bound::kNonNegative, 0.1, "first-order states faster than this become white noise"),
+};
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_augmented(
     const stochnav::plugin::CalibrationRecord& record, const nlohmann::json& json,
     const stochnav::plugin::NoiseModelContext& context) {
-  using stochnav::plugin::Bound;
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
+  const auto fit = kAugmentedFitTable.parse(json, context.params_pointer);
   stochnav::FitOptions options;
-  options.terms = read_terms(reader);
-  AugmentedParams params;
-  params.flicker_components_per_decade =
-      reader.number_or("flicker_components_per_decade", 1.0, Bound::kPositive, "");
-  params.fold_below_s = reader.number_or("fold_below_s", 0.1, Bound::kNonNegative, "s");
-  reader.finish();
+  options.terms = fit.terms;
   const auto fits = stochnav::plugin::fit_calibration_axes(record, options);
+  AugmentedParams params;
   for (std::size_t i = 0; i < 3; ++i) params.models[i] = fits[i].model;
   params.flicker_band_max_s = static_cast<double>(record.axes[0].size()) / record.rate_hz;
+  params.flicker_components_per_decade = fit.flicker_components_per_decade;
+  params.fold_below_s = fit.fold_below_s;
   auto model = std::make_unique<AugmentedNoise>(record.group, params);
   model->set_fit_quality(stochnav::plugin::calibration_fit_quality(fits));
   return model;

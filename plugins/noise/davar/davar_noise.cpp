@@ -72,8 +72,7 @@
 #include "stochnav/model/reporting_units.hpp"
 #include "stochnav/plugin/calibration_fit.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
-#include "stochnav/plugin/param_table.hpp"
-#include "stochnav/plugin/params.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 #include "windowed_term_fit.hpp"
 
 namespace {
@@ -81,15 +80,9 @@ namespace {
 using stochnav::ParameterDimension;
 using stochnav::davar_noise::Interpolation;
 using stochnav::davar_noise::NoiseLevelSeries;
-using stochnav::davar_noise::WindowTerm;
 using stochnav::plugin::SensorGroup;
 using Axes = std::array<double, 3>;
 using AxisSeries = std::array<std::vector<double>, 3>;
-
-constexpr std::string_view kModes[] = {"offline", "causal"};
-constexpr std::string_view kSpinAxes[] = {"none", "x", "y", "z"};
-/// Allan variance of a bias-instability floor per B^2: 2 ln 2 / pi.
-constexpr double kFloorAvarPerB2 = 2.0 * std::numbers::ln2 / std::numbers::pi;
 
 struct DavarParams {
   bool causal = false;
@@ -98,13 +91,22 @@ struct DavarParams {
   Axes k{};                    ///< rate random walk per axis, natural units
 };
 
-using stochnav::plugin::parameters_close;
+using stochnav::plugin::Bound;
+using stochnav::plugin::ParamUnit;
 
-// The constant parameters; the analysis times and N(t) are series, read below.
-const stochnav::plugin::ParamTable<DavarParams> kConstantTable{
-    per_axis(&DavarParams::k, "K",
-             stochnav::plugin::ParamUnit::of(ParameterDimension::kRatePerRootTime),
-             stochnav::plugin::Bound::kNonNegative, 0.0, "rate random walk of the core bias"),
+const auto kModeEntry = [](auto member) {
+  return stochnav::plugin::choice(member, "mode", {{"offline", false}, {"causal", true}}, false,
+                                  "centred windows (offline) or trailing windows (causal)");
+};
+
+const stochnav::plugin::ParamTable<DavarParams> kDavarTable{
+    kModeEntry(&DavarParams::causal),
+    series(&DavarParams::time_s, "t", ParamUnit::fixed("s"), {.ascending = true}, "analysis times"),
+    axis_series(&DavarParams::n, "N", ParamUnit::of(ParameterDimension::kAnglePerRootTime),
+                Bound::kNonNegative, &DavarParams::time_s, "t",
+                "angle random walk at each analysis time"),
+    per_axis(&DavarParams::k, "K", ParamUnit::of(ParameterDimension::kRatePerRootTime),
+             Bound::kNonNegative, 0.0, "rate random walk of the core bias"),
 };
 
 NoiseLevelSeries level_series(const DavarParams& params) {
@@ -116,10 +118,10 @@ NoiseLevelSeries level_series(const DavarParams& params) {
                           params.causal ? Interpolation::kHold : Interpolation::kLinear);
 }
 
-class DavarNoise final : public stochnav::plugin::NoiseModelPlugin {
+class DavarNoise final : public stochnav::plugin::TabulatedNoiseModel<DavarParams> {
  public:
-  DavarNoise(SensorGroup group, DavarParams params)
-      : NoiseModelPlugin(group), params_(std::move(params)), levels_(level_series(params_)) {}
+  DavarNoise(SensorGroup group, const DavarParams& params)
+      : TabulatedNoiseModel(group, kDavarTable, params), levels_(level_series(params)) {}
 
   std::string_view type() const override { return "davar"; }
   bool time_varying() const override { return true; }
@@ -133,168 +135,64 @@ class DavarNoise final : public stochnav::plugin::NoiseModelPlugin {
   void bias_walk_covariance(double, double dt_s,
                             Eigen::Ref<Eigen::MatrixXd> q_bias) const override {
     q_bias.setZero();
-    for (int i = 0; i < 3; ++i) q_bias(i, i) = params_.k[i] * params_.k[i] * dt_s;
-  }
-
-  nlohmann::json params() const override {
-    nlohmann::json n = nlohmann::json::array();
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-      nlohmann::json values = nlohmann::json::array();
-      for (double value : params_.n[axis]) {
-        values.push_back(reported(ParameterDimension::kAnglePerRootTime, value));
-      }
-      n.push_back(std::move(values));
-    }
-    nlohmann::json out =
-        kConstantTable.to_json(params_, stochnav::plugin::sensor_quantity(group()));
-    out["mode"] = params_.causal ? "causal" : "offline";
-    out["t"] = params_.time_s;
-    out["N"] = std::move(n);
-    return out;
-  }
-
-  std::string describe() const override {
-    std::string text = fmt::format("davar ({}): {}, {} analysis times over [{:.6g}, {:.6g}] s;",
-                                   stochnav::plugin::sensor_group_name(group()),
-                                   params_.causal ? "causal" : "offline", params_.time_s.size(),
-                                   params_.time_s.front(), params_.time_s.back());
-    const char* axis_names[] = {"x", "y", "z"};
-    const std::string n_unit = reported_unit(ParameterDimension::kAnglePerRootTime);
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-      const auto [low, high] = std::minmax_element(params_.n[axis].begin(), params_.n[axis].end());
-      text += fmt::format(" {}: N = {:.6g} .. {:.6g} {}, K = {:.6g} {};", axis_names[axis],
-                          reported(ParameterDimension::kAnglePerRootTime, *low),
-                          reported(ParameterDimension::kAnglePerRootTime, *high), n_unit,
-                          reported(ParameterDimension::kRatePerRootTime, params_.k[axis]),
-                          reported_unit(ParameterDimension::kRatePerRootTime));
-    }
-    text.pop_back();
-    return text;
-  }
-
-  bool equals(const NoiseModelPlugin& other, double rel_tol) const override {
-    const auto* that = dynamic_cast<const DavarNoise*>(&other);
-    if (that == nullptr || that->group() != group()) return false;
-    const DavarParams& a = params_;
-    const DavarParams& b = that->params_;
-    if (a.causal != b.causal || a.time_s.size() != b.time_s.size()) return false;
-    for (std::size_t j = 0; j < a.time_s.size(); ++j) {
-      if (!parameters_close(a.time_s[j], b.time_s[j], rel_tol)) return false;
-      for (std::size_t axis = 0; axis < 3; ++axis) {
-        if (!parameters_close(a.n[axis][j], b.n[axis][j], rel_tol)) return false;
-      }
-    }
-    return kConstantTable.equal(a, b, rel_tol);
+    for (int i = 0; i < 3; ++i) q_bias(i, i) = parameters().k[i] * parameters().k[i] * dt_s;
   }
 
  private:
-  DavarParams params_;
   NoiseLevelSeries levels_;
 };
 
-[[noreturn]] void reject(const std::string& pointer, const nlohmann::json& found,
-                         std::string_view expected) {
-  throw stochnav::ConfigError(
-      fmt::format("{}: found {}; expected {}", pointer, found.dump(), expected));
-}
-
-/// "t": finite, strictly ascending, at least one.
-std::vector<double> read_times(stochnav::plugin::ParamReader& reader) {
-  const nlohmann::json& json = reader.raw("t");
-  const std::string pointer = reader.pointer("t");
-  if (json.is_null()) reject(pointer, json, "an array of analysis times (s)");
-  if (!json.is_array() || json.empty()) reject(pointer, json, "a non-empty array of times (s)");
-  std::vector<double> times;
-  for (std::size_t j = 0; j < json.size(); ++j) {
-    const auto& value = json[j];
-    if (!value.is_number() || !std::isfinite(value.get<double>()) ||
-        (j > 0 && !(value.get<double>() > times.back()))) {
-      reject(pointer + "/" + std::to_string(j), value,
-             "a finite time (s) greater than the one before");
-    }
-    times.push_back(value.get<double>());
-  }
-  return times;
-}
-
-/// "N": three arrays of `count` values >= 0 in reporting units, returned in natural units.
-AxisSeries read_levels(stochnav::plugin::ParamReader& reader, SensorGroup group,
-                       std::size_t count) {
-  const auto quantity = stochnav::plugin::sensor_quantity(group);
-  const std::string unit =
-      stochnav::reported_unit_name(quantity, ParameterDimension::kAnglePerRootTime);
-  const nlohmann::json& json = reader.raw("N");
-  const std::string pointer = reader.pointer("N");
-  if (!json.is_array() || json.size() != 3) {
-    reject(pointer, json,
-           fmt::format("[[x...], [y...], [z...]], {} values of N ({}) per axis", count, unit));
-  }
-  AxisSeries levels;
-  for (std::size_t axis = 0; axis < 3; ++axis) {
-    const auto& values = json[axis];
-    const std::string axis_pointer = pointer + "/" + std::to_string(axis);
-    if (!values.is_array() || values.size() != count) {
-      reject(axis_pointer, values,
-             fmt::format("an array of {} values (one per analysis time in /t)", count));
-    }
-    for (std::size_t j = 0; j < count; ++j) {
-      const auto& value = values[j];
-      if (!value.is_number() || !std::isfinite(value.get<double>()) || value.get<double>() < 0.0) {
-        reject(axis_pointer + "/" + std::to_string(j), value,
-               fmt::format("a number >= 0 ({})", unit));
-      }
-      levels[axis].push_back(stochnav::to_natural(quantity, ParameterDimension::kAnglePerRootTime,
-                                                  value.get<double>()));
-    }
-  }
-  return levels;
-}
-
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_davar(
     const nlohmann::json& json, const stochnav::plugin::NoiseModelContext& context) {
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  DavarParams params;
-  params.causal = reader.choice_or("mode", "offline", kModes) == "causal";
-  params.time_s = read_times(reader);
-  params.n = read_levels(reader, context.group, params.time_s.size());
-  kConstantTable.read(reader, stochnav::plugin::sensor_quantity(context.group), params);
-  reader.finish();
-  return std::make_unique<DavarNoise>(context.group, std::move(params));
+  return std::make_unique<DavarNoise>(context.group,
+                                      stochnav::plugin::parse_params(kDavarTable, json, context));
 }
 
-std::vector<stochnav::davar_noise::WindowTerm> read_terms(stochnav::plugin::ParamReader& reader) {
-  const nlohmann::json& json = reader.raw("terms");
-  if (json.is_null()) return {WindowTerm::kAngleRandomWalk, WindowTerm::kBiasInstability};
-  const std::string pointer = reader.pointer("terms");
-  constexpr std::string_view kExpected =
-      "an array of distinct terms among \"Q\", \"N\", \"B\", "
-      "\"K\" that holds \"N\"";
-  if (!json.is_array()) reject(pointer, json, kExpected);
+using stochnav::davar_noise::WindowTerm;
+
+struct DavarFitOptions {
+  double window_s = 60.0;
+  double step_s = 5.0;
+  bool causal = false;
   std::vector<WindowTerm> terms;
-  for (std::size_t j = 0; j < json.size(); ++j) {
-    const std::string name = json[j].is_string() ? json[j].get<std::string>() : "";
-    WindowTerm term = WindowTerm::kAngleRandomWalk;
-    if (name == "Q") {
-      term = WindowTerm::kQuantization;
-    } else if (name == "N") {
-      term = WindowTerm::kAngleRandomWalk;
-    } else if (name == "B") {
-      term = WindowTerm::kBiasInstability;
-    } else if (name == "K") {
-      term = WindowTerm::kRateRandomWalk;
-    } else {
-      reject(pointer + "/" + std::to_string(j), json[j], kExpected);
-    }
-    if (std::find(terms.begin(), terms.end(), term) != terms.end()) {
-      reject(pointer + "/" + std::to_string(j), json[j], kExpected);
-    }
-    terms.push_back(term);
-  }
-  if (std::find(terms.begin(), terms.end(), WindowTerm::kAngleRandomWalk) == terms.end()) {
-    reject(pointer, json, kExpected);
-  }
-  return terms;
-}
+  bool rate_random_walk = false;
+  double rate_random_walk_end_s = 0.0;  ///< 0: the whole record
+  double n_floor_fraction = 0.1;
+  int spin_axis = -1;        ///< body axis the tool spins about (0 x, 1 y, 2 z), -1: none
+  double floor_tau_s = 0.0;  ///< 0: N(t) alone; > 0: N raised to the window's floor there
+};
+
+/// Allan variance of a bias-instability floor per B^2: 2 ln 2 / pi.
+constexpr double kFloorAvarPerB2 = 2.0 * std::numbers::ln2 / std::numbers::pi;
+
+const stochnav::plugin::ParamTable<DavarFitOptions> kDavarFitTable{
+    scalar(&DavarFitOptions::window_s, "window_s", ParamUnit::fixed("s"), Bound::kPositive, 60.0,
+           "DAVAR window length"),
+    scalar(&DavarFitOptions::step_s, "step_s", ParamUnit::fixed("s"), Bound::kPositive, 5.0,
+           "step between windows"),
+    kModeEntry(&DavarFitOptions::causal),
+    stochnav::plugin::choices(&DavarFitOptions::terms, "terms",
+                              {{"Q", WindowTerm::kQuantization},
+                               {"N", WindowTerm::kAngleRandomWalk},
+                               {"B", WindowTerm::kBiasInstability},
+                               {"K", WindowTerm::kRateRandomWalk}},
+                              {WindowTerm::kAngleRandomWalk, WindowTerm::kBiasInstability},
+                              "Eq. 7 terms fitted in each window; must hold \"N\""),
+    stochnav::plugin::flag(&DavarFitOptions::rate_random_walk, "rate_random_walk", false,
+                           "fit K once over the record"),
+    scalar(&DavarFitOptions::rate_random_walk_end_s, "rate_random_walk_end_s",
+           ParamUnit::fixed("s"), Bound::kNonNegative, 0.0,
+           "fit K over the record before this time only (0: all of it)"),
+    scalar(&DavarFitOptions::n_floor_fraction, "N_floor_fraction", ParamUnit::fixed(""),
+           Bound::kNonNegative, 0.1,
+           "at most 1: windowed N raised to this fraction of the axis' median"),
+    stochnav::plugin::choice(&DavarFitOptions::spin_axis, "spin_axis",
+                             {{"none", -1}, {"x", 0}, {"y", 1}, {"z", 2}}, -1,
+                             "body axis the tool spins about: its motion is removed first (gyro)"),
+    scalar(&DavarFitOptions::floor_tau_s, "floor_tau_s", ParamUnit::fixed("s"),
+           Bound::kNonNegative, 0.0,
+           "each window's N raised to meet its fitted floor B at this tau (0: off)"),
+};
 
 // The samples of `record` before end_s (s, record time), all of it when end_s is past its end.
 stochnav::plugin::CalibrationRecord leading_part(const stochnav::plugin::CalibrationRecord& record,
@@ -327,21 +225,6 @@ std::size_t samples_for(double seconds, double rate_hz) {
   return static_cast<std::size_t>(std::llround(seconds * rate_hz));
 }
 
-/// "spin_axis": "none" (default) or the body axis the tool spins about; gyro only (the spin
-/// angle comes from the gyro's own axis).
-std::optional<std::size_t> read_spin_axis(stochnav::plugin::ParamReader& reader,
-                                          SensorGroup group) {
-  const std::string name = reader.choice_or("spin_axis", "none", kSpinAxes);
-  if (name == "none") return std::nullopt;
-  if (group != SensorGroup::kGyro) {
-    throw stochnav::ConfigError(fmt::format(
-        "{}: found \"{}\"; the spin angle comes from the gyro, so spin_axis applies to the gyro "
-        "model only: remove it from the accelerometer's fit params",
-        reader.pointer("spin_axis"), name));
-  }
-  return static_cast<std::size_t>(name[0] - 'x');
-}
-
 /// Replaces the DAVAR of the two axes across `spin_axis` by that of their spin-free residuals
 /// and the spin axis' own where its rate was not steady (spin_motion.hpp), on the windows and
 /// factors of the spin axis' own DAVAR.
@@ -362,42 +245,47 @@ void remove_spin_motion(const stochnav::plugin::CalibrationRecord& record, std::
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
     const stochnav::plugin::CalibrationRecord& record, const nlohmann::json& json,
     const stochnav::plugin::NoiseModelContext& context) {
-  using stochnav::plugin::Bound;
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  const double window_s = reader.number_or("window_s", 60.0, Bound::kPositive, "s");
-  const double step_s = reader.number_or("step_s", 5.0, Bound::kPositive, "s");
-  const bool causal = reader.choice_or("mode", "offline", kModes) == "causal";
-  stochnav::davar_noise::WindowFitOptions options;
-  options.terms = read_terms(reader);
-  const bool with_walk = reader.boolean_or("rate_random_walk", false);
-  const double walk_end_s =
-      reader.number_or("rate_random_walk_end_s", 0.0, Bound::kNonNegative, "s");
-  const double floor_fraction = reader.number_or("N_floor_fraction", 0.1, Bound::kNonNegative, "");
-  if (floor_fraction > 1.0) {
-    throw stochnav::ConfigError(fmt::format("{}: found {}; expected a number in [0, 1]",
-                                            reader.pointer("N_floor_fraction"), floor_fraction));
+  const auto fit = kDavarFitTable.parse(json, context.params_pointer);
+  const std::string pointer = context.params_pointer;
+  if (std::find(fit.terms.begin(), fit.terms.end(), WindowTerm::kAngleRandomWalk) ==
+      fit.terms.end()) {
+    throw stochnav::ConfigError(fmt::format(
+        "{}/terms: found {}; expected an array of distinct terms among \"Q\", \"N\", \"B\", "
+        "\"K\" that holds \"N\"",
+        pointer, kDavarFitTable.to_json(fit)["terms"].dump()));
   }
-  const auto spin_axis = read_spin_axis(reader, record.group);
-  const double floor_tau_s = reader.number_or("floor_tau_s", 0.0, Bound::kNonNegative, "s");
-  if (floor_tau_s > 0.0 && std::ranges::find(options.terms, WindowTerm::kBiasInstability) ==
-                               options.terms.end()) {
+  if (fit.n_floor_fraction > 1.0) {
     throw stochnav::ConfigError(
-        fmt::format("{}: found {}; the floor comes from the windows' fitted B: add \"B\" to "
-                    "\"terms\" or set floor_tau_s to 0",
-                    reader.pointer("floor_tau_s"), floor_tau_s));
+        fmt::format("{}/N_floor_fraction: found {}; expected a number in "
+                    "[0, 1]",
+                    pointer, fit.n_floor_fraction));
   }
-  reader.finish();
-  options.window = samples_for(window_s, record.rate_hz);
-  options.step = std::max<std::size_t>(1, samples_for(step_s, record.rate_hz));
-  options.causal = causal;
+  if (fit.spin_axis >= 0 && record.group != SensorGroup::kGyro) {
+    throw stochnav::ConfigError(fmt::format(
+        "{}/spin_axis: found \"{}\"; the spin angle comes from the gyro, so spin_axis applies to "
+        "the gyro model only: remove it from the accelerometer's fit params",
+        pointer, kDavarFitTable.to_json(fit)["spin_axis"].get<std::string>()));
+  }
+  if (fit.floor_tau_s > 0.0 && std::find(fit.terms.begin(), fit.terms.end(),
+                                         WindowTerm::kBiasInstability) == fit.terms.end()) {
+    throw stochnav::ConfigError(
+        fmt::format("{}/floor_tau_s: found {}; the floor comes from the windows' fitted B: add "
+                    "\"B\" to \"terms\" or set floor_tau_s to 0",
+                    pointer, fit.floor_tau_s));
+  }
+  stochnav::davar_noise::WindowFitOptions options;
+  options.terms = fit.terms;
+  options.window = samples_for(fit.window_s, record.rate_hz);
+  options.step = std::max<std::size_t>(1, samples_for(fit.step_s, record.rate_hz));
+  options.causal = fit.causal;
   if (options.window < 16) {
     throw stochnav::ConfigError(fmt::format(
-        "{}: found {}; expected a window of at least 16 samples ({:.6g} s at {:.6g} Hz)",
-        reader.pointer("window_s"), window_s, 16.0 / record.rate_hz, record.rate_hz));
+        "{}/window_s: found {}; expected a window of at least 16 samples ({:.6g} s at {:.6g} Hz)",
+        pointer, fit.window_s, 16.0 / record.rate_hz, record.rate_hz));
   }
 
-  DavarParams params;
-  params.causal = causal;
+  const std::optional<std::size_t> spin_axis =
+      fit.spin_axis >= 0 ? std::optional<std::size_t>(fit.spin_axis) : std::nullopt;
   std::array<stochnav::DavarResult, 3> deviations;
   for (std::size_t axis = 0; axis < 3; ++axis) {
     if (spin_axis && axis != *spin_axis) continue;
@@ -409,31 +297,36 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
     }
   }
   if (spin_axis) remove_spin_motion(record, *spin_axis, options, deviations);
+
+  DavarParams params;
+  params.causal = fit.causal;
   for (std::size_t axis = 0; axis < 3; ++axis) {
     auto series = stochnav::davar_noise::fit_window_deviations(deviations[axis], options);
     if (axis == 0) params.time_s = series.time_s;
     params.n[axis] = std::move(series.angle_random_walk);
-    if (floor_tau_s > 0.0) {
+    if (fit.floor_tau_s > 0.0) {
       // The white level whose Allan variance at floor_tau_s equals the window's N and B.
       for (std::size_t j = 0; j < params.n[axis].size(); ++j) {
         const double b = series.bias_instability[j];
         params.n[axis][j] = std::sqrt(params.n[axis][j] * params.n[axis][j] +
-                                      kFloorAvarPerB2 * b * b * floor_tau_s);
+                                      kFloorAvarPerB2 * b * b * fit.floor_tau_s);
       }
     }
-    raise_to_floor(params.n[axis], floor_fraction);
+    raise_to_floor(params.n[axis], fit.n_floor_fraction);
   }
   nlohmann::json quality;  // the windows' DAVAR fits are not summarised: null without K
-  if (with_walk) {
+  if (fit.rate_random_walk) {
     // N and K only, as the white plugin fits them (with its floor-matched rule when the fit
     // fails): B is not given to the filter, so K must absorb the bias wander that B would
     // otherwise take.
-    const auto fit = stochnav::plugin::fit_white_walk(
-        walk_end_s > 0.0 ? leading_part(record, walk_end_s) : record, true);
-    params.k = fit.k;
-    quality = {{"rate_random_walk_fit", fit.quality}};
+    const auto walk = stochnav::plugin::fit_white_walk(
+        fit.rate_random_walk_end_s > 0.0 ? leading_part(record, fit.rate_random_walk_end_s)
+                                         : record,
+        true);
+    params.k = walk.k;
+    quality = {{"rate_random_walk_fit", walk.quality}};
   }
-  auto model = std::make_unique<DavarNoise>(record.group, std::move(params));
+  auto model = std::make_unique<DavarNoise>(record.group, params);
   model->set_fit_quality(std::move(quality));
   return model;
 }

@@ -49,6 +49,18 @@ const stochnav::plugin::ParamTable<GaussMarkovParams> kGaussMarkovTable{
              Bound::kNonNegative, 0.0, "rate random walk of the core bias"),
 };
 
+struct GaussMarkovFitOptions {
+  bool white = true;              ///< fit N too
+  bool rate_random_walk = false;  ///< fit K too
+};
+
+const stochnav::plugin::ParamTable<GaussMarkovFitOptions> kGaussMarkovFitTable{
+    stochnav::plugin::flag(&GaussMarkovFitOptions::white, "white", true,
+                           "fit the angle random walk N too"),
+    stochnav::plugin::flag(&GaussMarkovFitOptions::rate_random_walk, "rate_random_walk", false,
+                           "fit the rate random walk K too"),
+};
+
 class GaussMarkovNoise final : public stochnav::plugin::TabulatedNoiseModel<GaussMarkovParams> {
  public:
   GaussMarkovNoise(SensorGroup group, const GaussMarkovParams& params)
@@ -113,14 +125,11 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_gauss_markov(
     const stochnav::plugin::CalibrationRecord& record, const nlohmann::json& json,
     const stochnav::plugin::NoiseModelContext& context) {
   using stochnav::TermType;
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  const bool with_white = reader.boolean_or("white", true);
-  const bool with_walk = reader.boolean_or("rate_random_walk", false);
-  reader.finish();
+  const auto fit_options = kGaussMarkovFitTable.parse(json, context.params_pointer);
   stochnav::FitOptions options;
   options.terms = {TermType::kGaussMarkov};
-  if (with_white) options.terms.push_back(TermType::kAngleRandomWalk);
-  if (with_walk) options.terms.push_back(TermType::kRateRandomWalk);
+  if (fit_options.white) options.terms.push_back(TermType::kAngleRandomWalk);
+  if (fit_options.rate_random_walk) options.terms.push_back(TermType::kRateRandomWalk);
   const auto fits = stochnav::plugin::fit_calibration_axes(record, options);
   GaussMarkovParams params;
   for (std::size_t axis = 0; axis < 3; ++axis) {

@@ -36,8 +36,7 @@
 #include "stochnav/model/noise_model.hpp"
 #include "stochnav/model/sensor_shaping.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
-#include "stochnav/plugin/param_table.hpp"
-#include "stochnav/plugin/params.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 #include "white_noise_schedule.hpp"
 
 namespace {
@@ -132,12 +131,14 @@ WhiteNoiseSchedule white_schedule(const std::array<AxisNoise, 3>& axes) {
 }
 
 struct OracleParams {
-  std::filesystem::path scenario_dir;
+  std::string scenario;       ///< the scenario folder, absolute once built ("": the run's own)
   double fold_below_s = 0.1;  ///< s
 };
 
-// The constant parameters; the scenario folder is read below.
-const stochnav::plugin::ParamTable<OracleParams> kConstantTable{
+const stochnav::plugin::ParamTable<OracleParams> kOracleTable{
+    stochnav::plugin::text(&OracleParams::scenario, "scenario", "",
+                           "folder of the simulated scenario, relative to the config file; "
+                           "default (\"\"): the run's own scenario"),
     scalar(&OracleParams::fold_below_s, "fold_below_s", stochnav::plugin::ParamUnit::fixed("s"),
            stochnav::plugin::Bound::kNonNegative, 0.1,
            "first-order states faster than this become white noise"),
@@ -150,12 +151,12 @@ struct OracleModel {
 
 OracleModel build_oracle(const OracleParams& params, SensorGroup group) {
   OracleModel model;
-  model.truth = stochnav::oracle::read_scenario_noise(params.scenario_dir, group);
+  model.truth = stochnav::oracle::read_scenario_noise(params.scenario, group);
   stochnav::ShapingOptions options;
   options.tau0_s = 1.0 / model.truth.rate_hz;
   options.flicker_band_max_s = std::max(model.truth.duration_s, options.tau0_s);
   options.fold_below_s = params.fold_below_s;
-  const std::string file = (params.scenario_dir / "scenario.json").string();
+  const std::string file = (std::filesystem::path(params.scenario) / "scenario.json").string();
   const std::string name(stochnav::plugin::sensor_group_name(group));
   for (std::size_t i = 0; i < 3; ++i) {
     add_model(model.axes[i], model.truth.constant[i], options,
@@ -170,11 +171,10 @@ std::array<ShapingFilter, 3> stationary_parts(const OracleModel& model) {
   return {model.axes[0].stationary, model.axes[1].stationary, model.axes[2].stationary};
 }
 
-class OracleNoise final : public stochnav::plugin::NoiseModelPlugin {
+class OracleNoise final : public stochnav::plugin::TabulatedNoiseModel<OracleParams> {
  public:
   OracleNoise(SensorGroup group, const OracleParams& params, OracleModel model)
-      : NoiseModelPlugin(group),
-        params_(params),
+      : TabulatedNoiseModel(group, kOracleTable, params),
         model_(std::move(model)),
         shaping_(stationary_parts(model_)),
         white_(white_schedule(model_.axes)) {}
@@ -202,18 +202,11 @@ class OracleNoise final : public stochnav::plugin::NoiseModelPlugin {
     shaping_.sensor_map(map);
   }
 
-  nlohmann::json params() const override {
-    nlohmann::json out =
-        kConstantTable.to_json(params_, stochnav::plugin::sensor_quantity(group()));
-    out["scenario"] = params_.scenario_dir.string();
-    return out;
-  }
-
+  // The table's parameters and the truth read from the scenario (derived).
   std::string describe() const override {
-    std::string text = fmt::format(
-        "oracle ({}): the simulated noise of {}; {} shaping states, white noise in {} pieces",
-        stochnav::plugin::sensor_group_name(group()), params_.scenario_dir.string(),
-        shaping_.size(), white_.start_s().size());
+    std::string text = TabulatedNoiseModel::describe() +
+                       fmt::format("; {} shaping states, white noise in {} pieces", shaping_.size(),
+                                   white_.start_s().size());
     const char* axis_names[] = {"x", "y", "z"};
     for (std::size_t i = 0; i < 3; ++i) {
       text += fmt::format("\n{}: constant {}\n{}: scheduled {}", axis_names[i],
@@ -223,25 +216,24 @@ class OracleNoise final : public stochnav::plugin::NoiseModelPlugin {
     return text;
   }
 
+  // The table's parameters and the truth read from the scenario.
   bool equals(const NoiseModelPlugin& other, double rel_tol) const override {
-    const auto* that = dynamic_cast<const OracleNoise*>(&other);
-    if (that == nullptr || that->group() != group()) return false;
+    if (!TabulatedNoiseModel::equals(other, rel_tol)) return false;
+    const auto& that = static_cast<const OracleNoise&>(other);
     const auto close = [rel_tol](double a, double b) {
       return stochnav::plugin::parameters_close(a, b, rel_tol);
     };
     for (std::size_t i = 0; i < 3; ++i) {
-      if (!stochnav::equals(model_.truth.constant[i], that->model_.truth.constant[i], rel_tol) ||
-          !stochnav::equals(model_.truth.scheduled[i], that->model_.truth.scheduled[i], rel_tol)) {
+      if (!stochnav::equals(model_.truth.constant[i], that.model_.truth.constant[i], rel_tol) ||
+          !stochnav::equals(model_.truth.scheduled[i], that.model_.truth.scheduled[i], rel_tol)) {
         return false;
       }
     }
-    return close(model_.truth.rate_hz, that->model_.truth.rate_hz) &&
-           close(model_.truth.duration_s, that->model_.truth.duration_s) &&
-           kConstantTable.equal(params_, that->params_, rel_tol);
+    return close(model_.truth.rate_hz, that.model_.truth.rate_hz) &&
+           close(model_.truth.duration_s, that.model_.truth.duration_s);
   }
 
  private:
-  OracleParams params_;
   OracleModel model_;
   stochnav::SensorShaping shaping_;
   WhiteNoiseSchedule white_;
@@ -249,27 +241,25 @@ class OracleNoise final : public stochnav::plugin::NoiseModelPlugin {
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_oracle(
     const nlohmann::json& json, const stochnav::plugin::NoiseModelContext& context) {
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  OracleParams params;
-  if (reader.has("scenario")) {
-    params.scenario_dir = context.config_dir / reader.text("scenario");
+  auto params = stochnav::plugin::parse_params(kOracleTable, json, context);
+  const std::string pointer = context.params_pointer + "/scenario";
+  std::filesystem::path folder;
+  if (!params.scenario.empty()) {
+    folder = context.config_dir / params.scenario;
   } else if (!context.scenario_dir.empty()) {
-    params.scenario_dir = context.scenario_dir;
+    folder = context.scenario_dir;
   } else {
     throw stochnav::ConfigError(
-        reader.pointer("scenario") +
+        pointer +
         ": missing, and the run has no simulated scenario; expected the folder of a scenario "
         "made by `stochnav simulate scenario` (the oracle knows only simulated noise)");
   }
-  kConstantTable.read(reader, stochnav::plugin::sensor_quantity(context.group), params);
-  reader.finish();
-  if (!std::filesystem::exists(params.scenario_dir / "scenario.json")) {
-    throw stochnav::MissingDataError(
-        reader.pointer("scenario") + ": found \"" + params.scenario_dir.string() +
-        "\" without scenario.json; expected the folder of a scenario made "
-        "by `stochnav simulate scenario`");
+  if (!std::filesystem::exists(folder / "scenario.json")) {
+    throw stochnav::MissingDataError(pointer + ": found \"" + folder.string() +
+                                     "\" without scenario.json; expected the folder of a scenario "
+                                     "made by `stochnav simulate scenario`");
   }
-  params.scenario_dir = std::filesystem::absolute(params.scenario_dir).lexically_normal();
+  params.scenario = std::filesystem::absolute(folder).lexically_normal().string();
   return std::make_unique<OracleNoise>(context.group, params, build_oracle(params, context.group));
 }
 

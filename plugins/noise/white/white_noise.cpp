@@ -38,6 +38,15 @@ const stochnav::plugin::ParamTable<WhiteParams> kWhiteTable{
              Bound::kNonNegative, 0.0, "rate random walk of the core bias"),
 };
 
+struct WhiteFitOptions {
+  bool rate_random_walk = false;  ///< fit K as well as N
+};
+
+const stochnav::plugin::ParamTable<WhiteFitOptions> kWhiteFitTable{
+    stochnav::plugin::flag(&WhiteFitOptions::rate_random_walk, "rate_random_walk", false,
+                           "fit the rate random walk K as well as N"),
+};
+
 class WhiteNoise final : public stochnav::plugin::TabulatedNoiseModel<WhiteParams> {
  public:
   WhiteNoise(SensorGroup group, const WhiteParams& params)
@@ -67,9 +76,7 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_white(
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_white(
     const stochnav::plugin::CalibrationRecord& record, const nlohmann::json& json,
     const stochnav::plugin::NoiseModelContext& context) {
-  stochnav::plugin::ParamReader reader(json, context.params_pointer);
-  const bool with_walk = reader.boolean_or("rate_random_walk", false);
-  reader.finish();
+  const bool with_walk = kWhiteFitTable.parse(json, context.params_pointer).rate_random_walk;
   const auto fit = stochnav::plugin::fit_white_walk(record, with_walk);
   WhiteParams params;
   params.n = fit.n;

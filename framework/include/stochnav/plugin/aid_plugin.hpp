@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "stochnav/ins/nav_state.hpp"
+#include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/plugin_api.hpp"
 
 namespace stochnav::plugin {
@@ -86,11 +87,11 @@ struct AidContext {
 /// with dQ_v the accelerometer white noise integrated into the velocity (the Coriolis and
 /// transport terms, of order 1e-4 dv per s, are left out). The gyro-bias columns carry the
 /// attitude's drift inside the interval; filter/ins_interval_accumulator.hpp gives every term,
-/// and those of the states beyond the core (AidPlugin::measures_interval_mean). At a tilt error of 1e-4 rad the drift
-/// term alone is g 1e-4 T / 2 = 5e-4 m/s over a 1-s interval: an aid that linearised the mean
-/// on dv at the epoch would be overconfident by far. Aids project the mean with the attitude at
-/// the epoch (the hole direction does not rotate with the toolface, whereas a mean of the
-/// rotating body axes would average the lateral information away). Only interval aids
+/// and those of the states beyond the core (AidPlugin::measures_interval_mean). At a tilt error of
+/// 1e-4 rad the drift term alone is g 1e-4 T / 2 = 5e-4 m/s over a 1-s interval: an aid that
+/// linearised the mean on dv at the epoch would be overconfident by far. Aids project the mean with
+/// the attitude at the epoch (the hole direction does not rotate with the toolface, whereas a mean
+/// of the rotating body axes would average the lateral information away). Only interval aids
 /// (AidPlugin::measures_interval_mean) get an interval; the others see duration_s = 0.
 struct InsInterval {
   double duration_s = 0.0;                             ///< T = t - t_prev (s); 0 at the start
@@ -121,9 +122,24 @@ inline constexpr double kDefaultGateProbability = 0.999;
 /// The chi-square quantile with `dof` degrees of freedom at `probability` (in (0, 1)).
 double chi_square_quantile(double probability, int dof);
 
-/// Reads the gate keys of an aid's params (one place for every aid):
+/// The gate keys of an aid's params, as given (one place for every aid):
 ///   "nis_gate": bool (default true), "nis_probability": (0, 1) (default 0.999: chi-square
-///   quantile with measurement_size dof), "nis_threshold": > 0 (overrides the probability).
+///   quantile with the measurement size as dof), "nis_threshold": > 0 (overrides the
+///   probability).
+struct NisGateParams {
+  bool enabled = true;
+  double probability = kDefaultGateProbability;
+  double threshold = std::numeric_limits<double>::quiet_NaN();  ///< NaN: from the probability
+};
+
+/// The table of NisGateParams; an aid puts its keys beside its own with
+/// `kTable.plus(lift(&MyParams::gate, nis_gate_table()))`.
+const ParamTable<NisGateParams>& nis_gate_table();
+
+/// The gate of a measurement of `measurement_size` components.
+NisGate nis_gate(const NisGateParams& params, int measurement_size);
+
+/// nis_gate() of the gate keys read from an aid's params.
 NisGate read_nis_gate(ParamReader& params, int measurement_size);
 
 class AidPlugin {

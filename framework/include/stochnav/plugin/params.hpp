@@ -25,6 +25,9 @@ enum class Bound {
   kOpenUnit,     ///< in (0, 1)
 };
 
+/// Whether `value` is finite and within `bound`.
+bool within_bound(Bound bound, double value);
+
 /// "a number > 0 (deg/h)": what a value within `bound` looks like, for messages and docs.
 std::string bound_description(Bound bound, std::string_view unit);
 
@@ -61,6 +64,9 @@ class ParamReader {
   /// A string among `allowed`.
   std::string choice_or(std::string_view key, std::string_view fallback,
                         std::span<const std::string_view> allowed);
+  /// The value of a required key of any type; ConfigError "missing; expected <expected>" (or a
+  /// likely typo of the key) when absent.
+  const nlohmann::json& required(std::string_view key, const std::string& expected);
   /// The raw value (null when absent), e.g. a nested object read with its own ParamReader.
   const nlohmann::json& raw(std::string_view key);
 
