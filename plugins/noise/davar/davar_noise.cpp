@@ -62,7 +62,6 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -284,11 +283,11 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
         pointer, fit.window_s, 16.0 / record.rate_hz, record.rate_hz));
   }
 
-  const std::optional<std::size_t> spin_axis =
-      fit.spin_axis >= 0 ? std::optional<std::size_t>(fit.spin_axis) : std::nullopt;
+  const bool spinning = fit.spin_axis >= 0;
+  const auto spin_axis = static_cast<std::size_t>(std::max(fit.spin_axis, 0));
   std::array<stochnav::DavarResult, 3> deviations;
   for (std::size_t axis = 0; axis < 3; ++axis) {
-    if (spin_axis && axis != *spin_axis) continue;
+    if (spinning && axis != spin_axis) continue;
     try {
       deviations[axis] = stochnav::davar_noise::window_deviations(
           record.axes[axis], record.rate_hz, record.start_time_s, options);
@@ -296,7 +295,7 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
       throw stochnav::InputError(record.source + ": " + error.what());
     }
   }
-  if (spin_axis) remove_spin_motion(record, *spin_axis, options, deviations);
+  if (spinning) remove_spin_motion(record, spin_axis, options, deviations);
 
   DavarParams params;
   params.causal = fit.causal;

@@ -27,6 +27,7 @@
 
 #include <array>
 #include <cstddef>
+#include <numbers>
 #include <span>
 #include <vector>
 
@@ -79,7 +80,7 @@ SpinFreeWindow spin_free_window(std::span<const double> first, std::span<const d
 /// deviations are read as its noise: 5 deg/h (rad/s). A 60-rpm spin changing by more than that
 /// within a window (the ramps at connections, stick-slip) is motion the axis cannot tell from its
 /// noise (a ramp of 5 deg/h per minute already has an Allan variance at 1 s of a FOG's floor).
-inline constexpr double kSteadySpinRange = 5.0 / 3600.0 * 3.14159265358979323846 / 180.0;
+inline constexpr double kSteadySpinRange = 5.0 / 3600.0 * std::numbers::pi / 180.0;
 
 /// What the cross and spin axes' windows carry once the spin motion is set aside.
 struct SpinWindowDeviations {
