@@ -156,6 +156,10 @@ std::array<NoiseModel, 3> axis_models(const json& value, const std::string& poin
         fail(fmt::format("{}/terms/{}", at, t), "is a nonstationary term in scheduled_noise",
              "no nonstationary term here: the phase noise scales build it");
       }
+      if (!allow_nonstationary && term_type(model.terms[t]) == TermType::kAuxSensitivity) {
+        fail(fmt::format("{}/terms/{}", at, t), "is an aux_sensitivity term in scheduled_noise",
+             "the aux_sensitivity term under \"noise\" (the phase scales do not apply to it)");
+      }
     }
   };
   if (value.is_array()) {

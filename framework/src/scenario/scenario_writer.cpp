@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -104,6 +105,24 @@ void append_truth(fmt::memory_buffer& out, const TruthSample& truth) {
                  attitude.azimuth_rad * kRadToDeg);
 }
 
+// The auxiliary channels (temperature) that the gyro and accelerometer aux_sensitivity terms
+// read, one per column; the first term naming a column gives its profile (as `simulate noise`).
+std::vector<AuxSensitivityTerm> aux_channels(const ScenarioConfig& config) {
+  std::vector<AuxSensitivityTerm> channels;
+  for (const SensorErrorConfig* sensor : {&config.gyro, &config.accel}) {
+    for (const NoiseModel& model : sensor->noise) {
+      for (const NoiseTerm& term : model.terms) {
+        const auto* aux = std::get_if<AuxSensitivityTerm>(&term);
+        if (aux == nullptr) continue;
+        const bool seen = std::any_of(channels.begin(), channels.end(),
+                                      [&](const auto& c) { return c.column == aux->column; });
+        if (!seen) channels.push_back(*aux);
+      }
+    }
+  }
+  return channels;
+}
+
 }  // namespace
 
 ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
@@ -121,8 +140,22 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
                     : "t,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_z");
   CsvStream truth(options.out_dir / "truth.csv",
                   "t,lat,lon,h,ve,vn,vu,inclination,toolface,azimuth");
-  CsvStream aids(options.out_dir / "aids.csv",
-                 "t,measured_depth_m,rop_mph,zupt,measured_depth_true_m,rop_true_mph");
+  // Auxiliary channels go after the fixed columns, so files without them are unchanged.
+  const std::vector<AuxSensitivityTerm> channels = aux_channels(config);
+  std::vector<std::string> aid_columns = {"t",    "measured_depth_m",      "rop_mph",
+                                          "zupt", "measured_depth_true_m", "rop_true_mph"};
+  std::vector<std::string> aid_units = {"s", "m", "m/h", "flag", "m", "m/h"};
+  for (const auto& channel : channels) {
+    if (std::find(aid_columns.begin(), aid_columns.end(), channel.column) != aid_columns.end()) {
+      throw ConfigError("simulate scenario: aux_sensitivity column \"" + channel.column +
+                        "\" is already a column of aids.csv; rename it");
+    }
+    aid_columns.push_back(channel.column);
+    aid_units.push_back("channel");
+  }
+  std::string aid_header;
+  for (const auto& column : aid_columns) aid_header += (aid_header.empty() ? "" : ",") + column;
+  CsvStream aids(options.out_dir / "aids.csv", aid_header);
   PendingFile scenario_json(options.out_dir / "scenario.json");
 
   const double rate = simulator.rate_hz();
@@ -134,9 +167,14 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
     const double depth = t.measured_depth_m * (1.0 + config.aids.depth_scale_error) +
                          config.aids.depth_noise_m * aid_noise();
     const double rop = t.rop_mps + config.aids.rop_noise_mps * aid_noise();
-    fmt::format_to(std::back_inserter(aids.buffer()), "{},{},{},{},{},{}\n", t.t_s, depth,
+    fmt::format_to(std::back_inserter(aids.buffer()), "{},{},{},{},{},{}", t.t_s, depth,
                    rop * kMpsToMph, t.stationary ? 1 : 0, t.measured_depth_m,
                    t.rop_mps * kMpsToMph);
+    // The channel at the aid time itself (the IMU sampler reads it at interval midpoints).
+    for (const auto& channel : channels) {
+      fmt::format_to(std::back_inserter(aids.buffer()), ",{}", channel.profile_at(t.t_s));
+    }
+    aids.buffer().push_back('\n');
   };
   const TruthSample initial = simulator.initial_truth();
   append_truth(truth.buffer(), initial);
@@ -197,12 +235,16 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
          "true state at t: WGS-84 geodetic position, ellipsoidal height, ENU velocity, MWD "
          "attitude (near vertical: azimuth 0 and the gyro toolface)"}}},
       {"aids.csv",
-       {{"columns",
-         {"t", "measured_depth_m", "rop_mph", "zupt", "measured_depth_true_m", "rop_true_mph"}},
-        {"units", {"s", "m", "m/h", "flag", "m", "m/h"}},
+       {{"columns", aid_columns},
+        {"units", aid_units},
         {"meaning",
-         "measured depth = true (1 + depth_scale_error) + N(0, depth_noise_m^2); ROP with "
-         "N(0, rop_noise^2); zupt = 1 when the tool is stationary; then the true values"}}}};
+         channels.empty()
+             ? "measured depth = true (1 + depth_scale_error) + N(0, depth_noise_m^2); ROP with "
+               "N(0, rop_noise^2); zupt = 1 when the tool is stationary; then the true values"
+             : "measured depth = true (1 + depth_scale_error) + N(0, depth_noise_m^2); ROP with "
+               "N(0, rop_noise^2); zupt = 1 when the tool is stationary; then the true values; "
+               "then the auxiliary channels that the aux_sensitivity terms read (their profile "
+               "at t, in the channel's units, e.g. degC)"}}}};
   constexpr double kDegPerHour = std::numbers::pi / 180.0 / 3600.0;
   constexpr double kMilliG = 9.80665e-3;
   nlohmann::json gyro_bias = nlohmann::json::array();

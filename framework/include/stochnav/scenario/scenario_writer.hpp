@@ -13,7 +13,10 @@
 //   aids.csv      t,measured_depth_m,rop_mph,zupt,measured_depth_true_m,rop_true_mph at
 //                 aid_rate_hz from t = 0: measured depth with the pipe-tally error
 //                 md (1 + depth_scale_error) + white noise, ROP with white noise, zupt 1 when
-//                 the tool is stationary, then the true values.
+//                 the tool is stationary, then the true values. When the gyro or accelerometer
+//                 noise has aux_sensitivity terms, their channels follow, one column each (the
+//                 term's `column`, e.g. temperature_c): its profile at t (model/noise_term.hpp),
+//                 the channel the simulated bias follows; without such terms the file is as above.
 //   scenario.json the configuration with every default filled in and the seed used, the column
 //                 units, the turn-on biases drawn, the phases, the noise schedule (per phase and
 //                 axis, the exact noise model in force) and the derived truth parameters.
