@@ -35,14 +35,11 @@
 namespace stochnav {
 namespace {
 
+using diagnose_testing::natural;
 using diagnose_testing::simulated_record;
 
 constexpr double kRate = 100.0;
 constexpr std::size_t kSamples = 100000;
-
-double natural(ParameterDimension dimension, double reported) {
-  return to_natural(Quantity::kAngularRate, dimension, reported);
-}
 
 // Base terms (deg/h gyro): white noise N = 0.5 deg/sqrt(h), a flicker floor B = 3 deg/h,
 // quantization Q = 2 arcsec.
