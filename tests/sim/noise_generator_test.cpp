@@ -130,7 +130,9 @@ TEST(NoiseGenerator, ThroughputIsSeveralMillionSamplesPerSecond) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start2).count();
   std::printf("[ throughput ] B (200 h band): %.1f Msamples/s\n",
               8.0 * static_cast<double>(block.size()) / seconds2 / 1e6);
-  if (!testing::kSanitizedBuild) EXPECT_GT(rate, 2e6);
+  if (!testing::kSanitizedBuild) {
+    EXPECT_GT(rate, 2e6);
+  }
 }
 
 }  // namespace
