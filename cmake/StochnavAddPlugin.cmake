@@ -32,7 +32,8 @@ function(stochnav_add_plugin target)
     CXX_VISIBILITY_PRESET hidden
     VISIBILITY_INLINES_HIDDEN ON)
   # Sanitizer runtimes leave symbols to the executable: no --no-undefined under them.
-  if(NOT STOCHNAV_SANITIZE AND NOT CMAKE_CXX_FLAGS MATCHES "-fsanitize")
+  if(NOT STOCHNAV_SANITIZE AND NOT STOCHNAV_THREAD_SANITIZE
+     AND NOT CMAKE_CXX_FLAGS MATCHES "-fsanitize")
     target_link_options(${target} PRIVATE "LINKER:--no-undefined")
   endif()
   if(ARG_OUTPUT_DIRECTORY)

@@ -37,6 +37,7 @@
 namespace stochnav {
 namespace {
 
+using diagnose_testing::natural;
 using diagnose_testing::simulated_record;
 
 // 4 h at 10 Hz; STOCHNAV_DIAGNOSE_STUDY_RECORD=RATE_HZ,DURATION_S sets another record (the
@@ -62,10 +63,6 @@ const RecordShape kShape = record_shape();
 const double kRate = kShape.rate_hz;
 const std::size_t kSamples = kShape.samples;
 const double kDuration = static_cast<double>(kSamples) / kRate;
-
-double natural(ParameterDimension dimension, double reported) {
-  return to_natural(Quantity::kAngularRate, dimension, reported);
-}
 
 // Base terms (deg/h gyro): white noise N = 0.5 deg/sqrt(h), a flicker floor B = 3 deg/h,
 // quantization Q = 2 arcsec.

@@ -19,20 +19,17 @@
 namespace stochnav {
 namespace {
 
+using diagnose_testing::natural;
 using diagnose_testing::simulated_record;
 
-constexpr double kRate = 10.0;
+constexpr double kRecordRateHz = 10.0;
 constexpr std::size_t kSamples = 72000;  // 2 h
 constexpr int kSeeds = 8;
-
-double natural(ParameterDimension dimension, double reported) {
-  return to_natural(Quantity::kAngularRate, dimension, reported);
-}
 
 // A FOG-like base: 0.05 deg/sqrt(h) white noise and a 0.02 deg/h bias instability.
 NoiseModel base_model() {
   return {Unit::kDegPerHour,
-          kRate,
+          kRecordRateHz,
           {AngleRandomWalkTerm{natural(ParameterDimension::kAnglePerRootTime, 0.05)},
            BiasInstabilityTerm{natural(ParameterDimension::kRate, 0.02)}}};
 }
@@ -52,15 +49,15 @@ AuxSensitivityTerm temperature_term(double coefficient_deg_h_per_c) {
 std::vector<AuxChannel> temperature_channel(const AuxSensitivityTerm& term, std::size_t samples) {
   AuxChannel channel{term.column, {}};
   for (std::size_t k = 0; k < samples; ++k) {
-    channel.values.push_back(term.profile_at((static_cast<double>(k) + 0.5) / kRate));
+    channel.values.push_back(term.profile_at((static_cast<double>(k) + 0.5) / kRecordRateHz));
   }
   return {channel};
 }
 
 std::vector<DeterministicFinding> find(const NoiseModel& truth, std::uint64_t seed,
                                        const std::vector<AuxChannel>& aux = {}) {
-  const Record record = simulated_record(truth, kSamples, kRate, seed);
-  return find_deterministic_effects(natural_rate(record), kRate, base_model(), aux);
+  const Record record = simulated_record(truth, kSamples, kRecordRateHz, seed);
+  return find_deterministic_effects(natural_rate(record), kRecordRateHz, base_model(), aux);
 }
 
 double sigma_of(const DeterministicFinding& finding, const std::string& name) {
@@ -139,7 +136,8 @@ TEST(DeterministicEffects, DiagnoseNamesARampNotARandomWalk) {
   DiagnoseOptions options;
   options.seeds = 0;
   for (int seed = 1; seed <= 3; ++seed) {
-    const Record record = simulated_record(with_term(RateRampTerm{r}), kSamples, kRate, 900 + seed);
+    const Record record =
+        simulated_record(with_term(RateRampTerm{r}), kSamples, kRecordRateHz, 900 + seed);
     const DiagnoseResult result = diagnose(record, base_model(), options);
     ASSERT_FALSE(result.iterations.empty()) << "seed " << seed;
     EXPECT_EQ(result.iterations[0].effect, TermType::kRateRamp) << "seed " << seed;
@@ -155,7 +153,7 @@ TEST(DeterministicEffects, DiagnoseNamesARampNotARandomWalk) {
 
 TEST(DeterministicEffects, AuxColumnCarriedInReport) {
   const AuxSensitivityTerm term = temperature_term(0.1);
-  const Record record = simulated_record(with_term(term), kSamples, kRate, 950);
+  const Record record = simulated_record(with_term(term), kSamples, kRecordRateHz, 950);
   DiagnoseOptions options;
   options.seeds = 0;
   const DiagnoseResult result =

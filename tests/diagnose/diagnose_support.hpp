@@ -4,10 +4,16 @@
 #include <cstdint>
 
 #include "stochnav/io/record.hpp"
+#include "stochnav/model/reporting_units.hpp"
 #include "stochnav/model/noise_model.hpp"
 #include "stochnav/sim/noise_generator.hpp"
 
 namespace stochnav::diagnose_testing {
+
+/// A gyro term's coefficient given in its reporting unit (deg/sqrt(h), deg/h, ...) in SI.
+inline double natural(ParameterDimension dimension, double reported) {
+  return to_natural(Quantity::kAngularRate, dimension, reported);
+}
 
 /// `samples` samples of `truth` at rate_hz, written in the model's unit.
 inline Record simulated_record(const NoiseModel& truth, std::size_t samples, double rate_hz,

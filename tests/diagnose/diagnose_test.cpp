@@ -20,13 +20,10 @@
 namespace stochnav {
 namespace {
 
+using diagnose_testing::natural;
 using diagnose_testing::simulated_record;
 
 constexpr double kRate = 100.0;
-
-double natural(ParameterDimension dimension, double reported) {
-  return to_natural(Quantity::kAngularRate, dimension, reported);
-}
 
 NoiseModel white_and_walk() {
   return {Unit::kDegPerHour,

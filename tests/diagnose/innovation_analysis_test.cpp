@@ -51,23 +51,23 @@ bool has_effect(const InnovationAnalysis& analysis, const std::string& effect) {
   return false;
 }
 
-constexpr int kSeeds = 40;
+constexpr int kAnalysisSeeds = 40;
 
 TEST(InnovationAnalysis, WhiteUnitInnovationsRaiseNoFalseAlarm) {
   int alarms = 0;
-  for (int seed = 0; seed < kSeeds; ++seed) {
+  for (int seed = 0; seed < kAnalysisSeeds; ++seed) {
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> normal;
     const auto analysis = analyse(synthetic_aid(1800.0, [&](double, int) { return normal(rng); }));
     alarms += !analysis.consistent || !analysis.findings.empty();
   }
   // alpha = 0.01 per test family and three families: about 1 alarm expected in 40 runs.
-  EXPECT_LE(alarms, 4) << "false alarms in " << kSeeds << " consistent runs";
+  EXPECT_LE(alarms, 4) << "false alarms in " << kAnalysisSeeds << " consistent runs";
 }
 
 TEST(InnovationAnalysis, FindsANoiseRiseAndItsTimeSpan) {
   int detected = 0;
-  for (int seed = 0; seed < kSeeds; ++seed) {
+  for (int seed = 0; seed < kAnalysisSeeds; ++seed) {
     std::mt19937_64 rng(100 + seed);
     std::normal_distribution<double> normal;
     const auto analysis = analyse(synthetic_aid(1800.0, [&](double t, int i) {
@@ -86,25 +86,25 @@ TEST(InnovationAnalysis, FindsANoiseRiseAndItsTimeSpan) {
       break;
     }
   }
-  EXPECT_GE(detected, kSeeds - 2);
+  EXPECT_GE(detected, kAnalysisSeeds - 2);
 }
 
 TEST(InnovationAnalysis, NamesUnderstatedWhiteNoise) {
   int named = 0;
-  for (int seed = 0; seed < kSeeds; ++seed) {
+  for (int seed = 0; seed < kAnalysisSeeds; ++seed) {
     std::mt19937_64 rng(200 + seed);
     std::normal_distribution<double> normal;
     const auto analysis =
         analyse(synthetic_aid(1800.0, [&](double, int) { return 1.5 * normal(rng); }));
     named += has_effect(analysis, "angle_random_walk") && !has_effect(analysis, "nonstationary");
   }
-  EXPECT_GE(named, kSeeds - 2);
+  EXPECT_GE(named, kAnalysisSeeds - 2);
 }
 
 TEST(InnovationAnalysis, NamesACorrelatedErrorAndItsCorrelationTime) {
   const double tau_c = 10.0, rho = std::exp(-1.0 / tau_c);
   int named = 0;
-  for (int seed = 0; seed < kSeeds; ++seed) {
+  for (int seed = 0; seed < kAnalysisSeeds; ++seed) {
     std::mt19937_64 rng(300 + seed);
     std::normal_distribution<double> normal;
     std::array<double, 3> state{normal(rng), normal(rng), normal(rng)};
@@ -121,7 +121,7 @@ TEST(InnovationAnalysis, NamesACorrelatedErrorAndItsCorrelationTime) {
       }
     }
   }
-  EXPECT_GE(named, kSeeds - 2);
+  EXPECT_GE(named, kAnalysisSeeds - 2);
 }
 
 TEST(InnovationAnalysis, ReportsAnOverstatedModelWithoutAnEffect) {

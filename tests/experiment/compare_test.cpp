@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "json_file.hpp"
 #include "run_cli.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/experiment/comparison.hpp"
@@ -24,14 +25,10 @@
 namespace stochnav {
 namespace {
 
+using testing::read_json;
 using testing::run_cli;
 using testing::TempDir;
 namespace fs = std::filesystem;
-
-nlohmann::json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
 
 // The paper's random-vibration scenario, 150 s: 60 s static, 5 + 20 + 5 s vibration, 60 s
 // static.

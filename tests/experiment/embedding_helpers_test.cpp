@@ -5,8 +5,8 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <numbers>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/experiment/initial_state.hpp"
 #include "stochnav/experiment/navigation_files.hpp"
@@ -16,8 +16,6 @@
 
 namespace stochnav {
 namespace {
-
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 TEST(TruthRow, BecomesANavStateInRadiansWithTheMwdAttitude) {
   const std::array<double, 10> row = {12.5, 30.0, -100.0, 50.0, 1.0, 2.0, 3.0, 45.0, 10.0, 60.0};

@@ -18,6 +18,7 @@
 #include <sstream>
 #include <string>
 
+#include "json_file.hpp"
 #include "run_cli.hpp"
 #include "temp_dir.hpp"
 #include "tiny_comparison.hpp"
@@ -27,6 +28,7 @@ namespace {
 
 using testing::CliResult;
 using testing::run_cli;
+using testing::read_json;
 using testing::TempDir;
 namespace fs = std::filesystem;
 
@@ -37,15 +39,13 @@ std::string read_text(const fs::path& path) {
   return text.str();
 }
 
-nlohmann::json read_json(const fs::path& path) { return nlohmann::json::parse(read_text(path)); }
-
 std::size_t line_count(const std::string& text) {
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
 }
 
 // Three variants (a datasheet white model, a white model fitted on the first 60 s, the oracle)
 // on the shipped random-vibration scenario shortened to 150 s; `seeds` Monte-Carlo seeds.
-nlohmann::json tiny_experiment(int seeds) {
+nlohmann::json tiny_overridden_experiment(int seeds) {
   nlohmann::json overrides = nlohmann::json::object();
   const int durations[] = {60, 5, 20, 5, 60};
   for (int i = 0; i < 5; ++i) {
@@ -154,7 +154,7 @@ void expect_same_comparison(const fs::path& reference, const fs::path& merged) {
 }
 
 TEST_F(ShardedCompare, MergedEqualsUnshardedBitForBit) {
-  write_experiment(tiny_experiment(4));
+  write_experiment(tiny_overridden_experiment(4));
   run_reference("out", "reference");
   run_shards("out", 3);
   // Jobs go round robin: shard 0 of 3 runs jobs 0 and 3.
@@ -170,7 +170,7 @@ TEST_F(ShardedCompare, MergedEqualsUnshardedBitForBit) {
 }
 
 TEST_F(ShardedCompare, SweepMergedEqualsUnshardedBitForBit) {
-  nlohmann::json experiment = tiny_experiment(2);
+  nlohmann::json experiment = tiny_overridden_experiment(2);
   experiment["sweep"] = {{"name", "gyro noise variance x"},
                          {"set", {"/scenario/noise_variance_scale/gyro"}},
                          {"values", {1, 10}}};
@@ -198,7 +198,7 @@ TEST_F(ShardedCompare, SweepMergedEqualsUnshardedBitForBit) {
 }
 
 TEST_F(ShardedCompare, AutoReadsSlurmArrayAndKubernetesIndex) {
-  write_experiment(tiny_experiment(3));
+  write_experiment(tiny_overridden_experiment(3));
   const std::string arguments =
       "compare '" + experiment_.string() + "' --out '" + dir_.file("out") + "' --shard auto";
   const CliResult slurm = run_cli_with_environment(
@@ -225,7 +225,7 @@ TEST_F(ShardedCompare, AutoReadsSlurmArrayAndKubernetesIndex) {
 }
 
 TEST_F(ShardedCompare, MissingShardIsNamedWithItsRerunCommandAndNothingIsWritten) {
-  write_experiment(tiny_experiment(3));
+  write_experiment(tiny_overridden_experiment(3));
   for (const char* shard : {"0/3", "2/3"}) {
     ASSERT_EQ(compare("out", std::string("--shard ") + shard).exit_code, 0);
   }
@@ -249,7 +249,7 @@ TEST_F(ShardedCompare, MissingShardIsNamedWithItsRerunCommandAndNothingIsWritten
 }
 
 TEST_F(ShardedCompare, FailedShardIsNamedAndResumeCompletesIt) {
-  write_experiment(tiny_experiment(2));
+  write_experiment(tiny_overridden_experiment(2));
   ASSERT_EQ(compare("out", "--shard 0/2").exit_code, 0);
   // Shard 1 cannot simulate its seed: a file where its scenario folder goes.
   std::ofstream(path("out/.scenarios")) << "in the way";
@@ -266,7 +266,7 @@ TEST_F(ShardedCompare, FailedShardIsNamedAndResumeCompletesIt) {
 }
 
 TEST_F(ShardedCompare, ResumeRunsOnlyTheJobsNotComplete) {
-  write_experiment(tiny_experiment(4));
+  write_experiment(tiny_overridden_experiment(4));
   ASSERT_EQ(compare("out", "--shard 0/2").exit_code, 0);  // jobs 0 and 2
   const fs::path kept = path("out/shards/shard-0-of-2/job_0.json");
   const fs::path lost = path("out/shards/shard-0-of-2/job_2.json");
@@ -285,7 +285,7 @@ TEST_F(ShardedCompare, ResumeRunsOnlyTheJobsNotComplete) {
 }
 
 TEST_F(ShardedCompare, BadShardOptionsAreOneLineAndExitCode2) {
-  write_experiment(tiny_experiment(2));
+  write_experiment(tiny_overridden_experiment(2));
   expect_error_line(compare("out", "--shard 3/3"), "--shard 3/3: shard index 3 is not below");
   expect_error_line(compare("out", "--shard 0/0"), "--shard 0/0: the shard count N is 0");
   expect_error_line(compare("out", "--shard two/3"), "--shard two/3: expected K/N");
@@ -299,7 +299,7 @@ TEST_F(ShardedCompare, BadShardOptionsAreOneLineAndExitCode2) {
 }
 
 TEST_F(ShardedCompare, ForeignFolderInShardsIsRefused) {
-  write_experiment(tiny_experiment(2));
+  write_experiment(tiny_overridden_experiment(2));
   fs::create_directories(path("out/shards/notes"));
   expect_error_line(compare("out", "--shard 0/2"), "out/shards/notes: not a shard folder");
   expect_error_line(merge("out"), "out/shards/notes: not a shard folder");
@@ -310,7 +310,7 @@ TEST_F(ShardedCompare, ForeignFolderInShardsIsRefused) {
 }
 
 TEST_F(ShardedCompare, ShardsOfAnotherExperimentAreRefused) {
-  write_experiment(tiny_experiment(2));
+  write_experiment(tiny_overridden_experiment(2));
   ASSERT_EQ(compare("out", "--shard 0/2").exit_code, 0);
   // Other seeds make another experiment: refused before it runs.
   expect_error_line(compare("out", "--shard 1/2 --seeds 1 2 3"), "from another experiment");
@@ -322,7 +322,7 @@ TEST_F(ShardedCompare, ShardsOfAnotherExperimentAreRefused) {
 }
 
 TEST_F(ShardedCompare, TwoShardsWritingTheSameJobAreRefused) {
-  write_experiment(tiny_experiment(4));
+  write_experiment(tiny_overridden_experiment(4));
   ASSERT_EQ(compare("out", "--shard 0/2").exit_code, 0);  // jobs 0, 2
   expect_error_line(compare("out", "--shard 0/3"), "would write the same jobs");
   // Shards of two splits started at the same time: merge finds job 0 twice.

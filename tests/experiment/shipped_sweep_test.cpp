@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 
+#include "json_file.hpp"
 #include "run_cli.hpp"
 #include "temp_dir.hpp"
 
@@ -18,10 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
+using stochnav::testing::read_json;
 
 TEST(ShippedSweep, PaperRandomVibrationSweepRunsEveryLevelAndVariant) {
   const fs::path experiments = fs::path(STOCHNAV_SOURCE_DIR) / "configs" / "experiments";

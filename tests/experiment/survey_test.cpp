@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
 #include "survey_plot.hpp"
@@ -20,9 +21,6 @@
 
 namespace stochnav {
 namespace {
-
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 SurveyStation station_at(double md_m, double inclination_deg, double azimuth_deg) {
   SurveyStation station;

@@ -17,13 +17,13 @@ using testing::NoisyStaticAid;
 using testing::StaticImu;
 using testing::StaticImuErrors;
 
-constexpr double kRateHz = 100.0;
+constexpr double kImuRateHz = 100.0;
 
 std::shared_ptr<plugin::NoiseModelPlugin> augmented(const plugin::PluginRegistry& registry,
                                                     plugin::SensorGroup group,
                                                     const nlohmann::json& model) {
   const plugin::NoiseModelContext context{
-      .group = group, .imu_rate_hz = kRateHz, .params_pointer = "/noise"};
+      .group = group, .imu_rate_hz = kImuRateHz, .params_pointer = "/noise"};
   return registry.create_noise_model(
       "augmented", {{"model", model}, {"flicker_band_max_s", 36.0 * 3600.0}}, context, "/noise");
 }
@@ -41,7 +41,7 @@ NavigatorRun run(bool structured, int seconds) {
   // Gauss-Markov state and a ramp (2 x 2 block) per axis.
   const auto gyro = augmented(registry, plugin::SensorGroup::kGyro,
                               {{"units", "deg/h"},
-                               {"rate_hz", kRateHz},
+                               {"rate_hz", kImuRateHz},
                                {"terms",
                                 {{{"type", "angle_random_walk"}, {"N", 0.05}},
                                  {{"type", "bias_instability"}, {"B", 0.5}},
@@ -51,7 +51,7 @@ NavigatorRun run(bool structured, int seconds) {
   const auto accel =
       augmented(registry, plugin::SensorGroup::kAccel,
                 {{"units", "m/s^2"},
-                 {"rate_hz", kRateHz},
+                 {"rate_hz", kImuRateHz},
                  {"terms",
                   {{{"type", "angle_random_walk"}, {"N", 5e-4}},
                    {{"type", "bias_instability"}, {"B", 2e-4}},
@@ -63,10 +63,10 @@ NavigatorRun run(bool structured, int seconds) {
                          .accel_vrw = 5e-4,
                          .gyro_bias = Eigen::Vector3d(1e-6, -2e-6, 3e-6),
                          .accel_bias = Eigen::Vector3d(3e-4, 1e-4, -2e-4)};
-  StaticImu imu(truth, errors, kRateHz, 21);
+  StaticImu imu(truth, errors, kImuRateHz, 21);
   NoisyStaticAid aid(truth, 0.05, 0.002, 22);
   MwdNavigator navigator(truth, *gyro, *accel, {&aid}, options);
-  for (int k = 0; k < seconds * static_cast<int>(kRateHz); ++k) navigator.step(imu.next());
+  for (int k = 0; k < seconds * static_cast<int>(kImuRateHz); ++k) navigator.step(imu.next());
   EXPECT_TRUE(navigator.health().ok());
   return {navigator.state(), navigator.gyro_bias_b(), navigator.accel_bias_b(),
           navigator.covariance(), gyro->augmented_size() + accel->augmented_size()};

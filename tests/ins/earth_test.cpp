@@ -3,29 +3,28 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
+
+#include "stochnav/core/angles.hpp"
 
 namespace stochnav {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
 TEST(Earth, NormalGravityMatchesSomiglianaAtEquatorAndPoles) {
   EXPECT_NEAR(normal_gravity(0.0, 0.0), 9.7803253359, 1e-10);
-  EXPECT_NEAR(normal_gravity(90.0 * kDeg, 0.0), 9.8321849378, 1e-9);
-  EXPECT_NEAR(normal_gravity(-90.0 * kDeg, 0.0), 9.8321849378, 1e-9);
+  EXPECT_NEAR(normal_gravity(90.0 * kRadPerDeg, 0.0), 9.8321849378, 1e-9);
+  EXPECT_NEAR(normal_gravity(-90.0 * kRadPerDeg, 0.0), 9.8321849378, 1e-9);
   // Free-air gradient about -3.086e-6 /s^2 per metre at mid latitudes.
   const double gradient =
-      (normal_gravity(45.0 * kDeg, 100.0) - normal_gravity(45.0 * kDeg, 0.0)) / 100.0;
+      (normal_gravity(45.0 * kRadPerDeg, 100.0) - normal_gravity(45.0 * kRadPerDeg, 0.0)) / 100.0;
   EXPECT_NEAR(gradient, -3.086e-6, 0.01e-6);
   for (double h : {-3000.0, 0.0, 5000.0}) {
     const double numeric = (normal_gravity(0.7, h + 1.0) - normal_gravity(0.7, h - 1.0)) / 2.0;
     EXPECT_NEAR(normal_gravity_height_gradient(0.7, h), numeric, 1e-12);
   }
-  const Eigen::Vector3d g = gravity_n(30.0 * kDeg, 10.0);
+  const Eigen::Vector3d g = gravity_n(30.0 * kRadPerDeg, 10.0);
   EXPECT_EQ(g.x(), 0.0);
   EXPECT_EQ(g.y(), 0.0);
-  EXPECT_DOUBLE_EQ(g.z(), -normal_gravity(30.0 * kDeg, 10.0));
+  EXPECT_DOUBLE_EQ(g.z(), -normal_gravity(30.0 * kRadPerDeg, 10.0));
 }
 
 TEST(Earth, RadiiAtEquatorAndPoleAndTheirDerivatives) {
@@ -34,21 +33,21 @@ TEST(Earth, RadiiAtEquatorAndPoleAndTheirDerivatives) {
   const EarthRadii equator = earth_radii(0.0);
   EXPECT_NEAR(equator.transverse_m, a, 1e-6);
   EXPECT_NEAR(equator.meridian_m, a * (1.0 - e2), 1e-6);
-  const EarthRadii pole = earth_radii(90.0 * kDeg);
+  const EarthRadii pole = earth_radii(90.0 * kRadPerDeg);
   EXPECT_NEAR(pole.meridian_m, pole.transverse_m, 1e-6);
   EXPECT_NEAR(pole.transverse_m, a / std::sqrt(1.0 - e2), 1e-6);
   for (double lat : {-70.0, -10.0, 0.0, 25.0, 39.9778, 80.0}) {
     const double h = 1e-6;
-    const EarthRadii plus = earth_radii(lat * kDeg + h);
-    const EarthRadii minus = earth_radii(lat * kDeg - h);
-    const EarthRadii derivative = earth_radii_derivative(lat * kDeg);
+    const EarthRadii plus = earth_radii(lat * kRadPerDeg + h);
+    const EarthRadii minus = earth_radii(lat * kRadPerDeg - h);
+    const EarthRadii derivative = earth_radii_derivative(lat * kRadPerDeg);
     EXPECT_NEAR(derivative.meridian_m, (plus.meridian_m - minus.meridian_m) / (2 * h), 1e-2);
     EXPECT_NEAR(derivative.transverse_m, (plus.transverse_m - minus.transverse_m) / (2 * h), 1e-2);
   }
 }
 
 TEST(Earth, EarthRateAndTransportRate) {
-  const double lat = 39.9778 * kDeg;
+  const double lat = 39.9778 * kRadPerDeg;
   const Eigen::Vector3d omega = earth_rate_n(lat);
   EXPECT_NEAR(omega.norm(), 7.292115e-5, 1e-18);
   EXPECT_EQ(omega.x(), 0.0);

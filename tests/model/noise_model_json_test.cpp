@@ -4,10 +4,10 @@
 
 #include <fstream>
 #include <limits>
-#include <numbers>
 #include <string>
 #include <vector>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/allan_variance.hpp"
 
@@ -15,8 +15,6 @@ namespace stochnav {
 namespace {
 
 using nlohmann::json;
-
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 json every_term_model() {
   return json::parse(R"({

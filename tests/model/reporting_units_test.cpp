@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/model/allan_variance.hpp"
 
 namespace stochnav {
@@ -15,7 +16,6 @@ namespace {
 
 using D = ParameterDimension;
 
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 constexpr double kDegPerHourInRadPerSecond = kRadPerDeg / 3600.0;
 
 // Allan variance of a one-term gyro model given in reporting units, in (deg/h)^2.

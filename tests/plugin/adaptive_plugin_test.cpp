@@ -8,7 +8,6 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <random>
 #include <string>
 
@@ -21,10 +20,9 @@ namespace {
 
 using testing::Case;
 using testing::case_name;
+using testing::kDegPerRootHour;
 using testing::make;
 using testing::NoiseModelProperties;
-
-constexpr double kRadPerSqrtSPerDegPerSqrtH = std::numbers::pi / 180.0 / 60.0;
 
 INSTANTIATE_TEST_SUITE_P(
     Adaptive, NoiseModelProperties,
@@ -107,7 +105,7 @@ double mean_of_last_half(const std::vector<double>& values) {
 
 TEST(AdaptiveNoise, ConvergesToTheTrueNoiseFromBelowAndAbove) {
   const double n_true = 0.5;  // deg/sqrt(h)
-  const double q_true = std::pow(n_true * kRadPerSqrtSPerDegPerSqrtH, 2);
+  const double q_true = std::pow(n_true * kDegPerRootHour, 2);
   const double r = q_true * 1.0;  // measurement noise comparable to one second of walk
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     for (const double start : {0.1, 2.5}) {  // N_initial in units of n_true
@@ -140,13 +138,13 @@ TEST(AdaptiveNoise, AccelerometerLevelAdaptsOnTheVelocityBlock) {
 
 TEST(AdaptiveNoise, NeverLeavesItsClamps) {
   const double n_true = 0.5;
-  const double q_true = std::pow(n_true * kRadPerSqrtSPerDegPerSqrtH, 2);
+  const double q_true = std::pow(n_true * kDegPerRootHour, 2);
   for (const auto& [n_min, n_max] : {std::pair{0.01, 0.2}, std::pair{1.0, 3.0}}) {
     const double start = n_max == 0.2 ? 0.1 : 2.0;
     const auto model = make("adaptive", {{"N_initial", start}, {"N_min", n_min}, {"N_max", n_max}});
     const auto levels = run_closed_loop(*model, q_true, q_true, 300, 3);
-    const double low = std::pow(n_min * kRadPerSqrtSPerDegPerSqrtH, 2);
-    const double high = std::pow(n_max * kRadPerSqrtSPerDegPerSqrtH, 2);
+    const double low = std::pow(n_min * kDegPerRootHour, 2);
+    const double high = std::pow(n_max * kDegPerRootHour, 2);
     for (double level : levels) {
       EXPECT_GE(level, low * (1 - 1e-12));
       EXPECT_LE(level, high * (1 + 1e-12));

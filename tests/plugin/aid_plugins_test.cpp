@@ -13,6 +13,7 @@
 #include <string>
 
 #include "aid_test_support.hpp"
+#include "stochnav/core/angles.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
@@ -25,7 +26,6 @@ using aid_test::ErrorState;
 using aid_test::perturbed;
 using Map = Eigen::Matrix<double, 3, cs::kSize>;
 
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 
 const PluginRegistry& registry() {

@@ -7,7 +7,6 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <string>
 #include <variant>
 #include <vector>
@@ -24,6 +23,8 @@ namespace {
 
 using testing::Case;
 using testing::case_name;
+using testing::kDegPerHour;
+using testing::kDegPerRootHour;
 using testing::context_for;
 using testing::expect_recovered;
 using testing::make;
@@ -31,8 +32,6 @@ using testing::NoiseModelProperties;
 using testing::registry;
 using testing::simulated_record;
 
-constexpr double kDegPerHour = std::numbers::pi / 180.0 / 3600.0;    // rad/s
-constexpr double kDegPerRootHour = std::numbers::pi / 180.0 / 60.0;  // rad/sqrt(s)
 constexpr double kDegPerHourRootHour = kDegPerHour / 60.0;           // rad/s/sqrt(s)
 
 const nlohmann::json kGyroModel = {{"units", "deg/h"},

@@ -7,7 +7,6 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -21,12 +20,11 @@ namespace {
 
 using testing::Case;
 using testing::case_name;
+using testing::kDegPerRootHour;
 using testing::context_for;
 using testing::make;
 using testing::NoiseModelProperties;
 using testing::registry;
-
-constexpr double kRadPerSqrtSPerDegPerSqrtH = std::numbers::pi / 180.0 / 60.0;
 
 const nlohmann::json kOffline = {
     {"mode", "offline"},
@@ -50,8 +48,8 @@ INSTANTIATE_TEST_SUITE_P(
 /// int_a^b of N(t)^2 for the gyro model {"t": [0, 10], "N": [n0, n1]} by the closed form of a
 /// linear (offline) or held (causal) N^2, in rad^2.
 double expected_integral(bool causal, double n0, double n1, double a, double b) {
-  const double p0 = std::pow(n0 * kRadPerSqrtSPerDegPerSqrtH, 2);
-  const double p1 = std::pow(n1 * kRadPerSqrtSPerDegPerSqrtH, 2);
+  const double p0 = std::pow(n0 * kDegPerRootHour, 2);
+  const double p1 = std::pow(n1 * kDegPerRootHour, 2);
   const auto level = [&](double t) {
     if (t <= 0.0) return p0;
     if (t >= 10.0) return p1;
@@ -82,7 +80,7 @@ TEST(DavarNoise, WhiteCovarianceIsTheExactIntegralOfTheInterpolatedLevel) {
       const double expected = expected_integral(causal, 0.1, 0.3, a, b);
       EXPECT_NEAR(q(0, 0), expected, 1e-13 * expected) << causal << " " << a << " " << b;
       EXPECT_NEAR(q(1, 1), expected, 1e-13 * expected);
-      EXPECT_NEAR(q(2, 2), std::pow(0.2 * kRadPerSqrtSPerDegPerSqrtH, 2) * (b - a),
+      EXPECT_NEAR(q(2, 2), std::pow(0.2 * kDegPerRootHour, 2) * (b - a),
                   1e-13 * expected);
       EXPECT_EQ(q(0, 1), 0.0);
     }
@@ -151,7 +149,7 @@ constexpr double kWindow = 60.0, kStep = 5.0;
 CalibrationRecord nonstationary_record(std::uint64_t seed) {
   const NoiseModel truth{Unit::kRadPerSecond,
                          100.0,
-                         {AngleRandomWalkTerm{kN0 * kRadPerSqrtSPerDegPerSqrtH},
+                         {AngleRandomWalkTerm{kN0 * kDegPerRootHour},
                           NonstationaryTerm{{NonstationarySegment{kRise, kFall, kScale}}}}};
   CalibrationRecord record;
   record.rate_hz = 100.0;
@@ -171,7 +169,7 @@ double crossing_time(const NoiseModelPlugin& model, int axis, double from, doubl
   Eigen::Matrix3d q;
   for (double t = from; t < to; t += 0.1) {
     model.white_noise_covariance(t, 1e-3, q);
-    const double level = q(axis, axis) / 1e-3 / std::pow(kRadPerSqrtSPerDegPerSqrtH, 2);
+    const double level = q(axis, axis) / 1e-3 / std::pow(kDegPerRootHour, 2);
     if (upward ? level >= mid : level <= mid) return t;
   }
   return NAN;

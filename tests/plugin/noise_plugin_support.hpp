@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
 #include "stochnav/testing/noise_model_case.hpp"
@@ -22,6 +23,10 @@ namespace stochnav::plugin::testing {
 using Case = stochnav::testing::NoiseModelCase;
 using stochnav::testing::NoiseModelProperties;
 inline constexpr auto case_name = &stochnav::testing::noise_model_case_name;
+
+// Reporting units of the noise terms in SI, for parameters written as a datasheet gives them.
+inline constexpr double kDegPerHour = kRadPerDeg / 3600.0;    ///< rad/s
+inline constexpr double kDegPerRootHour = kRadPerDeg / 60.0;  ///< rad/sqrt(s)
 
 /// Property checks for models defined on a grid of propagation intervals (ar, arma): the two
 /// composed steps and the stationarity step on that grid.

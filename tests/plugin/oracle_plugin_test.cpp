@@ -7,7 +7,6 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 #include <random>
 #include <string>
 
@@ -22,13 +21,13 @@ namespace {
 
 using testing::Case;
 using testing::case_name;
+using testing::kDegPerHour;
+using testing::kDegPerRootHour;
 using testing::context_for;
 using testing::make;
 using testing::NoiseModelProperties;
 using testing::registry;
 
-constexpr double kDegPerHour = std::numbers::pi / 180.0 / 3600.0;    // rad/s
-constexpr double kDegPerRootHour = std::numbers::pi / 180.0 / 60.0;  // rad/sqrt(s)
 constexpr double kGyroN = 0.01 * kDegPerRootHour;                    // scheduled ARW
 constexpr double kGyroB = 0.5 * kDegPerHour;                         // constant flicker
 constexpr double kAccelN = 0.029 / 60.0;                             // m/s/sqrt(s)

@@ -436,6 +436,13 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
     result.variants.back().runs.resize(seed_count);
   }
   SharedImuRecords imu_records(seed_count, config.variants.size());
+  // Every plugin library is loaded and initialised here, once, before the workers start, and
+  // stays loaded until the last job has ended: a job's own registry then finds it loaded. Without
+  // this the jobs loaded the libraries concurrently (each job's registry, while no other job held
+  // them), one job running a library's static initialisers while another used its globals, the
+  // two ordered only by the dynamic loader's internal lock, which the thread sanitizer cannot
+  // see (README.md, "Thread sanitizer").
+  const plugin::PluginRegistry loaded_plugins(plugin::default_search_path(config.config_dir));
   run_parallel(job_count, threads, progress, done, [&](std::size_t job) {
     const std::size_t v = job / seed_count;
     const std::size_t s = job % seed_count;

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <random>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/filter/alignment.hpp"
 #include "stochnav/ins/earth.hpp"
@@ -16,7 +17,6 @@
 namespace stochnav {
 namespace {
 
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 constexpr double kRadPerSecondPerDegPerHour = kRadPerDeg / 3600.0;
 constexpr double kBlock_s = 1.0;  // block length of the static check
 constexpr double kMeasurementPeriod_s = 1.0;

@@ -4,12 +4,11 @@
 #include <limits>
 #include <numbers>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/ins/earth.hpp"
 
 namespace stochnav {
 namespace {
-
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 double wrapped_degrees(double angle_rad) {
   double degrees = std::remainder(angle_rad * kDegPerRad, 360.0);  // [-180, 180]

@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <numbers>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
 
@@ -15,7 +15,6 @@ constexpr std::array<std::string_view, 7> kIncrementColumns = {
     "t", "dtheta_x", "dtheta_y", "dtheta_z", "dv_x", "dv_y", "dv_z"};
 constexpr std::array<std::string_view, 7> kRateColumns = {"t",       "gyro_x",  "gyro_y", "gyro_z",
                                                           "accel_x", "accel_y", "accel_z"};
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 // Relative deviation of an IMU time step from the first one that is still the same rate (the
 // sample reader's tolerance: time stamps written with few digits jitter a little).
 constexpr double kStepTolerance = 0.01;

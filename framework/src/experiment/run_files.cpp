@@ -4,8 +4,8 @@
 
 #include <cerrno>
 #include <cmath>
-#include <numbers>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
 #include "stochnav/experiment/error_plot.hpp"
@@ -15,7 +15,6 @@
 namespace stochnav {
 namespace {
 
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 constexpr double kDegPerHourPerRadPerSecond = kDegPerRad * 3600.0;
 
 std::string error_header() {

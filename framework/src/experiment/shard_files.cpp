@@ -13,7 +13,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json read_shard_record(const fs::path& file, const std::string& what) {
+nlohmann::json read_shard_json(const fs::path& file, const std::string& what) {
   std::ifstream in(file);
   if (!in) {
     throw InputError(file.string() + ": cannot be read; rerun the shard that writes this " + what);
@@ -101,7 +101,7 @@ void write_shard_record(const fs::path& shard_dir, const ShardRecord& record) {
 
 ShardRecord read_shard_record(const fs::path& shard_dir) {
   const fs::path file = shard_record_path(shard_dir);
-  const nlohmann::json json = read_shard_record(file, "shard record");
+  const nlohmann::json json = read_shard_json(file, "shard record");
   try {
     ShardRecord record;
     record.shard = {json.at("shard").get<std::size_t>(), json.at("shards").get<std::size_t>()};
@@ -135,7 +135,7 @@ void write_job_record(const fs::path& shard_dir, const JobRecord& record, bool w
 }
 
 JobRecord read_job_record(const fs::path& file) {
-  const nlohmann::json json = read_shard_record(file, "job record");
+  const nlohmann::json json = read_shard_json(file, "job record");
   try {
     JobRecord record;
     record.experiment_hash = json.at("experiment_hash").get<std::string>();

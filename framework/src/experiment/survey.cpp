@@ -3,15 +3,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/experiment/navigation_errors.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
 
 namespace stochnav {
 namespace {
-
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 // Positions in kErrorMetricNames of the metrics a station uses.
 constexpr std::size_t kInclinationMetric = 3;

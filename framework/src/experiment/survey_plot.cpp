@@ -10,12 +10,12 @@
 #include <numbers>
 #include <string>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/report/gnuplot.hpp"
 
 namespace stochnav {
 namespace {
 
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 /// The ellipses and error bars are drawn at 2 sigma.
 constexpr double kSigmaScale = 2.0;
 constexpr int kEllipseSegments = 72;

@@ -12,8 +12,10 @@ constexpr int kPadded = 12;
 
 // x86-64: an AVX2 clone chosen at load time where the CPU has it (4 doubles per instruction),
 // the baseline SSE2 code elsewhere. Neither contracts to FMA (AVX2 does not imply it), and each
-// entry is summed in the same order by both: bit-identical results on every machine.
-#if defined(__x86_64__) && defined(__GNUC__)
+// entry is summed in the same order by both: bit-identical results on every machine. No clones
+// under the thread sanitizer: their IFUNC resolver would run, instrumented, before libtsan is
+// initialised (stats/vector_clones.hpp).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_THREAD__)
 #define STOCHNAV_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define STOCHNAV_SIMD_CLONES

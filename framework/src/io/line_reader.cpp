@@ -12,14 +12,10 @@ namespace {
 
 constexpr std::size_t kChunkBytes = 1 << 20;
 
-bool ends_with(std::string_view text, std::string_view suffix) {
-  return text.size() >= suffix.size() && text.substr(text.size() - suffix.size()) == suffix;
-}
-
 }  // namespace
 
 LineReader::LineReader(const std::string& path) : path_(path), buffer_(kChunkBytes) {
-  if (ends_with(path, ".gz")) {
+  if (path.ends_with(".gz")) {
     gz_ = gzopen(path.c_str(), "rb");
     if (gz_ != nullptr) gzbuffer(static_cast<gzFile>(gz_), 1 << 17);
   } else {

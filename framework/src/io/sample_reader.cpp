@@ -22,16 +22,12 @@ namespace {
 
 enum class FileFormat { kCsv, kText, kFloat64, kFloat32 };
 
-bool ends_with(std::string_view text, std::string_view suffix) {
-  return text.size() >= suffix.size() && text.substr(text.size() - suffix.size()) == suffix;
-}
-
 FileFormat format_of(std::string_view path) {
   std::string_view stem = path;
-  if (ends_with(stem, ".gz")) stem.remove_suffix(3);
-  if (ends_with(stem, ".csv")) return FileFormat::kCsv;
-  if (ends_with(path, ".f64")) return FileFormat::kFloat64;
-  if (ends_with(path, ".f32")) return FileFormat::kFloat32;
+  if (stem.ends_with(".gz")) stem.remove_suffix(3);
+  if (stem.ends_with(".csv")) return FileFormat::kCsv;
+  if (path.ends_with(".f64")) return FileFormat::kFloat64;
+  if (path.ends_with(".f32")) return FileFormat::kFloat32;
   return FileFormat::kText;
 }
 

@@ -1,14 +1,14 @@
 #include "stochnav/model/reporting_units.hpp"
 
 #include <cmath>
-#include <numbers>
+
+#include "stochnav/core/angles.hpp"
 
 namespace stochnav {
 namespace {
 
 constexpr double kSecondsPerHour = 3600.0;
 constexpr double kRootSecondsPerHour = 60.0;  // sqrt(3600 s)
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 // The reporting "angle" unit in natural units: deg -> rad for gyros, m/s for accelerometers.
 double angle_unit(Quantity quantity) {

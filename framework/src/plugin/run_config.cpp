@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <numbers>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/io/json_document.hpp"
 #include "stochnav/plugin/params.hpp"
@@ -127,7 +127,6 @@ FitConfig parse_fit(const nlohmann::json& json, const std::string& pointer, Sens
   return fit;
 }
 
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 constexpr double kDegPerHourPerRadPerSecond = kDegPerRad * 3600.0;
 constexpr double kPpm = 1e-6;
 

@@ -16,7 +16,7 @@ namespace {
 
 /// A double-double running sum: the prefix sums of squared second differences grow with the
 /// record, and a window's sum is a small difference of two of them.
-struct CompensatedSum {
+struct DoubleDoubleSum {
   double high = 0.0;
   double low = 0.0;
   void add(double value) {
@@ -25,7 +25,7 @@ struct CompensatedSum {
     low += (high - (sum - virtual_value)) + (value - virtual_value);
     high = sum;
   }
-  friend double operator-(const CompensatedSum& a, const CompensatedSum& b) {
+  friend double operator-(const DoubleDoubleSum& a, const DoubleDoubleSum& b) {
     return (a.high - b.high) + (a.low - b.low);
   }
 };
@@ -69,8 +69,8 @@ std::size_t phase_points_per_window(std::size_t window, DataKind kind) {
 struct TauLane {
   std::size_t m = 0;
   std::size_t next_term = 0;  // global phase index i of the next term x[i+2m] - 2x[i+m] + x[i]
-  CompensatedSum prefix;      // sum of squared terms with index < next_term
-  std::deque<CompensatedSum> open_starts;  // prefixes at the starts of windows not yet ended
+  DoubleDoubleSum prefix;      // sum of squared terms with index < next_term
+  std::deque<DoubleDoubleSum> open_starts;  // prefixes at the starts of windows not yet ended
   std::size_t next_start_window = 0;       // window whose start prefix is recorded next
   std::size_t next_end_window = 0;         // window whose sum ends next
   std::vector<WindowSum> finished;         // sums completed by the current push
@@ -290,7 +290,7 @@ class DavarAccumulator::Impl {
   std::vector<TauLane> lanes_;
   std::vector<double> phase_;   // phase points [phase_base_, phase_base_ + size)
   std::size_t phase_base_ = 0;  // global phase index of phase_[0]
-  CompensatedSum phase_sum_;
+  DoubleDoubleSum phase_sum_;
   double rate_reference_ = 0.0;
   bool have_reference_ = false;
   std::deque<DavarRow> pending_;

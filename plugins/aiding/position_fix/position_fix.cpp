@@ -23,6 +23,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/aid_schedule.hpp"
@@ -32,8 +33,7 @@
 namespace {
 
 namespace cs = stochnav::plugin::core_state;
-
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+using stochnav::kRadPerDeg;
 
 // The names of the six aid-data columns.
 struct ColumnNames {

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "stochnav/core/angles.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/aid_schedule.hpp"
@@ -32,10 +33,9 @@
 namespace {
 
 namespace cs = stochnav::plugin::core_state;
+using stochnav::kRadPerDeg;
 using stochnav::plugin::Bound;
 using stochnav::plugin::ParamUnit;
-
-constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 struct Site {
   double latitude_deg = 0.0;
