@@ -193,7 +193,7 @@ class DavarAccumulator::Impl {
     const std::size_t old_size = phase_.size();
     phase_.resize(old_size + samples.size());
     double* out = phase_.data() + old_size;
-    CompensatedSum sum = phase_sum_;
+    DoubleDoubleSum sum = phase_sum_;
     const double reference = rate_reference_;
     const double tau0 = tau0_;
     for (std::size_t i = 0; i < samples.size(); ++i) {
