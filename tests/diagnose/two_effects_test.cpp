@@ -15,16 +15,12 @@
 
 #include "diagnose_support.hpp"
 #include "stochnav/diagnose/diagnose.hpp"
-#include "stochnav/model/reporting_units.hpp"
 
 namespace stochnav {
 namespace {
 
+using diagnose_testing::natural;
 using diagnose_testing::simulated_record;
-
-double natural(ParameterDimension dimension, double reported) {
-  return to_natural(Quantity::kAngularRate, dimension, reported);
-}
 
 bool has_type(const NoiseModel& model, TermType type) {
   return std::any_of(model.terms.begin(), model.terms.end(),
@@ -33,17 +29,16 @@ bool has_type(const NoiseModel& model, TermType type) {
 
 TEST(DiagnoseTwoEffects, RateRandomWalkAndSlowSinusoidAreBothNamed) {
   // 4 h at 10 Hz; STOCHNAV_TWO_EFFECTS_RATE=100 runs the rate (ten times the cost).
-  double rate = 10.0;
-  if (const char* text = std::getenv("STOCHNAV_TWO_EFFECTS_RATE")) rate = std::atof(text);
-  ASSERT_GT(rate, 0.0);
-  const double kRate = rate;
-  const auto kSamples = static_cast<std::size_t>(4.0 * 3600.0 * kRate);
-  constexpr int kSeeds = 6;
+  double rate_hz = 10.0;
+  if (const char* text = std::getenv("STOCHNAV_TWO_EFFECTS_RATE")) rate_hz = std::atof(text);
+  ASSERT_GT(rate_hz, 0.0);
+  const auto samples = static_cast<std::size_t>(4.0 * 3600.0 * rate_hz);
+  constexpr int seeds = 6;
   // A FOG with 0.05 deg/sqrt(h) white noise; hidden: K = 0.3 deg/h/sqrt(h) and a 1.3 deg/h
   // sinusoid at a 600-s period.
   const NoiseModel base{
       Unit::kDegPerHour,
-      kRate,
+      rate_hz,
       {AngleRandomWalkTerm{natural(ParameterDimension::kAnglePerRootTime, 0.05)}}};
   NoiseModel truth = base;
   truth.terms.push_back(RateRandomWalkTerm{natural(ParameterDimension::kRatePerRootTime, 0.3)});
@@ -52,8 +47,8 @@ TEST(DiagnoseTwoEffects, RateRandomWalkAndSlowSinusoidAreBothNamed) {
   options.seeds = 0;
   int both = 0;
   int consistent = 0;
-  for (int k = 0; k < kSeeds; ++k) {
-    const Record record = simulated_record(truth, kSamples, kRate, 7000 + k);
+  for (int k = 0; k < seeds; ++k) {
+    const Record record = simulated_record(truth, samples, rate_hz, 7000 + k);
     const DiagnoseResult result = diagnose(record, base, options);
     const NoiseModel final_model = result.final_model();
     const bool found = has_type(final_model, TermType::kRateRandomWalk) &&
@@ -69,8 +64,8 @@ TEST(DiagnoseTwoEffects, RateRandomWalkAndSlowSinusoidAreBothNamed) {
                 found ? "" : "  (random walk or sinusoid missing from the final model)");
     EXPECT_GT(result.initial.gap.value, 30.0) << "seed " << 7000 + k;
   }
-  EXPECT_GE(both, kSeeds - 1);
-  EXPECT_EQ(consistent, kSeeds);
+  EXPECT_GE(both, seeds - 1);
+  EXPECT_EQ(consistent, seeds);
 }
 
 }  // namespace
