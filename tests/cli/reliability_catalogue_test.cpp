@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "json_file.hpp"
 #include "run_cli.hpp"
 #include "temp_dir.hpp"
 #include "tiny_comparison.hpp"
@@ -66,10 +67,7 @@ CliResult run_in_shell(const std::string& prefix, const std::string& arguments,
   return result;
 }
 
-nlohmann::json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
+using testing::read_json;
 
 std::string csv(int rows) {
   std::string text = "t,x\n";

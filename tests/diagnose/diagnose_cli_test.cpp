@@ -4,12 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
 #include "diagnose_support.hpp"
+#include "json_file.hpp"
 #include "run_cli.hpp"
 #include "stochnav/model/noise_model_json.hpp"
 #include "temp_dir.hpp"
@@ -44,10 +44,7 @@ std::string write_hidden_gauss_markov(const TempDir& dir) {
   return dir.write("record.csv", csv_of(simulated_record(truth, 100000, 100.0, 4)));
 }
 
-nlohmann::json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
+using testing::read_json;
 
 TEST(DiagnoseCli, WritesTheReportJsonContractReportMdAndPlots) {
   TempDir dir;

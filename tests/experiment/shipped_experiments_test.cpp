@@ -10,11 +10,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 
+#include "json_file.hpp"
 #include "run_cli.hpp"
 #include "temp_dir.hpp"
 
@@ -22,10 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
+using stochnav::testing::read_json;
 
 /// Runs the shipped experiment `name` with one seed; returns results.json's "variants", after
 /// checking that every variant of the file ran with a healthy filter.
