@@ -79,10 +79,9 @@ CompensatedSum chunk_sum(const double* values, std::size_t count) {
   return lanes[0];
 }
 
-/// Eight doubles in one vector (GCC's vector extension): one AVX-512 register, two AVX2 ones,
-/// four SSE2 ones in the default clone.
+/// Eight doubles in one vector (the vector extension of GCC and clang): one AVX-512 register, two
+/// AVX2 ones, four SSE2 ones in the default clone.
 using Vector8 = double __attribute__((vector_size(64)));
-using Index8 = long long __attribute__((vector_size(64)));
 
 // Passed by reference: a vector argument or result would change the ABI with the instruction set.
 [[gnu::always_inline]] inline void load8(Vector8& v, const double* from) {
@@ -125,18 +124,18 @@ CompensatedSum wide_chunk_sum(const double* values, std::size_t count) {
 [[gnu::always_inline]] inline void transpose8(std::array<Vector8, 8>& r) {
   std::array<Vector8, 8> t;
   for (std::size_t k = 0; k < 8; k += 2) {  // 2 x 2 blocks of single elements
-    t[k] = __builtin_shuffle(r[k], r[k + 1], Index8{0, 8, 2, 10, 4, 12, 6, 14});
-    t[k + 1] = __builtin_shuffle(r[k], r[k + 1], Index8{1, 9, 3, 11, 5, 13, 7, 15});
+    t[k] = __builtin_shufflevector(r[k], r[k + 1], 0, 8, 2, 10, 4, 12, 6, 14);
+    t[k + 1] = __builtin_shufflevector(r[k], r[k + 1], 1, 9, 3, 11, 5, 13, 7, 15);
   }
   for (std::size_t k = 0; k < 8; k += 4) {  // of pairs
     for (std::size_t j = 0; j < 2; ++j) {
-      r[k + j] = __builtin_shuffle(t[k + j], t[k + j + 2], Index8{0, 1, 8, 9, 4, 5, 12, 13});
-      r[k + j + 2] = __builtin_shuffle(t[k + j], t[k + j + 2], Index8{2, 3, 10, 11, 6, 7, 14, 15});
+      r[k + j] = __builtin_shufflevector(t[k + j], t[k + j + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+      r[k + j + 2] = __builtin_shufflevector(t[k + j], t[k + j + 2], 2, 3, 10, 11, 6, 7, 14, 15);
     }
   }
   for (std::size_t j = 0; j < 4; ++j) {  // of quadruples
-    t[j] = __builtin_shuffle(r[j], r[j + 4], Index8{0, 1, 2, 3, 8, 9, 10, 11});
-    t[j + 4] = __builtin_shuffle(r[j], r[j + 4], Index8{4, 5, 6, 7, 12, 13, 14, 15});
+    t[j] = __builtin_shufflevector(r[j], r[j + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+    t[j + 4] = __builtin_shufflevector(r[j], r[j + 4], 4, 5, 6, 7, 12, 13, 14, 15);
   }
   r = t;
 }
