@@ -3,11 +3,14 @@
 // the registry under it (core/temporary_files.hpp).
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include "spawn_cli.hpp"
 #include "stochnav/core/temporary_files.hpp"
@@ -101,6 +104,36 @@ TEST(TemporaryPath, SharedFoldersGoOnlyWhenEmpty) {
   remove_registered_paths();
   EXPECT_FALSE(fs::exists(shared)) << "emptied by removing mine, so removed";
   EXPECT_TRUE(fs::exists(theirs)) << "a shared folder's other content was removed";
+}
+
+// A worker thread that keeps making a registered folder while a signal's cleanup runs must not
+// make it again once the cleanup has removed it: compare's seed folders did (OUT outlived a
+// SIGTERM under the asan preset, one run in two). In a child process: the cleanup installed,
+// OUT registered, a thread making OUT/seed in a loop; then SIGTERM, ten times over.
+TEST(TemporaryPath, FolderAWorkerKeepsMakingDoesNotOutliveTheSignal) {
+  for (int attempt = 0; attempt < 10; ++attempt) {
+    const TempDir dir;
+    const fs::path out = dir.path() / "out";
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      install_signal_cleanup();
+      const TemporaryPath registration(out);
+      std::thread([&] {
+        for (;;) {
+          std::error_code ignored;
+          create_directories_before_cleanup(out / "seed", ignored);
+        }
+      }).detach();
+      for (;;) ::pause();
+    }
+    ASSERT_TRUE(testing::eventually([&] { return fs::exists(out / "seed"); }, 30.0));
+    ::kill(child, SIGTERM);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "status " << status;
+    EXPECT_FALSE(fs::exists(out)) << "attempt " << attempt << ": made again after the cleanup";
+  }
 }
 
 }  // namespace

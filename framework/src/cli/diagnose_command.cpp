@@ -19,6 +19,7 @@
 #include "diagnose_plots.hpp"
 #include "diagnose_run.hpp"
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/temporary_files.hpp"
 #include "stochnav/diagnose/diagnose.hpp"
 #include "stochnav/diagnose/effective_model.hpp"
 #include "stochnav/diagnose/report_json.hpp"
@@ -63,7 +64,9 @@ class StagingFolder final {
     std::random_device entropy;
     path_ = out / fmt::format(".diagnose-staging-{:08x}", entropy());
     registration_.emplace(path_);
-    fs::create_directories(path_);
+    std::error_code error;
+    create_directories_before_cleanup(path_, error);
+    if (error) throw fs::filesystem_error("cannot create the staging folder", path_, error);
   }
   ~StagingFolder() {
     std::error_code ignored;

@@ -111,6 +111,13 @@ void install_signal_cleanup() {
   });
 }
 
+void create_directories_before_cleanup(const std::filesystem::path& path,
+                                       std::error_code& error) {
+  Registry& r = registry();
+  const std::lock_guard lock(r.mutex);  // held for good by the cleanup once it has begun
+  std::filesystem::create_directories(path, error);
+}
+
 void remove_registered_paths() {
   Registry& r = registry();
   const std::lock_guard lock(r.mutex);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/temporary_files.hpp"
 #include "stochnav/experiment/comparison.hpp"
 #include "stochnav/experiment/error_plot.hpp"
 #include "stochnav/io/atomic_file.hpp"
@@ -76,7 +77,7 @@ void plot_metrics(const ComparisonResult& result, const std::filesystem::path& p
 void write_comparison(const ComparisonResult& result, const ExperimentConfig& config,
                       const std::filesystem::path& out_dir) {
   std::error_code error;
-  std::filesystem::create_directories(out_dir, error);
+  create_directories_before_cleanup(out_dir, error);
   if (error) {
     throw InputError(out_dir.string() + ": cannot create the output folder (" + error.message() +
                      "); choose another --out");

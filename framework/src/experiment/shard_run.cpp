@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/temporary_files.hpp"
 #include "stochnav/experiment/comparison.hpp"
 #include "stochnav/experiment/experiment_hash.hpp"
 #include "stochnav/experiment/shard_files.hpp"
@@ -96,7 +97,7 @@ class ScenarioFolderHold final {
     // Another shard may remove the empty folder between our mkdir and our write: try again.
     for (int attempt = 0; attempt < 20; ++attempt) {
       std::error_code error;
-      fs::create_directories(folder_, error);
+      create_directories_before_cleanup(folder_, error);
       if (std::ofstream(file_)) return;
     }
     throw InputError(folder_.string() + ": cannot write there; check that --out is writable");
@@ -165,7 +166,7 @@ ShardRunSummary run_shard(const ExperimentConfig& config, const fs::path& out_di
   summary.folder = shard_folder(out_dir, options.shard);
   summary.jobs = mine.size();
   std::error_code error;
-  fs::create_directories(summary.folder, error);
+  create_directories_before_cleanup(summary.folder, error);
   if (error) {
     throw InputError(summary.folder.string() + ": cannot create the shard folder (" +
                      error.message() + "); choose another --out");

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/temporary_files.hpp"
 
 namespace stochnav {
 namespace {
@@ -71,7 +72,7 @@ OutputFolder::OutputFolder(std::filesystem::path path) : path_(std::move(path)) 
     if (probe == probe.parent_path()) break;
     probe = probe.parent_path();
   }
-  std::filesystem::create_directories(path_, error);
+  create_directories_before_cleanup(path_, error);
   if (error || !std::filesystem::is_directory(path_)) {
     const std::string reason = error ? error.message() : "a file of that name exists";
     throw InputError(path_.string() + ": cannot create the output folder (" + reason +

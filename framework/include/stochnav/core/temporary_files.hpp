@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <system_error>
 
 namespace stochnav {
 
@@ -36,6 +37,13 @@ class TemporaryPath final {
 /// once, early in main(). Idempotent. A signal the process was started with ignored stays
 /// ignored.
 void install_signal_cleanup();
+
+/// std::filesystem::create_directories, excluded from the signal cleanup: it runs before the
+/// cleanup or not at all (once the cleanup has begun it waits for the process to end). Every
+/// folder an output or scratch path needs is made with it, so that a worker thread cannot make
+/// again a folder the cleanup has just removed (it did: compare's OUT/.scenarios/seed_N, and
+/// with it OUT, outlived a SIGTERM).
+void create_directories_before_cleanup(const std::filesystem::path& path, std::error_code& error);
 
 /// Removes every registered path now (what the signal thread does). For tests.
 void remove_registered_paths();
