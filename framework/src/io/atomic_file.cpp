@@ -72,15 +72,17 @@ OutputFolder::OutputFolder(std::filesystem::path path) : path_(std::move(path)) 
     if (probe == probe.parent_path()) break;
     probe = probe.parent_path();
   }
+  // Registered before it exists: a signal's cleanup between making and registering would
+  // otherwise leave it behind (removing a path not yet made is harmless).
+  if (!outermost_missing.empty()) {
+    created_ = outermost_missing;
+    registration_ = std::make_unique<TemporaryPath>(created_);
+  }
   create_directories_before_cleanup(path_, error);
   if (error || !std::filesystem::is_directory(path_)) {
     const std::string reason = error ? error.message() : "a file of that name exists";
     throw InputError(path_.string() + ": cannot create the output folder (" + reason +
                      "); choose a writable --out");
-  }
-  if (!outermost_missing.empty()) {
-    created_ = outermost_missing;
-    registration_ = std::make_unique<TemporaryPath>(created_);
   }
 }
 
