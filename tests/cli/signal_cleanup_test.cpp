@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -13,7 +14,9 @@
 #include <thread>
 
 #include "spawn_cli.hpp"
+#include "stochnav/core/errors.hpp"
 #include "stochnav/core/temporary_files.hpp"
+#include "stochnav/io/atomic_file.hpp"
 #include "temp_dir.hpp"
 
 namespace stochnav {
@@ -106,6 +109,14 @@ TEST(TemporaryPath, SharedFoldersGoOnlyWhenEmpty) {
   EXPECT_TRUE(fs::exists(theirs)) << "a shared folder's other content was removed";
 }
 
+// Signals `child` (a forked copy of this test) with SIGTERM and waits for it to end by it.
+void terminate_child(pid_t child) {
+  ::kill(child, SIGTERM);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "status " << status;
+}
+
 // A worker thread that keeps making a registered folder while a signal's cleanup runs must not
 // make it again once the cleanup has removed it: compare's seed folders did (OUT outlived a
 // SIGTERM under the asan preset, one run in two). In a child process: the cleanup installed,
@@ -128,12 +139,92 @@ TEST(TemporaryPath, FolderAWorkerKeepsMakingDoesNotOutliveTheSignal) {
       for (;;) ::pause();
     }
     ASSERT_TRUE(testing::eventually([&] { return fs::exists(out / "seed"); }, 30.0));
-    ::kill(child, SIGTERM);
-    int status = 0;
-    ::waitpid(child, &status, 0);
-    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "status " << status;
+    terminate_child(child);
     EXPECT_FALSE(fs::exists(out)) << "attempt " << attempt << ": made again after the cleanup";
   }
+}
+
+// The same for temporary files in a folder that was there before: a worker that registered its
+// temporary file and opened it after the cleanup had removed it made it again (the file is now
+// made, and opened, under the cleanup's lock, without O_CREAT). The window is microseconds, so
+// this stress run rarely caught the old code; the next test checks the mechanism itself.
+TEST(TemporaryPath, FileAWorkerKeepsWritingDoesNotOutliveTheSignal) {
+  for (int attempt = 0; attempt < 10; ++attempt) {
+    const TempDir dir;
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      install_signal_cleanup();
+      std::thread([&] {
+        for (;;) {
+          const PendingFile pending(dir.path() / "out.csv");
+          pending.open_stream() << "a row\n";
+        }
+      }).detach();
+      for (;;) ::pause();
+    }
+    ASSERT_TRUE(testing::eventually([&] { return has_temporary_file(dir.path()); }, 30.0));
+    terminate_child(child);
+    EXPECT_FALSE(has_temporary_file(dir.path())) << "attempt " << attempt;
+  }
+}
+
+TEST(PendingFile, OpeningDoesNotMakeAgainATemporaryFileTheCleanupRemoved) {
+  const TempDir dir;
+  const PendingFile pending(dir.path() / "out.csv");
+  ASSERT_TRUE(fs::exists(pending.temporary_path())) << "the constructor makes it";
+  remove_registered_paths();
+  ASSERT_FALSE(fs::exists(pending.temporary_path()));
+  EXPECT_THROW(pending.open_stream(), InputError);
+  EXPECT_THROW(std::fclose(pending.open_file()), InputError);
+  EXPECT_FALSE(fs::exists(pending.temporary_path())) << "made again after the cleanup";
+}
+
+// A child process (gnuplot drawing into a temporary picture) is killed before the cleanup
+// removes the registered paths: here a shell that keeps remaking a registered file (bounded to
+// about 20 s should it survive).
+TEST(CleanupChild, IsKilledBeforeTheRegisteredPathsAreRemoved) {
+  const TempDir dir;
+  const fs::path picture = dir.path() / "plot.png.tmp1_0";
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    install_signal_cleanup();
+    const TemporaryPath registration(picture);
+    const CleanupChild drawer({"sh", "-c", "i=0; while [ $i -lt 2000 ]; do : > '" +
+                                               picture.string() + "'; sleep 0.01; i=$((i+1)); done"});
+    for (;;) ::pause();
+  }
+  ASSERT_TRUE(testing::eventually([&] { return fs::exists(picture); }, 30.0));
+  terminate_child(child);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_FALSE(fs::exists(picture)) << "the child went on writing after the cleanup";
+}
+
+TEST(CleanupChild, ReportsOutputAndStatusAndFailsToStartClearly) {
+  CleanupChild shell({"sh", "-c", "echo out; echo err >&2; exit 3"});
+  std::string output;
+  char chunk[64];
+  for (ssize_t count; (count = ::read(shell.output_fd(), chunk, sizeof chunk)) > 0;) {
+    output.append(chunk, static_cast<std::size_t>(count));
+  }
+  const int status = shell.wait();
+  EXPECT_EQ(output, "out\nerr\n");
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 3) << "status " << status;
+  try {
+    CleanupChild missing({"stochnav-no-such-program"});
+    FAIL() << "started a program that does not exist";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("stochnav-no-such-program: cannot start"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+TEST(CleanupChild, RemovingTheRegisteredPathsKillsIt) {
+  CleanupChild sleeper({"sleep", "60"});
+  remove_registered_paths();
+  EXPECT_EQ(sleeper.wait(), -1) << "not killed, or waited for twice";
 }
 
 }  // namespace

@@ -114,7 +114,7 @@ void run_davar(const DavarArguments& arguments) {
   std::ostringstream buffer;
   if (!to_stdout) {
     pending = std::make_unique<PendingFile>(arguments.output);
-    file.open(pending->temporary_path());
+    file = pending->open_stream();
   }
   std::ostream& out = to_stdout ? static_cast<std::ostream&>(buffer) : file;
   DavarWriter writer(format, out);

@@ -140,8 +140,7 @@ void run_simulate_noise(const NoiseArguments& arguments) {
     }
   }
   PendingFile pending(arguments.out);
-  std::ofstream out(pending.temporary_path());
-  if (!out) throw_write_error(arguments.out, errno);
+  std::ofstream out = pending.open_stream();
   out << 't';
   for (const auto& axis : axes) out << ',' << axis.column;
   for (const auto& aux : aux_channels) out << ',' << aux.column;

@@ -27,8 +27,7 @@ std::string error_header() {
 }  // namespace
 
 CsvOutput::CsvOutput(const std::filesystem::path& path, const std::string& header)
-    : pending_(path), out_(pending_.temporary_path(), std::ios::binary) {
-  if (!out_) throw_write_error(path, errno);
+    : pending_(path), out_(pending_.open_stream()) {
   buffer_ = header + '\n';
 }
 

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <thread>
@@ -88,17 +87,19 @@ std::vector<std::size_t> complete_jobs(const fs::path& shard_dir, const std::str
 // Keeps DIR/.scenarios (or DIR/level_<i>/.scenarios) in place while this shard simulates its
 // seeds there: run_comparison removes the folder when it is empty, and another shard's seeds go
 // into it at the same time. The hold is a file named after the shard, made before the first
-// seed and removed after the last.
+// seed and removed after the last (and by the signal cleanup).
 class ScenarioFolderHold final {
  public:
   ScenarioFolderHold(const fs::path& comparison_dir, ShardSpec shard)
       : folder_(comparison_dir / ".scenarios"),
-        file_(folder_ / (shard_folder_name(shard) + ".running")) {
+        file_(folder_ / (shard_folder_name(shard) + ".running")),
+        registration_(file_) {
     // Another shard may remove the empty folder between our mkdir and our write: try again.
     for (int attempt = 0; attempt < 20; ++attempt) {
       std::error_code error;
       create_directories_before_cleanup(folder_, error);
-      if (std::ofstream(file_)) return;
+      if (!error) create_file_before_cleanup(file_, error);
+      if (!error) return;
     }
     throw InputError(folder_.string() + ": cannot write there; check that --out is writable");
   }
@@ -113,6 +114,7 @@ class ScenarioFolderHold final {
  private:
   fs::path folder_;
   fs::path file_;
+  TemporaryPath registration_;
 };
 
 void remove_job_files(const fs::path& shard_dir) {

@@ -5,7 +5,6 @@
 
 #include <cerrno>
 #include <cmath>
-#include <fstream>
 #include <iterator>
 #include <string>
 #include <string_view>
@@ -76,10 +75,7 @@ std::string well_path_csv(const std::vector<WellPathPoint>& minimum_curvature_st
 std::unique_ptr<PendingFile> pending_text_file(const std::filesystem::path& path,
                                                std::string_view content) {
   auto pending = std::make_unique<PendingFile>(path);
-  std::ofstream out(pending->temporary_path(), std::ios::binary);
-  out.write(content.data(), static_cast<std::streamsize>(content.size()));
-  out.close();
-  if (!out) throw_write_error(path, errno);
+  write_pending_file(*pending, content);
   return pending;
 }
 
@@ -95,17 +91,7 @@ std::unique_ptr<PendingFile> pending_survey_plot(
     return nullptr;
   }
   auto pending = std::make_unique<PendingFile>(path);
-  // render_gnuplot picks the terminal from the extension and renames its picture into place,
-  // so it draws to "<temporary>.png", which is then moved onto the pending temporary path.
-  std::filesystem::path rendered = pending->temporary_path();
-  rendered += path.extension();
-  plot_survey(recorder, minimum_curvature_stations, rendered);
-  std::error_code error;
-  std::filesystem::rename(rendered, pending->temporary_path(), error);
-  if (error) {
-    std::filesystem::remove(rendered, error);
-    throw InputError(path.string() + ": cannot write the plot; check the output folder");
-  }
+  plot_survey(recorder, minimum_curvature_stations, *pending);
   return pending;
 }
 

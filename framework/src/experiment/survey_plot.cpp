@@ -131,7 +131,7 @@ double ellipse_magnification(double largest_major_axis_m, double plot_extent_m,
 
 void plot_survey(const SurveyRecorder& recorder,
                  const std::vector<WellPathPoint>& minimum_curvature_stations,
-                 const std::filesystem::path& output) {
+                 PendingFile& output) {
   const std::vector<WellPathPoint>& ins_path = recorder.ins_path();
   const std::vector<SurveyStation>& stations = recorder.stations();
   if (ins_path.empty()) return;

@@ -5,17 +5,18 @@
 #include <vector>
 
 #include "stochnav/experiment/survey.hpp"
+#include "stochnav/io/atomic_file.hpp"
 
 namespace stochnav {
 
 /// Draws the INS path, the minimum-curvature stations (one point per station, as
 /// minimum_curvature_path returns them) and their 2-sigma position uncertainty, magnified so it
-/// can be seen on a km-long path, into `output` (.png or .svg). Throws ConfigError when gnuplot
-/// is not installed and InputError when it fails. Nothing is drawn (no file) when the recorder
-/// saw no epoch.
+/// can be seen on a km-long path, into `output`'s temporary file (.png or .svg from its final
+/// path; committing is the caller's). Throws ConfigError when gnuplot is not installed and
+/// InputError when it fails. Nothing is drawn when the recorder saw no epoch.
 void plot_survey(const SurveyRecorder& recorder,
                  const std::vector<WellPathPoint>& minimum_curvature_stations,
-                 const std::filesystem::path& output);
+                 PendingFile& output);
 
 /// The factor (1, 2 or 5 times a power of ten, at least 1) that makes the largest ellipse's
 /// major axis about `target_fraction` of the plot's extent (largest of the east and north

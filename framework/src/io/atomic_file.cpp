@@ -29,7 +29,35 @@ void throw_write_error(const std::filesystem::path& path, int errno_value) {
 }
 
 PendingFile::PendingFile(std::filesystem::path path)
-    : final_(std::move(path)), temporary_(temporary_beside(final_)), registration_(temporary_) {}
+    : final_(std::move(path)), temporary_(temporary_beside(final_)), registration_(temporary_) {
+  std::error_code error;
+  create_file_before_cleanup(temporary_, error);
+  if (error) throw_write_error(final_, error.value());
+}
+
+// Opened before the signal cleanup or never (the thread then waits for the process to end),
+// and without O_CREAT ("r+"): a temporary file the cleanup removed stays removed.
+std::ofstream PendingFile::open_stream() const {
+  std::ofstream out;
+  int open_errno = 0;
+  run_before_cleanup([&] {
+    out.open(temporary_, std::ios::in | std::ios::out | std::ios::binary);
+    open_errno = errno;
+  });
+  if (!out) throw_write_error(final_, open_errno);
+  return out;
+}
+
+std::FILE* PendingFile::open_file() const {
+  std::FILE* out = nullptr;
+  int open_errno = 0;
+  run_before_cleanup([&] {
+    out = std::fopen(temporary_.c_str(), "r+b");
+    open_errno = errno;
+  });
+  if (out == nullptr) throw_write_error(final_, open_errno);
+  return out;
+}
 
 PendingFile::~PendingFile() {
   if (!committed_) {
@@ -49,16 +77,19 @@ void PendingFile::commit() {
   registration_.release();
 }
 
-void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
-  PendingFile pending(path);
-  std::FILE* out = std::fopen(pending.temporary_path().c_str(), "wb");
-  if (out == nullptr) throw_write_error(path, errno);
+void write_pending_file(const PendingFile& pending, std::string_view content) {
+  std::FILE* out = pending.open_file();
   const bool written = std::fwrite(content.data(), 1, content.size(), out) == content.size() &&
                        std::fflush(out) == 0;
   const int write_errno = errno;
   const bool closed = std::fclose(out) == 0;
-  if (!written) throw_write_error(path, write_errno);
-  if (!closed) throw_write_error(path, errno);
+  if (!written) throw_write_error(pending.final_path(), write_errno);
+  if (!closed) throw_write_error(pending.final_path(), errno);
+}
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+  PendingFile pending(path);
+  write_pending_file(pending, content);
   pending.commit();
 }
 

@@ -1,27 +1,26 @@
 #include "stochnav/report/gnuplot.hpp"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
-#include <cstdio>
+#include <cerrno>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/temporary_files.hpp"
 #include "stochnav/io/atomic_file.hpp"
 
 namespace stochnav {
 namespace {
 
-std::string quoted(const std::string& text) {
+// A gnuplot single-quoted string: inside it only '' is special (one quote).
+std::string gnuplot_quoted(const std::string& text) {
   std::string out = "'";
   for (char c : text) {
-    if (c == '\'') {
-      out += "'\\''";
-    } else {
-      out += c;
-    }
+    out += c;
+    if (c == '\'') out += '\'';
   }
   return out + "'";
 }
@@ -57,6 +56,13 @@ std::string gnuplot_datablock(const std::string& name,
 }
 
 void render_gnuplot(const std::string& script, const std::filesystem::path& output) {
+  PendingFile picture(output);
+  render_gnuplot(script, picture);
+  picture.commit();
+}
+
+void render_gnuplot(const std::string& script, PendingFile& picture) {
+  const std::filesystem::path& output = picture.final_path();
   const std::string extension = output.extension().string();
   std::string terminal;
   if (extension == ".png") {
@@ -67,25 +73,29 @@ void render_gnuplot(const std::string& script, const std::filesystem::path& outp
     throw ConfigError("--plot " + output.string() + ": use a .png or .svg file name");
   }
   check_plot_request(output);
-  PendingFile picture(output);
   PendingFile script_file(output.string() + ".gp");
-  {
-    std::ofstream out(script_file.temporary_path());
-    out << terminal << "set output " << quoted(picture.temporary_path().string()) << "\n"
-        << script << "\nunset output\n";
-  }
-  const std::string command = "gnuplot " + quoted(script_file.temporary_path().string()) + " 2>&1";
-  std::FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) throw InputError("cannot start gnuplot");
+  write_pending_file(script_file, terminal + "set output " +
+                                      gnuplot_quoted(picture.temporary_path().string()) + "\n" + script +
+                                      "\nunset output\n");
+  CleanupChild gnuplot({"gnuplot", script_file.temporary_path().string()});
   std::string messages;
   std::array<char, 512> chunk{};
-  while (std::fgets(chunk.data(), chunk.size(), pipe) != nullptr) messages += chunk.data();
-  const int status = ::pclose(pipe);
-  if (status != 0 || !std::filesystem::exists(picture.temporary_path())) {
+  for (;;) {
+    const ssize_t count = ::read(gnuplot.output_fd(), chunk.data(), chunk.size());
+    if (count > 0) {
+      messages.append(chunk.data(), static_cast<std::size_t>(count));
+    } else if (count == 0 || errno != EINTR) {
+      break;
+    }
+  }
+  const int status = gnuplot.wait();
+  std::error_code size_error;
+  const auto size = std::filesystem::file_size(picture.temporary_path(), size_error);
+  const bool drawn = WIFEXITED(status) && WEXITSTATUS(status) == 0 && !size_error && size > 0;
+  if (!drawn) {
     const auto first_line = messages.substr(0, messages.find('\n', messages.find_first_not_of('\n')));
     throw InputError(output.string() + ": gnuplot failed: " + first_line);
   }
-  picture.commit();
 }
 
 }  // namespace stochnav

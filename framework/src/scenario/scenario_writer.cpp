@@ -32,8 +32,7 @@ class CsvStream {
  public:
   CsvStream(const std::filesystem::path& path, std::string_view header)
       : pending_(path), display_(path.string()) {
-    file_ = std::fopen(pending_.temporary_path().c_str(), "wb");
-    if (file_ == nullptr) throw_write_error(path, errno);
+    file_ = pending_.open_file();
     buffer_.append(header);
     buffer_.push_back('\n');
   }
@@ -278,16 +277,7 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
   imu.close();
   truth.close();
   aids.close();
-  {
-    std::FILE* file = std::fopen(scenario_json.temporary_path().c_str(), "wb");
-    const std::string text = document.dump(2) + "\n";
-    if (file == nullptr || std::fwrite(text.data(), 1, text.size(), file) != text.size() ||
-        std::fclose(file) != 0) {
-      const int write_errno = errno;
-      if (file != nullptr) std::fclose(file);
-      throw_write_error(options.out_dir / "scenario.json", write_errno);
-    }
-  }
+  write_pending_file(scenario_json, document.dump(2) + "\n");
   // Everything is complete: move the four files into place.
   imu.commit();
   truth.commit();

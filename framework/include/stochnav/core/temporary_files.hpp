@@ -3,11 +3,17 @@
 // temporary file, a scratch folder. Paths are registered for their lifetime; when the process
 // receives SIGINT, SIGTERM or SIGHUP after install_signal_cleanup(), every registered path is
 // removed (a folder with its contents) and the signal is raised again with its default action,
-// so the exit status still says which signal ended the process.
+// so the exit status still says which signal ended the process. Folders, temporary files and
+// child processes are made under the cleanup's lock, so none appears after the cleanup.
+
+#include <sys/types.h>
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <string>
 #include <system_error>
+#include <vector>
 
 namespace stochnav {
 
@@ -45,7 +51,42 @@ void install_signal_cleanup();
 /// with it OUT, outlived a SIGTERM).
 void create_directories_before_cleanup(const std::filesystem::path& path, std::error_code& error);
 
-/// Removes every registered path now (what the signal thread does). For tests.
+/// Runs `action` under the cleanup's lock: before the cleanup or not at all (once the cleanup
+/// has begun the calling thread waits for the process to end). For a short file-system action
+/// that must not follow the cleanup: opening a registered temporary file.
+void run_before_cleanup(const std::function<void()>& action);
+
+/// Creates the empty file `path` (or empties it) with run_before_cleanup. PendingFile makes its
+/// temporary file with it, so a worker cannot make again a file the cleanup has removed.
+void create_file_before_cleanup(const std::filesystem::path& path, std::error_code& error);
+
+/// A child process the signal cleanup kills (SIGKILL) and waits for before it removes the
+/// registered paths, so the child cannot write into them afterwards (gnuplot drawing into a
+/// temporary picture after the tool was killed).
+class CleanupChild final {
+ public:
+  /// Starts `argv` (argv[0] looked up on PATH) under the cleanup's lock, with its standard
+  /// output and error on one pipe (output_fd()). Throws InputError naming the program and the
+  /// system's reason when it cannot start.
+  explicit CleanupChild(const std::vector<std::string>& argv);
+  /// Kills (SIGKILL) and reaps a child that was not waited for.
+  ~CleanupChild();
+  CleanupChild(const CleanupChild&) = delete;
+  CleanupChild& operator=(const CleanupChild&) = delete;
+
+  /// The read end of the child's standard output and error.
+  int output_fd() const { return output_fd_; }
+  /// Waits for the child to end; returns its wait status (sys/wait.h macros), -1 when
+  /// remove_registered_paths killed it.
+  int wait();
+
+ private:
+  pid_t pid_ = -1;  // -1: reaped
+  int output_fd_ = -1;
+};
+
+/// Kills the registered children and removes every registered path now (what the signal thread
+/// does). For tests.
 void remove_registered_paths();
 
 }  // namespace stochnav

@@ -1,7 +1,9 @@
 #pragma once
 // Output files that appear whole or not at all.
 
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -19,9 +21,12 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 /// unknown reason). For writers whose stream failed: pass errno right after the failure.
 [[noreturn]] void throw_write_error(const std::filesystem::path& path, int errno_value);
 
-/// A temporary path in the same folder as `path` (so a rename is atomic), removed on
+/// A temporary file in the same folder as `path` (so a rename is atomic), removed on
 /// destruction unless commit() moved it to `path`, and on SIGINT/SIGTERM once the CLI installed
-/// the signal cleanup (core/temporary_files.hpp).
+/// the signal cleanup (core/temporary_files.hpp). The constructor creates it, empty, under the
+/// cleanup's lock; write it through open_stream() or open_file(), which do not create it again
+/// once the cleanup has removed it. Throws InputError "PATH: cannot write (REASON); ..." when
+/// the temporary file cannot be created.
 class PendingFile final {
  public:
   explicit PendingFile(std::filesystem::path path);
@@ -29,7 +34,13 @@ class PendingFile final {
   PendingFile(const PendingFile&) = delete;
   PendingFile& operator=(const PendingFile&) = delete;
 
+  const std::filesystem::path& final_path() const { return final_; }
   const std::filesystem::path& temporary_path() const { return temporary_; }
+  /// The temporary file opened for writing (binary, at its start). Throws InputError if it
+  /// cannot be opened.
+  std::ofstream open_stream() const;
+  /// The same as a C stream ("r+b"); the caller closes it. Throws InputError.
+  std::FILE* open_file() const;
   /// Renames the temporary file to the final path. Throws InputError on failure.
   void commit();
 
@@ -39,6 +50,10 @@ class PendingFile final {
   TemporaryPath registration_;
   bool committed_ = false;
 };
+
+/// Writes `content` into the temporary file of `pending` (commit() is the caller's). Throws
+/// InputError as write_file_atomically.
+void write_pending_file(const PendingFile& pending, std::string_view content);
 
 /// An output folder a failure does not leave behind. The constructor creates it (and missing
 /// parents); if it did not exist, the destructor removes it again, whole, unless keep() was

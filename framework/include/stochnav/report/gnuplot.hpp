@@ -10,6 +10,8 @@
 
 namespace stochnav {
 
+class PendingFile;
+
 /// Checks a requested plot before any work is done: the file name ends in .png or .svg and
 /// gnuplot is on PATH. Throws ConfigError (with an install hint when gnuplot is missing).
 void check_plot_request(const std::filesystem::path& output);
@@ -23,5 +25,10 @@ std::string gnuplot_datablock(const std::string& name,
 /// chosen from the extension (.png: pngcairo 1000x700; .svg: svg). Throws ConfigError for other
 /// extensions and InputError if gnuplot fails (with its first error line).
 void render_gnuplot(const std::string& script, const std::filesystem::path& output);
+
+/// The same into `picture`'s temporary file (the terminal from its final path; committing is
+/// the caller's), for outputs committed together. gnuplot runs as a CleanupChild: a fatal
+/// signal kills it before the temporary files are removed.
+void render_gnuplot(const std::string& script, PendingFile& picture);
 
 }  // namespace stochnav
