@@ -98,5 +98,26 @@ TEST(AllanCli, WritesPlotWhenAsked) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("adev.txt")));
 }
 
+// A quote in a file name (a folder named "John's data") reaches the plot's title: gnuplot's
+// quoting, not the shell's, keeps the script valid (it failed with "gnuplot failed").
+TEST(AllanCli, PlotsARecordWhoseNameHasAQuote) {
+  TempDir dir;
+  std::filesystem::create_directories(dir.path() / "it's");
+  std::string csv = "t,g\n";
+  for (int i = 0; i < 4000; ++i) csv += std::to_string(0.01 * i) + "," + std::to_string(i % 7) + "\n";
+  const std::string input = dir.write("it's/record.csv", csv);
+  for (const std::string command : {"allan", "davar --window 1000 --step 500"}) {
+    const std::string plot = (dir.path() / "it's" / (command.substr(0, 5) + ".png")).string();
+    const auto result = run_cli(command + " --input \"" + input + "\" --column g --plot \"" +
+                                    plot + "\" --output \"" + plot + ".txt\"",
+                                dir.path().string());
+    if (result.exit_code == 2 && result.err.find("needs gnuplot") != std::string::npos) {
+      GTEST_SKIP() << "gnuplot not installed: " << result.err;
+    }
+    ASSERT_EQ(result.exit_code, 0) << command << ": " << result.err;
+    EXPECT_GT(std::filesystem::file_size(plot), 1000U) << command;
+  }
+}
+
 }  // namespace
 }  // namespace stochnav

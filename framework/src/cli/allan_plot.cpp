@@ -34,8 +34,9 @@ void plot_allan_deviation(const std::vector<DeviationPoint>& points, const Recor
       "set logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\n"
       "set grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
       "set xlabel 'averaging time tau (s)'\nset ylabel '{} ({})'\n"
-      "set title '{} [{}]' noenhanced\nset key top right\n",
-      deviation_name(kind), unit_name(record.unit), record.source, record.column);
+      "set title {} noenhanced\nset key top right\n",
+      deviation_name(kind), unit_name(record.unit),
+      gnuplot_string(record.source + " [" + record.column + "]"));
   // Fitted terms fall far below the data at some taus: keep the view on the measurement.
   const double lowest = *std::min_element(lower.begin(), lower.end());
   const double highest = *std::max_element(upper.begin(), upper.end());

@@ -26,9 +26,9 @@ void plot_davar(const DavarPlotData& data, const std::string& title, const std::
       "set view map\nset logscale y\nset logscale cb\nset format y '10^{{%L}}'\n"
       "set format cb '10^{{%L}}'\nset xlabel 'analysis time (s)'\n"
       "set ylabel 'averaging time tau (s)'\nset cblabel 'Allan deviation ({})'\n"
-      "set title 'DAVAR of {}' noenhanced\nset palette rgb 33,13,10\nunset key\n"
+      "set title {} noenhanced\nset palette rgb 33,13,10\nunset key\n"
       "set pm3d map corners2color c1\n",
-      unit, title);
+      unit, gnuplot_string("DAVAR of " + title));
   script += data.rows() > 1 ? "splot $davar using 1:2:3 with pm3d\n"
                             : "plot $davar using 2:3 with linespoints\n";
   render_gnuplot(script, plot_path);

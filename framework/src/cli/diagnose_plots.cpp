@@ -17,9 +17,9 @@ std::string axes(const std::string& ylabel, const std::string& title) {
   return fmt::format(
       "set logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\n"
       "set grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
-      "set xlabel 'averaging time tau (s)'\nset ylabel '{}' noenhanced\n"
-      "set title '{}' noenhanced\nset key bottom left\n",
-      ylabel, title);
+      "set xlabel 'averaging time tau (s)'\nset ylabel {} noenhanced\n"
+      "set title {} noenhanced\nset key bottom left\n",
+      gnuplot_string(ylabel), gnuplot_string(title));
 }
 
 std::vector<double> model_curve(const NoiseModel& model, const std::vector<double>& tau,
@@ -134,9 +134,10 @@ void plot_diagnose_davar(const Record& record, const MeasuredStatistics& measure
   script += fmt::format(
       "set logscale y\nset format y '10^{{%L}}'\nset grid lc rgb '#dddddd'\n"
       "set xlabel 'record time (s)'\nset ylabel 'Allan deviation ({})' noenhanced\n"
-      "set title '{} [{}]: DAVAR, window {} samples' noenhanced\nset key outside bottom center "
-      "horizontal\n",
-      unit_name(measured.unit), record.source, record.column, window);
+      "set title {} noenhanced\nset key outside bottom center horizontal\n",
+      unit_name(measured.unit),
+      gnuplot_string(fmt::format("{} [{}]: DAVAR, window {} samples", record.source,
+                                 record.column, window)));
   script += "plot " + plots + "\n";
   render_gnuplot(script, output);
 }

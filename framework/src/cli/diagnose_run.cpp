@@ -45,8 +45,8 @@ void plot_levels(const InnovationAnalysis& analysis, const fs::path& output) {
                     aid.aid_index, aid.type, aid.windows.front().t1_s - aid.windows.front().t0_s);
     script += "plot 1 with lines dt 2 lw 2 lc rgb 'black' title 'expected (1)'";
     for (std::size_t i = 0; i < aid.components.size(); ++i) {
-      script += fmt::format(", ${} using 1:{} with linespoints title '{}'", block, i + 2,
-                            aid.components[i].name);
+      script += fmt::format(", ${} using 1:{} with linespoints title {}", block, i + 2,
+                            gnuplot_string(aid.components[i].name));
     }
     script += "\n";
   }

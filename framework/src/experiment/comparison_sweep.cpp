@@ -53,15 +53,16 @@ void plot_sweep(const std::string& title, const std::string& y_label,
     script += "EOD\n";
   }
   script += fmt::format(
-      "set multiplot layout 3,3 title '{}' noenhanced\nset grid\nset offsets graph 0.05, graph "
+      "set multiplot layout 3,3 title {} noenhanced\nset grid\nset offsets graph 0.05, graph "
       "0.05, graph 0.05, graph 0.05\nset key top left font ',7' "
-      "noenhanced\nset xlabel '{}' noenhanced font ',8'\nset ylabel '{}' noenhanced font ',8'\n{}",
-      title, x_label, y_label, log_x ? "set logscale x\n" : "");
+      "noenhanced\nset xlabel {} noenhanced font ',8'\nset ylabel {} noenhanced font ',8'\n{}",
+      gnuplot_string(title), gnuplot_string(x_label), gnuplot_string(y_label),
+      log_x ? "set logscale x\n" : "");
   for (std::size_t m = 0; m < kErrorMetricCount; ++m) {
     script += fmt::format("set title '{}' noenhanced\nplot ", kErrorMetricNames[m]);
     for (std::size_t c = 0; c < series.size(); ++c) {
-      script += fmt::format("{}$s{} using 1:{}:{} with yerrorlines title '{}'", c == 0 ? "" : ", ",
-                            c, 2 + 2 * m, 3 + 2 * m, series[c]);
+      script += fmt::format("{}$s{} using 1:{}:{} with yerrorlines title {}", c == 0 ? "" : ", ",
+                            c, 2 + 2 * m, 3 + 2 * m, gnuplot_string(series[c]));
     }
     script += '\n';
     if (m == 0) script += "unset key\n";

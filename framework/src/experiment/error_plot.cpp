@@ -17,7 +17,7 @@ void plot_navigation_errors(const std::vector<ErrorSample>& series, const std::s
   }
   script += "EOD\n";
   script +=
-      fmt::format("set multiplot layout 3,1 title '{}' noenhanced\n", title) +
+      fmt::format("set multiplot layout 3,1 title {} noenhanced\n", gnuplot_string(title)) +
       "set key outside right noenhanced\nset grid\n";
   const char* panels[3][2] = {{"position error (m)", ""},
                               {"velocity error (m/s)", ""},

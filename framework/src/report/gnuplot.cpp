@@ -15,8 +15,9 @@
 namespace stochnav {
 namespace {
 
-// A gnuplot single-quoted string: inside it only '' is special (one quote).
-std::string gnuplot_quoted(const std::string& text) {
+}  // namespace
+
+std::string gnuplot_string(std::string_view text) {
   std::string out = "'";
   for (char c : text) {
     out += c;
@@ -24,8 +25,6 @@ std::string gnuplot_quoted(const std::string& text) {
   }
   return out + "'";
 }
-
-}  // namespace
 
 void check_plot_request(const std::filesystem::path& output) {
   const std::string extension = output.extension().string();
@@ -75,7 +74,7 @@ void render_gnuplot(const std::string& script, PendingFile& picture) {
   check_plot_request(output);
   PendingFile script_file(output.string() + ".gp");
   write_pending_file(script_file, terminal + "set output " +
-                                      gnuplot_quoted(picture.temporary_path().string()) + "\n" + script +
+                                      gnuplot_string(picture.temporary_path().string()) + "\n" + script +
                                       "\nunset output\n");
   CleanupChild gnuplot({"gnuplot", script_file.temporary_path().string()});
   std::string messages;

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace stochnav {
@@ -15,6 +16,10 @@ class PendingFile;
 /// Checks a requested plot before any work is done: the file name ends in .png or .svg and
 /// gnuplot is on PATH. Throws ConfigError (with an install hint when gnuplot is missing).
 void check_plot_request(const std::filesystem::path& output);
+
+/// `text` as a gnuplot single-quoted string, quotes included (inside one only '' is special):
+/// for text a user chose (file names, columns, titles) in a script.
+std::string gnuplot_string(std::string_view text);
 
 /// A gnuplot datablock `$name << EOD ... EOD` with one row per index and one column per vector
 /// (all columns the same length).
