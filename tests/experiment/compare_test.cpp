@@ -229,6 +229,36 @@ TEST(CompareSweep, WritesOneFolderPerLevelAndSweepJson) {
   EXPECT_FALSE(fs::exists(dir.path() / "out" / ".scenarios"));
 }
 
+// A run in which a metric is never defined (the toolface and azimuth of a hole that is still
+// vertical): the plots draw its panel empty instead of failing (gnuplot refuses a plot without a
+// point; compare exited 2 on the shipped drilling experiment cut to its first 25 minutes).
+TEST(CompareSweep, AMetricUndefinedThroughoutStillPlots) {
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gnuplot";
+  const TempDir dir;
+  const fs::path experiments = fs::path(STOCHNAV_SOURCE_DIR) / "configs" / "experiments";
+  nlohmann::json experiment = read_json(experiments / "drilling_build_hold.json");
+  auto& data = experiment["data"];
+  data["scenario_config"] =
+      (experiments / data["scenario_config"].get<std::string>()).lexically_normal().string();
+  data["scenario_overrides"] = {{"/drilling/duration_s", 1500}};
+  experiment["variants"] = {experiment["variants"][0], experiment["variants"][4]};
+  experiment["sweep"] = {{"name", "gyro variance x"},
+                         {"set", {"/scenario/noise_variance_scale/gyro"}},
+                         {"values", {1, 4}}};
+  const fs::path file = dir.path() / "vertical.json";
+  std::ofstream(file) << experiment.dump();
+  const auto run = run_cli("compare '" + file.string() + "' --out '" + dir.file("out") +
+                               "' --seeds 1",
+                           dir.path());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json results = read_json(dir.path() / "out" / "level_0" / "results.json");
+  EXPECT_TRUE(results["variants"][0]["metrics"]["toolface_err_deg"]["mean"].is_null() ||
+              results["variants"][0]["metrics"]["toolface_err_deg"]["mean"] == 0)
+      << "the toolface is defined: the case is not tested";
+  EXPECT_TRUE(fs::exists(dir.path() / "out" / "level_0" / "metrics.png"));
+  EXPECT_TRUE(fs::exists(dir.path() / "out" / "sweep.png"));
+}
+
 // The scheduled gyro noise of a short static table with and without a variance factor of 16:
 // the white-noise level (the standard deviation of the increments, where the ARW dominates)
 // scales by sqrt(16) = 4; moving_noise_variance_scale does not touch a static phase.

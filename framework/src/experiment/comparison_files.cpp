@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 
 #include "stochnav/core/errors.hpp"
@@ -14,8 +15,11 @@
 namespace stochnav {
 namespace {
 
-// Nine panels, one per metric: each variant's mean with its std as an error bar.
+// Nine panels, one per metric: each variant's mean with its std as an error bar. A metric no
+// variant has a positive value of (the toolface while the hole is vertical is undefined) gets
+// an empty panel saying so: gnuplot refuses a log-scale plot without a point.
 void plot_metrics(const ComparisonResult& result, const std::filesystem::path& path) {
+  std::array<bool, kErrorMetricCount> drawable{};
   std::string script = "$metrics << EOD\n";
   for (std::size_t v = 0; v < result.variants.size(); ++v) {
     script += fmt::format("{} \"{}\"", v, result.variants[v].name);
@@ -30,6 +34,7 @@ void plot_metrics(const ComparisonResult& result, const std::filesystem::path& p
       const double spread =
           runs.size() > 1 ? std::sqrt(squares / static_cast<double>(runs.size() - 1)) : 0.0;
       script += fmt::format(" {:.6g} {:.6g}", mean, spread);
+      drawable[m] = drawable[m] || (std::isfinite(mean) && mean > 0.0);
     }
     // Consistency: the worst metric's share inside 3-sigma (%), and the NEES mean over its
     // upper 95 % bound (above 1: optimistic).
@@ -55,6 +60,14 @@ void plot_metrics(const ComparisonResult& result, const std::filesystem::path& p
       "seeds)' noenhanced\nset style fill solid 0.6\nset boxwidth 0.6\nset xtics rotate by -40 "
       "noenhanced font ',8'\nset logscale y\nset grid y\nunset key\n";
   for (std::size_t m = 0; m < kErrorMetricCount; ++m) {
+    if (!drawable[m]) {
+      script += fmt::format(
+          "set title '{}: not defined in this run' noenhanced\nunset logscale y\n"
+          "set yrange [0:1]\nplot $metrics using 1:(0):xtic(2) with boxes\n"
+          "set autoscale y\nset logscale y\n",
+          kErrorMetricNames[m]);
+      continue;
+    }
     script += fmt::format(
         "set title '{}' noenhanced\nplot $metrics using 1:{}:xtic(2) with boxes lc rgb "
         "'#4878a8', '' using 1:{}:{} with yerrorbars lc rgb 'black' pt 0\n",

@@ -59,6 +59,18 @@ void plot_sweep(const std::string& title, const std::string& y_label,
       gnuplot_string(title), gnuplot_string(x_label), gnuplot_string(y_label),
       log_x ? "set logscale x\n" : "");
   for (std::size_t m = 0; m < kErrorMetricCount; ++m) {
+    // A metric undefined at every level (the toolface of a vertical hole): gnuplot refuses a
+    // plot without a point, so the panel is drawn empty and says so.
+    bool defined = false;
+    for (const auto& level : values) {
+      for (const auto& curve : level) defined = defined || std::isfinite(curve[m][0]);
+    }
+    if (!defined) {
+      script += fmt::format(
+          "set title '{}: not defined in this run' noenhanced\nplot $s0 using 1:(0) notitle\n",
+          kErrorMetricNames[m]);
+      continue;
+    }
     script += fmt::format("set title '{}' noenhanced\nplot ", kErrorMetricNames[m]);
     for (std::size_t c = 0; c < series.size(); ++c) {
       script += fmt::format("{}$s{} using 1:{}:{} with yerrorlines title {}", c == 0 ? "" : ", ",
