@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include "diagnose_support.hpp"
 #include "json_file.hpp"
 #include "run_cli.hpp"
+#include "sanitized_build.hpp"
 #include "stochnav/model/noise_model_json.hpp"
 #include "temp_dir.hpp"
 
@@ -164,7 +166,15 @@ TEST(DiagnoseCliRealData, AdisGyroZHasALineNearTwentyHertz) {
     "terms": [{"type": "quantization", "Q": 6.65e-06}, {"type": "angle_random_walk", "N": 2.3118},
               {"type": "bias_instability", "B": 23.716}, {"type": "rate_random_walk", "K": 202.62}]})");
   const std::string out = dir.file("out");
-  const auto result = run_cli("diagnose --input '" + path + "' --column gyro_z_dps --model '" +
+  std::string input = path;
+  if (!testing::study_at_full_size()) {  // sanitized builds: the first 300,000 samples (50 min)
+    input = dir.file("head.csv");
+    std::ifstream in(path);
+    std::ofstream head(input);
+    std::string line;
+    for (int row = 0; row <= 300000 && std::getline(in, line); ++row) head << line << '\n';
+  }
+  const auto result = run_cli("diagnose --input '" + input + "' --column gyro_z_dps --model '" +
                                   model + "' --out '" + out + "' --plots none --seeds 2",
                               dir.path().string());
   ASSERT_EQ(result.exit_code, 0) << result.err;
@@ -176,7 +186,9 @@ TEST(DiagnoseCliRealData, AdisGyroZHasALineNearTwentyHertz) {
   const double frequency = first["added_term"]["frequency_hz"].get<double>();
   EXPECT_GT(frequency, 17.0);
   EXPECT_LT(frequency, 22.0);
-  EXPECT_LT(report["gap_final"].get<double>(), 0.05 * report["gap_initial"].get<double>());
+  if (testing::study_at_full_size()) {  // the head alone leaves more than the line
+    EXPECT_LT(report["gap_final"].get<double>(), 0.05 * report["gap_initial"].get<double>());
+  }
 }
 
 TEST(DiagnoseCliRealData, MtigGyroWithOutliers) {

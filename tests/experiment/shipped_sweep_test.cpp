@@ -1,7 +1,8 @@
 // The shipped sweep experiment (configs/experiments/paper_random_vibration_sweep.json) runs as
 // a user runs it, shortened: one seed, and the scenario's vibration and final static phases cut
 // to 60 s (the 600-s static phase that the fitted variants calibrate on is kept), so that every
-// level and every variant of the shipped file goes through `stochnav compare`.
+// level and every variant of the shipped file goes through `stochnav compare`. Sanitized builds
+// (sanitized_build.hpp) run two of the levels.
 
 #include <gtest/gtest.h>
 
@@ -13,6 +14,7 @@
 
 #include "json_file.hpp"
 #include "run_cli.hpp"
+#include "sanitized_build.hpp"
 #include "temp_dir.hpp"
 
 namespace {
@@ -30,6 +32,7 @@ TEST(ShippedSweep, PaperRandomVibrationSweepRunsEveryLevelAndVariant) {
       (experiments / data["scenario_config"].get<std::string>()).lexically_normal().string();
   data["scenario_overrides"] = {{"/vibration_table/phases/2/duration_s", 60},
                                 {"/vibration_table/phases/4/duration_s", 60}};
+  if (!stochnav::testing::study_at_full_size()) experiment["sweep"]["values"] = {1, 1000};
   const fs::path file = dir.path() / "sweep.json";
   std::ofstream(file) << experiment.dump();
 

@@ -2,6 +2,16 @@
 // Whether the test executable is built with the address or thread sanitizer (the asan and tsan
 // presets). Speed guards assert nothing there: instrumented code runs several times slower by
 // design (the thread sanitizer about ten times).
+//
+// Statistical studies (many seeds, hours-long records) run smaller there: study_size(full,
+// sanitized). Under the sanitizers a study looks for memory and undefined-behaviour errors in
+// the code it runs, so that CI's asan stage can run every test within its time; the floors that
+// need the full size are checked only at full size (the release suite).
+// STOCHNAV_STUDY_FULL_SIZE=1 runs the studies at full size in a sanitized build too (README.md,
+// "Sanitizers": the by-hand run).
+
+#include <cstdlib>
+#include <cstring>
 
 namespace stochnav::testing {
 
@@ -10,5 +20,18 @@ inline constexpr bool kSanitizedBuild = true;
 #else
 inline constexpr bool kSanitizedBuild = false;
 #endif
+
+/// True where a study runs at its full size and checks its statistical floors: ordinary
+/// builds, and sanitized ones with STOCHNAV_STUDY_FULL_SIZE=1.
+inline bool study_at_full_size() {
+  const char* forced = std::getenv("STOCHNAV_STUDY_FULL_SIZE");
+  return !kSanitizedBuild || (forced != nullptr && std::strcmp(forced, "1") == 0);
+}
+
+/// `full` where study_at_full_size(), else `sanitized`.
+template <class T>
+T study_size(T full, T sanitized) {
+  return study_at_full_size() ? full : sanitized;
+}
 
 }  // namespace stochnav::testing
