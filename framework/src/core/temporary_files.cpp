@@ -153,9 +153,11 @@ void create_file_before_cleanup(const std::filesystem::path& path, std::error_co
 }
 
 CleanupChild::CleanupChild(const std::vector<std::string>& argv) {
+  if (argv.empty()) throw InputError("cannot start a child process: no program named");
   int pipe_fds[2] = {-1, -1};
-  if (argv.empty() || ::pipe2(pipe_fds, O_CLOEXEC) != 0) {
-    throw InputError("cannot start a child process (" + std::string(std::strerror(errno)) + ")");
+  if (::pipe2(pipe_fds, O_CLOEXEC) != 0) {
+    throw InputError(argv[0] + ": cannot start (" + std::strerror(errno) +
+                     "); too many open files?");
   }
   // dup2 onto 1 and 2 clears their close-on-exec flag; the pipe's own ends close at exec.
   posix_spawn_file_actions_t actions;
