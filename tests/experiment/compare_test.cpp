@@ -19,6 +19,7 @@
 #include "stochnav/core/errors.hpp"
 #include "stochnav/experiment/comparison.hpp"
 #include "stochnav/experiment/experiment_config.hpp"
+#include "shipped_experiment.hpp"
 #include "temp_dir.hpp"
 #include "tiny_comparison.hpp"
 
@@ -235,12 +236,8 @@ TEST(CompareSweep, WritesOneFolderPerLevelAndSweepJson) {
 TEST(CompareSweep, AMetricUndefinedThroughoutStillPlots) {
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gnuplot";
   const TempDir dir;
-  const fs::path experiments = fs::path(STOCHNAV_SOURCE_DIR) / "configs" / "experiments";
-  nlohmann::json experiment = read_json(experiments / "drilling_build_hold.json");
-  auto& data = experiment["data"];
-  data["scenario_config"] =
-      (experiments / data["scenario_config"].get<std::string>()).lexically_normal().string();
-  data["scenario_overrides"] = {{"/drilling/duration_s", 900}};
+  nlohmann::json experiment = testing::shipped_experiment("drilling_build_hold");
+  experiment["data"]["scenario_overrides"] = {{"/drilling/duration_s", 900}};
   experiment["variants"] = {experiment["variants"][0], experiment["variants"][4]};
   experiment["sweep"] = {{"name", "gyro variance x"},
                          {"set", {"/scenario/noise_variance_scale/gyro"}},

@@ -15,14 +15,15 @@
 
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 
 #include "json_file.hpp"
 #include "run_cli.hpp"
 #include "sanitized_build.hpp"
+#include "shipped_experiment.hpp"
 #include "temp_dir.hpp"
 
 namespace {
@@ -37,14 +38,10 @@ using stochnav::testing::study_at_full_size;
 /// "variants", after checking that every variant of the file ran with a healthy filter.
 nlohmann::json run_shipped(const std::string& name, const stochnav::testing::TempDir& dir,
                            const nlohmann::json& sanitized_overrides) {
-  const fs::path experiments = fs::path(STOCHNAV_SOURCE_DIR) / "configs" / "experiments";
-  fs::path config = experiments / (name + ".json");
+  fs::path config = fs::path(STOCHNAV_SOURCE_DIR) / "configs" / "experiments" / (name + ".json");
   if (!study_at_full_size()) {
-    nlohmann::json experiment = read_json(config);
-    auto& data = experiment["data"];
-    data["scenario_config"] =
-        (experiments / data["scenario_config"].get<std::string>()).lexically_normal().string();
-    data["scenario_overrides"].update(sanitized_overrides);
+    nlohmann::json experiment = stochnav::testing::shipped_experiment(name);
+    experiment["data"]["scenario_overrides"].update(sanitized_overrides);
     config = dir.path() / (name + ".json");
     std::ofstream(config) << experiment.dump();
   }

@@ -15,6 +15,7 @@
 #include "json_file.hpp"
 #include "run_cli.hpp"
 #include "sanitized_build.hpp"
+#include "shipped_experiment.hpp"
 #include "temp_dir.hpp"
 
 namespace {
@@ -24,14 +25,11 @@ namespace fs = std::filesystem;
 using stochnav::testing::read_json;
 
 TEST(ShippedSweep, PaperRandomVibrationSweepRunsEveryLevelAndVariant) {
-  const fs::path experiments = fs::path(STOCHNAV_SOURCE_DIR) / "configs" / "experiments";
-  nlohmann::json experiment = read_json(experiments / "paper_random_vibration_sweep.json");
+  nlohmann::json experiment =
+      stochnav::testing::shipped_experiment("paper_random_vibration_sweep");
   const stochnav::testing::TempDir dir;
-  auto& data = experiment["data"];
-  data["scenario_config"] =
-      (experiments / data["scenario_config"].get<std::string>()).lexically_normal().string();
-  data["scenario_overrides"] = {{"/vibration_table/phases/2/duration_s", 60},
-                                {"/vibration_table/phases/4/duration_s", 60}};
+  experiment["data"]["scenario_overrides"] = {{"/vibration_table/phases/2/duration_s", 60},
+                                              {"/vibration_table/phases/4/duration_s", 60}};
   if (!stochnav::testing::study_at_full_size()) experiment["sweep"]["values"] = {1, 1000};
   const fs::path file = dir.path() / "sweep.json";
   std::ofstream(file) << experiment.dump();
