@@ -10,6 +10,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <thread>
 
@@ -109,6 +110,19 @@ TEST(TemporaryPath, SharedFoldersGoOnlyWhenEmpty) {
   EXPECT_TRUE(fs::exists(theirs)) << "a shared folder's other content was removed";
 }
 
+// Forks a copy of this test that installs the signal cleanup, runs `start` and then waits for
+// signals; returns its pid (-1 if fork failed). What `start` makes must outlive it: it allocates
+// with new and never frees (the child ends by the signal).
+pid_t fork_with_cleanup(const std::function<void()>& start) {
+  const pid_t child = ::fork();
+  if (child == 0) {
+    install_signal_cleanup();
+    start();
+    for (;;) ::pause();
+  }
+  return child;
+}
+
 // Signals `child` (a forked copy of this test) with SIGTERM and waits for it to end by it.
 void terminate_child(pid_t child) {
   ::kill(child, SIGTERM);
@@ -125,19 +139,16 @@ TEST(TemporaryPath, FolderAWorkerKeepsMakingDoesNotOutliveTheSignal) {
   for (int attempt = 0; attempt < 10; ++attempt) {
     const TempDir dir;
     const fs::path out = dir.path() / "out";
-    const pid_t child = ::fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) {
-      install_signal_cleanup();
-      const TemporaryPath registration(out);
-      std::thread([&] {
+    const pid_t child = fork_with_cleanup([&] {
+      new TemporaryPath(out);
+      std::thread([out] {
         for (;;) {
           std::error_code ignored;
           create_directories_before_cleanup(out / "seed", ignored);
         }
       }).detach();
-      for (;;) ::pause();
-    }
+    });
+    ASSERT_GE(child, 0);
     ASSERT_TRUE(testing::eventually([&] { return fs::exists(out / "seed"); }, 30.0));
     terminate_child(child);
     EXPECT_FALSE(fs::exists(out)) << "attempt " << attempt << ": made again after the cleanup";
@@ -151,18 +162,15 @@ TEST(TemporaryPath, FolderAWorkerKeepsMakingDoesNotOutliveTheSignal) {
 TEST(TemporaryPath, FileAWorkerKeepsWritingDoesNotOutliveTheSignal) {
   for (int attempt = 0; attempt < 10; ++attempt) {
     const TempDir dir;
-    const pid_t child = ::fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) {
-      install_signal_cleanup();
-      std::thread([&] {
+    const pid_t child = fork_with_cleanup([&] {
+      std::thread([file = dir.path() / "out.csv"] {
         for (;;) {
-          const PendingFile pending(dir.path() / "out.csv");
+          const PendingFile pending(file);
           pending.open_stream() << "a row\n";
         }
       }).detach();
-      for (;;) ::pause();
-    }
+    });
+    ASSERT_GE(child, 0);
     ASSERT_TRUE(testing::eventually([&] { return has_temporary_file(dir.path()); }, 30.0));
     terminate_child(child);
     EXPECT_FALSE(has_temporary_file(dir.path())) << "attempt " << attempt;
@@ -186,15 +194,12 @@ TEST(PendingFile, OpeningDoesNotMakeAgainATemporaryFileTheCleanupRemoved) {
 TEST(CleanupChild, IsKilledBeforeTheRegisteredPathsAreRemoved) {
   const TempDir dir;
   const fs::path picture = dir.path() / "plot.png.tmp1_0";
-  const pid_t child = ::fork();
+  const pid_t child = fork_with_cleanup([&] {
+    new TemporaryPath(picture);
+    new CleanupChild({"sh", "-c", "i=0; while [ $i -lt 2000 ]; do : > '" + picture.string() +
+                                      "'; sleep 0.01; i=$((i+1)); done"});
+  });
   ASSERT_GE(child, 0);
-  if (child == 0) {
-    install_signal_cleanup();
-    const TemporaryPath registration(picture);
-    const CleanupChild drawer({"sh", "-c", "i=0; while [ $i -lt 2000 ]; do : > '" +
-                                               picture.string() + "'; sleep 0.01; i=$((i+1)); done"});
-    for (;;) ::pause();
-  }
   ASSERT_TRUE(testing::eventually([&] { return fs::exists(picture); }, 30.0));
   terminate_child(child);
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
