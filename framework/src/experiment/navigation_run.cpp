@@ -12,6 +12,7 @@
 #include "run_files.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/progress_bar.hpp"
+#include "stochnav/experiment/aid_epochs.hpp"
 #include "stochnav/experiment/imu_stream.hpp"
 #include "stochnav/experiment/initial_state.hpp"
 #include "stochnav/experiment/navigation_files.hpp"
@@ -100,6 +101,21 @@ InputError non_finite_state(const plugin::RunConfig& config, double t_s) {
       config.data.imu.string(), t_s));
 }
 
+// A run with aids that never accepted an update navigated on the IMU alone while looking like
+// an aided run: it fails, saying why the rows were not used.
+InputError no_accepted_update(const plugin::RunConfig& config, const plugin::AidData& data,
+                              const AidEpochs& epochs, std::uint64_t navigation_epochs) {
+  const nlohmann::json rows = epochs.summary_json();
+  const std::string source = config.data.aids ? config.data.aids->string() : "(no aid data)";
+  return InputError(fmt::format(
+      "{}: no aid update was accepted in {} navigation epochs ({} aid rows: {} applied, {} "
+      "before the start, {} after the end; every applied one rejected or unusable); check "
+      "that the aid times overlap the IMU record and the aid columns' units, or run without "
+      "aids",
+      source, navigation_epochs, data.rows(), epochs.applied(), rows["before_start"].get<int>(),
+      rows["after_end"].get<int>()));
+}
+
 }  // namespace
 
 nlohmann::json NavigationRunResult::metrics_json() const {
@@ -117,6 +133,7 @@ nlohmann::json NavigationRunResult::metrics_json() const {
   out["self_check"] = self_check;
   out["aids"] = aids;
   out["survey_stations"] = survey_stations;
+  out["aid_rows"] = aid_rows;
   const MwdAttitude attitude = mwd_from_quaternion(start.q_nb);
   const auto degrees = [](const Eigen::Vector3d& v, double scale) {
     return std::vector<double>{v.x() * scale, v.y() * scale, v.z() * scale};
@@ -179,8 +196,9 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
     initial = truth;
   }
 
-  const plugin::AidData aid_data =
+  plugin::AidData aid_data =
       config.data.aids ? plugin::read_aid_data(*config.data.aids) : plugin::AidData();
+  AidEpochs aid_epochs(aid_data, 1.0 / imu.rate_hz());
   const plugin::PluginRegistry registry(plugin::default_search_path(config.config_dir));
   plugin::RunPlugins plugins =
       plugin::build_run_plugins(config, registry, aid_data, initial, imu.rate_hz());
@@ -239,6 +257,7 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   ProgressBar progress("run", estimated_rows(config.data.imu), options.progress);
 
   while (imu.next(increment)) {
+    aid_epochs.advance_to(increment.t_s);
     navigator.step(increment);
     ++result.epochs;
     if (!is_finite(navigator.state())) throw non_finite_state(config, increment.t_s);
@@ -282,6 +301,10 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
     }
   }
   progress.finish(result.epochs);
+  aid_epochs.finish();
+  if (!aids.empty() && consistency.accepted_updates() == 0) {
+    throw no_accepted_update(config, aid_data, aid_epochs, result.epochs);
+  }
   survey.finish();
   result.health = navigator.health();
   result.duration_s = increment.t_s - imu.start_time_s();
@@ -292,6 +315,7 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   result.self_check = consistency.self_check_json();
   result.warnings = consistency.aid_warnings();
   result.survey_stations = survey.stations().size();
+  result.aid_rows = aid_epochs.summary_json();
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   if (files) files->commit(result, options.plot, survey, tie_on);

@@ -58,10 +58,15 @@ void RunConsistency::add_innovations(std::span<const InnovationRecord> records) 
   }
 }
 
+std::uint64_t RunConsistency::accepted_updates() const {
+  std::uint64_t accepted = 0;
+  for (const AidStatistics& aid : aids_) accepted += aid.attempts - aid.rejected;
+  return accepted;
+}
+
 double AidStatistics::inside_3sigma() const {
-  return components > 0
-             ? static_cast<double>(components_inside) / static_cast<double>(components)
-             : kNaN;
+  return components > 0 ? static_cast<double>(components_inside) / static_cast<double>(components)
+                        : kNaN;
 }
 
 double RunConsistency::inside_3sigma(std::size_t metric) const {
@@ -80,7 +85,9 @@ nlohmann::json RunConsistency::consistency_json() const {
   for (std::size_t i = 0; i < kErrorMetricCount; ++i) {
     inside[std::string(kErrorMetricNames[i])] = number_or_null(inside_3sigma(i));
   }
-  return {{"inside_3sigma", inside}, {"nees_mean", number_or_null(nees_mean())}, {"nees_dof", 9},
+  return {{"inside_3sigma", inside},
+          {"nees_mean", number_or_null(nees_mean())},
+          {"nees_dof", 9},
           {"nees_samples", nees_count_}};
 }
 
@@ -121,26 +128,26 @@ nlohmann::json RunConsistency::self_check_json() const {
   if (has_truth()) {
     const std::size_t worst = worst_metric();
     const bool optimistic = worst != kErrorMetricCount;
-    return {{"source", "truth"},
-            {"optimistic", optimistic},
-            {"reason", optimistic ? fmt::format("{} inside 3-sigma only {:.0f} % of epochs",
-                                                kErrorMetricNames[worst],
-                                                100.0 * inside_3sigma(worst))
-                                  : std::string()}};
+    return {
+        {"source", "truth"},
+        {"optimistic", optimistic},
+        {"reason", optimistic ? fmt::format("{} inside 3-sigma only {:.0f} % of epochs",
+                                            kErrorMetricNames[worst], 100.0 * inside_3sigma(worst))
+                              : std::string()}};
   }
   const bool any_update = std::any_of(aids_.begin(), aids_.end(),
                                       [](const AidStatistics& aid) { return aid.components > 0; });
   if (!any_update) return {{"source", "none"}, {"optimistic", false}, {"reason", ""}};
   const std::size_t worst = worst_aid();
   const bool optimistic = worst != aids_.size();
-  return {{"source", "innovations"},
-          {"optimistic", optimistic},
-          {"reason", optimistic ? fmt::format("{} innovations inside 3-sigma only {:.0f} % of {} "
-                                              "components",
-                                              aids_[worst].type,
-                                              100.0 * aids_[worst].inside_3sigma(),
-                                              aids_[worst].components)
-                                : std::string()}};
+  return {
+      {"source", "innovations"},
+      {"optimistic", optimistic},
+      {"reason", optimistic ? fmt::format("{} innovations inside 3-sigma only {:.0f} % of {} "
+                                          "components",
+                                          aids_[worst].type, 100.0 * aids_[worst].inside_3sigma(),
+                                          aids_[worst].components)
+                            : std::string()}};
 }
 
 std::string RunConsistency::consistency_line() const {
@@ -149,7 +156,8 @@ std::string RunConsistency::consistency_line() const {
   const bool optimistic = check["optimistic"];
   if (source == "none") return {};
   if (source == "truth") {
-    if (!optimistic) return fmt::format("consistency: ok (NEES mean {:.3g}, 9 expected)", nees_mean());
+    if (!optimistic)
+      return fmt::format("consistency: ok (NEES mean {:.3g}, 9 expected)", nees_mean());
     return fmt::format("consistency: OPTIMISTIC ({})", check["reason"].get<std::string>());
   }
   if (optimistic) {
@@ -169,6 +177,13 @@ std::vector<std::string> RunConsistency::aid_warnings() const {
   std::vector<std::string> warnings;
   for (std::size_t i = 0; i < aids_.size(); ++i) {
     const AidStatistics& aid = aids_[i];
+    if (aid.attempts == aid.rejected) {
+      warnings.push_back(fmt::format(
+          "warning: aid {} ({}) had no update accepted ({} attempts): the run navigated "
+          "without it; check its data column and its times against the IMU record",
+          i, aid.type, aid.attempts));
+      continue;
+    }
     if (aid.rejected_share() > kRejectionWarningShare) {
       warnings.push_back(fmt::format(
           "warning: aid {} ({}) rejected in {:.0f} % of {} updates (mean NIS {:.3g}, {} "

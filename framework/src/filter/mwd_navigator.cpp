@@ -107,6 +107,11 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
   q_d_ = Eigen::MatrixXd::Zero(phi_size, phi_size);
   correction_ = Eigen::VectorXd::Zero(n);
   innovations_.reserve(aids_.size());
+  reference_.active = std::any_of(aids_.begin(), aids_.end(), [](const plugin::AidPlugin* aid) {
+    return aid->states_velocity();
+  });
+  reference_.v_n = initial.v_n;
+  reference_.smoothed_specific_force_n = smoothed_specific_force_n_;
   consecutive_rejections_.assign(aids_.size(), 0);
 }
 
@@ -151,12 +156,17 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   c_nb_ = c_end;
   fast_.interval_s += dt;
   fast_.c_nb_dt += c_mid * dt;
-  fast_.f_n_dt += c_mid * compensated.delta_v_b;
+  // The specific force the attitude error rotates (d dv/dt = [f_n x] phi + ...): the measured
+  // one, or the reference trajectory's when the aids state the velocity.
+  const Eigen::Vector3d coupling_delta_v_n =
+      reference_.active ? reference_specific_force_increment(dt, c_mid * compensated.delta_v_b)
+                        : Eigen::Vector3d(c_mid * compensated.delta_v_b);
+  fast_.f_n_dt += coupling_delta_v_n;
   // The accelerometer scale factors multiply the true specific force: a smoothed one from the
   // epochs before this one, not this epoch's measurement, whose noise also drives the velocity
   // error and would correlate the gains with the residuals (over a day of 1-s aids that biased
   // the scale factors, hence the inclination, by -0.015 deg in the middle of the build).
-  const bool smoothing = accel_scale_.offset >= 0 || !interval_aids_.empty();
+  const bool smoothing = accel_scale_.offset >= 0 || !interval_aids_.empty() || reference_.active;
   const Eigen::Vector3d scale_factor_delta_v_b =
       smoothing ? Eigen::Vector3d(c_mid.transpose() * smoothed_specific_force_n_ * dt)
                 : Eigen::Vector3d::Zero();
@@ -179,7 +189,7 @@ void MwdNavigator::step(const ImuIncrement& raw) {
         .v_start_n = v_start,
         .v_end_n = ins_.state().v_n,
         .c_nb_mid = c_mid,
-        .delta_v_b = compensated.delta_v_b,
+        .delta_v_b = c_mid.transpose() * coupling_delta_v_n,
         .scale_factor_delta_v_b = scale_factor_delta_v_b,
         .delta_theta_b = compensated.delta_theta_b,
         .velocity_noise = velocity_noise_ - velocity_noise_before,
@@ -198,6 +208,41 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   if (measurement_due && dt > 0.0) {
     apply_aids(raw.t_s, compensated.delta_theta_b / dt, compensated.delta_v_b / dt);
   }
+}
+
+// The specific-force increment over an epoch of dt s (ENU, m/s) the attitude error rotates in
+// a run with a reference trajectory: the reference's acceleration (its velocity change since
+// the previous epoch, the aids' new statement if any, plus its Coriolis and transport terms),
+// so that the velocity error inherits phi x (the reference's velocity change) as the INS's does
+// the true one's; plus the rest of the specific force, gravity as the INS sees it through its
+// attitude error, from the measured specific force smoothed over kReferenceSmoothing_s before
+// this epoch, less the reference acceleration smoothed alike. This epoch's accelerometer noise,
+// which also drives the velocity error, stays out: a coefficient correlated with the process
+// noise reads the noise as attitude information (at 10 s of smoothing the remaining noise still
+// pulled a sliding run's azimuth 10 sigma off; at 100 s it does not). Gravity from the model
+// alone left out the INS's tilt of it, which under a heading error of degrees rotates the tilt's
+// effect on the velocity; the filter put that into the accelerometer biases (docs/
+// drilling-envelope.md).
+Eigen::Vector3d MwdNavigator::reference_specific_force_increment(
+    double dt_s, const Eigen::Vector3d& measured_delta_v_n) {
+  const NavState& state = ins_.state();
+  const LatitudeTrig trig(state.latitude_rad);
+  const Eigen::Vector3d rotation =
+      2.0 * earth_rate_n(trig) + transport_rate_n(trig, state.height_m, reference_.v_n);
+  const Eigen::Vector3d acceleration_dt =
+      reference_.pending_change_n + rotation.cross(reference_.v_n) * dt_s;
+  reference_.pending_change_n.setZero();
+  const Eigen::Vector3d increment =
+      acceleration_dt +
+      (reference_.smoothed_specific_force_n - reference_.smoothed_acceleration_n) * dt_s;
+  if (dt_s > 0.0) {
+    const double weight = std::min(dt_s, kReferenceSmoothing_s) / kReferenceSmoothing_s;
+    reference_.smoothed_acceleration_n +=
+        weight * (acceleration_dt / dt_s - reference_.smoothed_acceleration_n);
+    reference_.smoothed_specific_force_n +=
+        weight * (measured_delta_v_n / dt_s - reference_.smoothed_specific_force_n);
+  }
+  return increment;
 }
 
 IntervalMapLayout MwdNavigator::interval_map_layout() const {
@@ -336,6 +381,12 @@ void MwdNavigator::update_augmented_transition(AugmentedGroup& group, double int
 void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
                               const Eigen::Vector3d& f_ib_b) {
   plugin::ImuSample imu{.t_s = t_s, .omega_ib_b = omega_ib_b, .f_ib_b = f_ib_b};
+  imu.reference_v_n = reference_.active ? reference_.v_n : ins_.state().v_n;
+  // The statement of the epoch: the most precise of the accepted aids' (ties: the smaller
+  // speed, so that a tool at rest by ZUPT and by a zero ROP stays at rest).
+  bool stated = false;
+  Eigen::Vector3d statement_n = Eigen::Vector3d::Zero();
+  double statement_sigma = 0.0;
   for (std::size_t index = 0; index < aids_.size(); ++index) {
     plugin::AidPlugin& aid = *aids_[index];
     if (!aid.has_measurement(t_s)) continue;
@@ -386,7 +437,23 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
       gyro_noise_.on_update(feedback);
       accel_noise_.on_update(feedback);
     }
-    if (outcome.accepted) feed_back(correction_);
+    if (outcome.accepted) {
+      feed_back(correction_);
+      Eigen::Vector3d v_n;
+      double sigma = 0.0;
+      if (reference_.active && aid.stated_velocity_n(t_s, ins_.state(), v_n, sigma) &&
+          v_n.allFinite() && sigma > 0.0 &&
+          (!stated || sigma < statement_sigma ||
+           (sigma == statement_sigma && v_n.norm() < statement_n.norm()))) {
+        statement_n = v_n;
+        statement_sigma = sigma;
+        stated = true;
+      }
+    }
+  }
+  if (stated) {
+    reference_.pending_change_n += statement_n - reference_.v_n;
+    reference_.v_n = statement_n;
   }
 }
 

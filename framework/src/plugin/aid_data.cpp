@@ -61,6 +61,11 @@ std::span<const double> AidData::time_s() const {
 
 std::size_t AidData::rows() const { return columns_.empty() ? 0 : columns_.front().size(); }
 
+void AidData::move_row_time(std::size_t row, double t_s) {
+  const auto it = std::find(names_.begin(), names_.end(), "t");
+  columns_[static_cast<std::size_t>(it - names_.begin())].at(row) = t_s;
+}
+
 AidData read_aid_data(const std::filesystem::path& csv_path) {
   LineReader reader(csv_path.string());
   std::string_view line;

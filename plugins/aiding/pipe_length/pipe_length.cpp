@@ -6,8 +6,12 @@
 // that oscillates by up to A / (2 pi f), and aid epochs at whole seconds sample whole-hertz
 // vibration at the same phase every time.
 //   z = u_n . mean_v_n - (MD_k - MD_k-1) / T,            T = t_k - t_k-1
-//   H = u_n^T mean_velocity_error_map + [0, 0, (mean_v_n x u_n)^T, 0, 0]
-//       (InsInterval; C_nb_est = (I - [phi x]) C_nb)
+//   H = u_n^T mean_velocity_error_map + [0, 0, (v_ref x u_n)^T, 0, 0]
+//       (InsInterval; C_nb_est = (I - [phi x]) C_nb; v_ref = ImuSample::reference_v_n, the
+//       velocity the aids state: along the axis, where the term vanishes. About the INS velocity
+//       it would be (dv x u_n)^T, the INS's lateral velocity error read as attitude information)
+// States the velocity u_n times the tally's mean rate over the last 60 s of rows, with its
+// 1-sigma (AidPlugin::stated_velocity_n; ROP's, when the run has it, is more precise).
 //   R = u_n^T mean_velocity_noise_covariance u_n
 //       + ((sigma_scale dMD)^2 + 2 sigma_random^2 + 2 sigma_displacement^2) / T^2
 // where the depth error model is MD_measured = (1 + s) MD + e, s ~ N(0, sigma_scale^2),
@@ -62,6 +66,8 @@ const auto kPipeLengthTable =
 
 class PipeLengthAid final : public stochnav::plugin::AidPlugin {
  public:
+  static constexpr double kStatementSpan_s = 60.0;
+
   PipeLengthAid(const PipeLengthParams& params, stochnav::plugin::NisGate gate,
                 std::span<const double> times_s, std::span<const double> depth_m)
       : AidPlugin(gate),
@@ -93,13 +99,35 @@ class PipeLengthAid final : public stochnav::plugin::AidPlugin {
     const Eigen::Vector3d axis_n = state.q_nb * Eigen::Vector3d::UnitZ();
     residual(0) = axis_n.dot(interval.mean_v_n) - depth_change / dt;
     h = axis_n.transpose() * interval.mean_velocity_error_map;
-    h.block<1, 3>(0, cs::kAttitude) += interval.mean_v_n.cross(axis_n).transpose();
+    h.block<1, 3>(0, cs::kAttitude) += imu.reference_v_n.cross(axis_n).transpose();
     const double scale_part = params_.sigma_scale * depth_change;
     r(0, 0) = axis_n.dot(interval.mean_velocity_noise_covariance * axis_n) +
               (scale_part * scale_part + 2.0 * params_.sigma_random_m * params_.sigma_random_m +
                2.0 * params_.sigma_displacement_m * params_.sigma_displacement_m) /
                   (dt * dt);
     return true;
+  }
+
+  bool states_velocity() const override { return true; }
+
+  // Along the tool axis at the tally's mean rate over the rows of the last kStatementSpan_s
+  // (one reading's 5 cm over 1 s is 0.07 m/s, ten times a drilling speed; over 60 s, 1.2e-3).
+  bool stated_velocity_n(double t_s, const stochnav::NavState& state,
+                         Eigen::Ref<Eigen::Vector3d> v_n, double& sigma_mps) const override {
+    const auto row = schedule_.row_at(t_s);
+    if (!row || *row == 0) return false;
+    std::size_t first = *row - 1;
+    while (first > 0 && times_s_[*row] - times_s_[first - 1] <= kStatementSpan_s) --first;
+    const double span = times_s_[*row] - times_s_[first];
+    if (!(span > 0.0)) return false;
+    const double change = depth_m_[*row] - depth_m_[first];
+    v_n = state.q_nb * Eigen::Vector3d::UnitZ() * (change / span);
+    const double scale_part = params_.sigma_scale * change;
+    sigma_mps =
+        std::sqrt(scale_part * scale_part + 2.0 * params_.sigma_random_m * params_.sigma_random_m +
+                  2.0 * params_.sigma_displacement_m * params_.sigma_displacement_m) /
+        span;
+    return sigma_mps > 0.0;
   }
 
   std::string describe() const override {

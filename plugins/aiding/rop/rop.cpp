@@ -11,8 +11,10 @@
 //   rop_k  = (ROP_k-1 + ROP_k) / 2 when row k-1 is at the interval's start (trapezoid of the
 //            rate over the interval), else ROP_k
 //   z      = C_bn mean_v_n - (0, 0, rop_k / 3600)           (m/s, body axes)
-//   H      = C_bn mean_velocity_error_map - [0, 0, C_bn [mean_v_n x], 0, 0]
-//            (InsInterval; C_nb_est = (I - [phi x]) C_nb)
+//   H      = C_bn mean_velocity_error_map - [0, 0, C_bn [v_ref x], 0, 0]
+//            (InsInterval; C_nb_est = (I - [phi x]) C_nb), v_ref = ImuSample::reference_v_n:
+//            the attitude columns about the velocity the aids state, not the INS's (whose
+//            velocity error would read as attitude information)
 //   R      = C_bn mean_velocity_noise_covariance C_bn^T
 //            + diag(sigma_lateral^2, sigma_lateral^2, sigma_rop^2 + 2 sigma_displacement^2 / T^2)
 // sigma_displacement covers what moves the tool but not the surface reading over the interval
@@ -28,6 +30,7 @@
 //   "sigma_displacement_m"    1-sigma of the tool's axial displacement against the surface
 //                             (m), >= 0, default 0
 //   gate keys: see plugin/aid_plugin.hpp (read_nis_gate)
+// States the velocity u_n ROP_k / 3600 (AidPlugin::stated_velocity_n).
 
 #include <fmt/format.h>
 
@@ -94,13 +97,25 @@ class RopAid final : public stochnav::plugin::AidPlugin {
     residual = c_bn * interval.mean_v_n;
     residual(2) -= rop_mph / 3600.0;
     h = c_bn * interval.mean_velocity_error_map;
-    h.block<3, 3>(0, cs::kAttitude) -= c_bn * stochnav::skew(interval.mean_v_n);
+    h.block<3, 3>(0, cs::kAttitude) -= c_bn * stochnav::skew(imu.reference_v_n);
     r = c_bn * interval.mean_velocity_noise_covariance * c_bn.transpose();
     r(0, 0) += params_.sigma_lateral_mps * params_.sigma_lateral_mps;
     r(1, 1) += params_.sigma_lateral_mps * params_.sigma_lateral_mps;
     const double displacement_rate = params_.sigma_displacement_m / interval.duration_s;
     r(2, 2) +=
         params_.sigma_rop_mps * params_.sigma_rop_mps + 2.0 * displacement_rate * displacement_rate;
+    return true;
+  }
+
+  bool states_velocity() const override { return true; }
+
+  // Along the tool axis at the rate of penetration of the row.
+  bool stated_velocity_n(double t_s, const stochnav::NavState& state,
+                         Eigen::Ref<Eigen::Vector3d> v_n, double& sigma_mps) const override {
+    const auto row = schedule_.row_at(t_s);
+    if (!row) return false;
+    v_n = state.q_nb * Eigen::Vector3d::UnitZ() * (rop_mph_[*row] / 3600.0);
+    sigma_mps = params_.sigma_rop_mps;
     return true;
   }
 

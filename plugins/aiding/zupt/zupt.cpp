@@ -88,6 +88,16 @@ class ZuptAid final : public stochnav::plugin::AidPlugin {
     return true;
   }
 
+  bool states_velocity() const override { return true; }
+
+  // At rest.
+  bool stated_velocity_n(double, const stochnav::NavState&, Eigen::Ref<Eigen::Vector3d> v_n,
+                         double& sigma_mps) const override {
+    v_n.setZero();
+    sigma_mps = params_.sigma_velocity_mps;
+    return true;
+  }
+
   std::string describe() const override { return "zupt: " + kZuptTable.describe(params_); }
 
  private:

@@ -18,6 +18,9 @@
 //                     "consistency": {"inside_3sigma": {name: share}, "nees_mean", "nees_dof"}
 //                     | null without truth, "aids": [{"type", "dof", "attempts",
 //                     "rejected_share", "nis_mean"}] (experiment/run_consistency.hpp),
+//                     "aid_rows": {"rows", "on_grid", "moved", "max_offset_s",
+//                     "before_start", "after_end"} (experiment/aid_epochs.hpp: rows off the
+//                     IMU grid are applied at the next epoch),
 //                     "filter_health": {...}, "epochs", "duration_s", "noise_models":
 //                     {"gyro", "accel"}, "survey_stations", "initial": {"t_s", position
 //                     and MWD angles of the start (after any alignment, before the deliberate
@@ -86,13 +89,15 @@ struct NavigationRunResult {
   std::string consistency_line;           ///< "consistency: ok" / "... OPTIMISTIC ..." / ""
   std::vector<std::string> warnings;      ///< aids rejected too often
   std::size_t survey_stations = 0;        ///< stations in survey.csv
+  nlohmann::json aid_rows;                ///< AidEpochs::summary_json(): where the rows went
   NavState start;                         ///< the start (after alignment, before the error)
   FilterOptions filter_options;           ///< the options the navigator ran with
   nlohmann::json metrics_json() const;
 };
 
 /// Runs the config. Throws ConfigError / InputError before the filter starts (bad config,
-/// plugins, files) and InputError for a malformed IMU or truth row met while running.
+/// plugins, files), InputError for a malformed IMU or truth row met while running, and
+/// InputError when the run has aids but accepted none of their updates (nothing written).
 NavigationRunResult run_navigation(const plugin::RunConfig& config,
                                    const NavigationRunOptions& options);
 

@@ -72,6 +72,8 @@ class RunConsistency final {
   double nees_mean() const;  ///< NaN when never scored
   std::uint64_t nees_samples() const { return nees_count_; }  ///< epochs with a NEES
   const std::vector<AidStatistics>& aids() const { return aids_; }
+  /// Accepted updates of every aid together.
+  std::uint64_t accepted_updates() const;
 
   /// {"inside_3sigma": {metric: share}, "nees_mean": x, "nees_dof": 9, "nees_samples": N}, or
   /// null without truth.
@@ -87,7 +89,8 @@ class RunConsistency final {
   /// (innovations, no truth): ok (...)" or "... OPTIMISTIC (rop innovations inside 3-sigma only
   /// 80 % of 3000 components)"; empty without truth and aid updates.
   std::string consistency_line() const;
-  /// One warning line per aid rejected more than kRejectionWarningShare of the time.
+  /// One warning line per aid rejected more than kRejectionWarningShare of the time, and one
+  /// per aid that never had an update accepted (its data never reached the filter).
   std::vector<std::string> aid_warnings() const;
 
  private:

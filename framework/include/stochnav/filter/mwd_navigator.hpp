@@ -14,6 +14,20 @@
 // state reset. Aids get, besides the current state, the means of the INS velocity and attitude
 // over the interval since their previous measurement epoch (plugin::InsInterval).
 //
+// The reference trajectory. When an aid states the tool's velocity (AidPlugin::states_velocity:
+// ZUPT, ROP, the pipe tally), the attitude error's effect on the velocity is linearised about
+// the velocity the aids state, v_ref (held from one statement to the next; at an epoch with
+// several, the smallest speed: at rest wins), in the dynamics (d dv/dt = [f_ref x] phi, f_ref
+// the specific force of the reference: its velocity changes, gravity, Coriolis) and in the aids'
+// attitude columns (plugin::ImuSample::reference_v_n). The INS velocity and the measured specific
+// force hold the INS's own velocity error and this epoch's accelerometer noise; about them,
+// those errors read as attitude information: in a vertical hole or while sliding (no rotation
+// to average them) the filter claimed a 1.8-deg azimuth and was 10-66 deg off. Model and truth
+// then agree to first order: the error the INS velocity inherits from phi when the tool speeds
+// up (phi x its velocity change) and the attitude term of a lateral constraint cancel in both
+// (docs/drilling-envelope.md). Without such an aid the measured specific force is used (a
+// vehicle's manoeuvres are what make its heading observable).
+//
 // Lifetime: the navigator keeps references to the plugins; they must outlive it.
 
 #include <Eigen/Core>
@@ -109,6 +123,8 @@ class MwdNavigator final {
   void close_interval(double interval);
   void update_augmented_transition(AugmentedGroup& group, double interval_s);
   void apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b, const Eigen::Vector3d& f_ib_b);
+  Eigen::Vector3d reference_specific_force_increment(double dt_s,
+                                                     const Eigen::Vector3d& measured_delta_v_n);
   void feed_back(const Eigen::VectorXd& correction);
   Eigen::Vector3d sensor_correction(const AugmentedGroup& group) const;
 
@@ -146,7 +162,17 @@ class MwdNavigator final {
   // over kSpecificForceSmoothing_s (a mean over 10 s is gravity plus the manoeuvre, with the
   // white noise averaged out and no weight on the current aid interval's noise).
   static constexpr double kSpecificForceSmoothing_s = 10.0;
+  static constexpr double kReferenceSmoothing_s = 100.0;
   Eigen::Vector3d smoothed_specific_force_n_;
+
+  struct ReferenceTrajectory {
+    bool active = false;                                         // some aid states the velocity
+    Eigen::Vector3d v_n = Eigen::Vector3d::Zero();               // v_ref, ENU (m/s)
+    Eigen::Vector3d pending_change_n = Eigen::Vector3d::Zero();  // since the last epoch (m/s)
+    Eigen::Vector3d smoothed_acceleration_n = Eigen::Vector3d::Zero();    // m/s^2
+    Eigen::Vector3d smoothed_specific_force_n = Eigen::Vector3d::Zero();  // m/s^2, measured
+  };
+  ReferenceTrajectory reference_;
 
   Eigen::MatrixXd phi_, q_d_;  // n x n scratch (D x D, the head, when structured)
   Eigen::Matrix3d bias_walk_;

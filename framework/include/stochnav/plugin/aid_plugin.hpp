@@ -50,6 +50,11 @@ class AidData {
   const std::string& source() const { return source_; }
   std::size_t rows() const;
 
+  /// Moves row `row`'s time to `t_s` (s), the IMU epoch that applies it
+  /// (experiment/aid_epochs.hpp puts rows recorded off the IMU grid on the grid). The caller keeps
+  /// the times increasing: t_s lies between the neighbouring rows' times.
+  void move_row_time(std::size_t row, double t_s);
+
  private:
   std::string source_;
   std::vector<std::string> names_;
@@ -106,6 +111,14 @@ struct ImuSample {
   Eigen::Vector3d omega_ib_b = Eigen::Vector3d::Zero();  ///< angular rate, body (rad/s)
   Eigen::Vector3d f_ib_b = Eigen::Vector3d::Zero();      ///< specific force, body (m/s^2)
   InsInterval interval;  ///< since this aid's previous measurement epoch
+  /// The velocity the filter linearises the attitude error's effect on velocity about (ENU,
+  /// m/s): the reference velocity of MwdNavigator, the last velocity an aid stated
+  /// (AidPlugin::stated_velocity_n), or the INS velocity in a run whose aids state none. An aid
+  /// whose prediction rotates a velocity with the attitude (C_bn v) takes its attitude columns
+  /// about this velocity, not the INS's: to first order the residual is C_bn (dv + phi x
+  /// v_true), and the INS velocity v_true + dv would add [dv x] phi, the INS's own velocity error
+  /// read as attitude information (docs/drilling-envelope.md).
+  Eigen::Vector3d reference_v_n = Eigen::Vector3d::Zero();
 };
 
 /// Innovation gate on NIS = z^T S^-1 z.
@@ -171,6 +184,21 @@ class AidPlugin {
   /// sensor-error states, P * (their columns of the mean's map), P = dz / d mean_v_n being h's
   /// velocity columns.
   virtual bool measures_interval_mean() const { return false; }
+
+  /// Whether the aid states the tool's velocity (stated_velocity_n): ZUPT (at rest), ROP and
+  /// the pipe tally (along the tool axis at their rate). Constant. In a run with such an aid the
+  /// navigator linearises about the stated velocities instead of the INS's (ImuSample::
+  /// reference_v_n).
+  virtual bool states_velocity() const { return false; }
+
+  /// The tool's velocity the measurement at t states, after measure() returned true for it at
+  /// the same t and state: v_n (ENU, m/s) and the 1-sigma of its speed, sigma_mps (> 0); false
+  /// when it states none (nothing written). The navigator takes the most precise statement of
+  /// an epoch. Const, allocation-free, never throws.
+  virtual bool stated_velocity_n(double /*t_s*/, const NavState& /*state*/,
+                                 Eigen::Ref<Eigen::Vector3d> /*v_n*/, double& /*sigma_mps*/) const {
+    return false;
+  }
 
   /// One line with the params in their units.
   virtual std::string describe() const = 0;
