@@ -90,6 +90,11 @@ DrillingMotion::DrillingMotion(const ScenarioConfig& config)
   episodes_ = config_.vibration_episodes;
   time_episodes_ = episodes_.size();
   for (const auto& span : md_episode_spans(config_, schedule_.segments)) episodes_.push_back(span);
+  for (std::size_t i = 1; i < episodes_.size(); ++i) {
+    if (i != time_episodes_ && episodes_[i].start_s < episodes_[i - 1].end_s) {
+      episode_groups_disjoint_ = false;  // (validated configurations never are)
+    }
+  }
   auto& breakpoints = schedule_.breakpoints;
   for (const auto& episode : episodes_) {
     const double ramp = episode_ramp(episode, config_.ramp_s);
@@ -160,6 +165,31 @@ const DrillSegment& DrillingMotion::segment_at(double t_s) const {
   return segments[i];
 }
 
+template <typename F>
+void DrillingMotion::for_episodes_in(double t0_s, double t1_s, F&& f) const {
+  const auto overlaps = [&](const VibrationEpisodeConfig& e) {
+    return t1_s > e.start_s && t0_s < e.end_s;
+  };
+  const auto groups = {std::pair<std::size_t, std::size_t>{0, time_episodes_},
+                       std::pair<std::size_t, std::size_t>{time_episodes_, episodes_.size()}};
+  for (const auto& [first, last] : groups) {
+    const auto begin = episodes_.begin() + static_cast<std::ptrdiff_t>(first);
+    const auto end = episodes_.begin() + static_cast<std::ptrdiff_t>(last);
+    if (!episode_groups_disjoint_) {
+      for (auto it = begin; it != end; ++it) {
+        if (overlaps(*it)) f(*it);
+      }
+      continue;
+    }
+    // Ascending and disjoint: the ends ascend too; start at the first ending after t0_s.
+    auto it = std::upper_bound(
+        begin, end, t0_s, [](double t, const VibrationEpisodeConfig& e) { return t < e.end_s; });
+    for (; it != end && it->start_s < t1_s; ++it) {
+      if (overlaps(*it)) f(*it);
+    }
+  }
+}
+
 DrillingMotion::EarthFactors DrillingMotion::earth_factors(double latitude_rad, double height_m) {
   EarthFactors f;
   f.sin_lat = std::sin(latitude_rad);
@@ -200,12 +230,13 @@ DrillingMotion::Kinematics DrillingMotion::kinematics(double t_s, const EarthFac
     toolface += segment.toolface_change_rad * 0.5 * (1.0 - std::cos(arg));
     toolface_rate = segment.toolface_change_rad * 0.5 * kPi / segment.profile_s * std::sin(arg);
   }
-  for (const auto& episode : episodes_) {
+  // (An inactive episode would add exact zeros: skipping it changes no bit.)
+  for_episodes_in(t_s, t_s, [&](const VibrationEpisodeConfig& episode) {
     const AxialVibration v = axial_vibration(episode, episode_ramp(episode, config_.ramp_s), t_s);
     md += v.displacement;
     md_rate += v.velocity;
     md_acceleration += v.acceleration;
-  }
+  });
   k.measured_depth_m = md;
 
   // Path point at md: local offsets p, tangent, high side, inclination, build and turn rates.
@@ -290,11 +321,9 @@ double DrillingMotion::local_rate_bound(double t0_s, double t1_s) const {
   double rate = schedule_.max_rotation_radps + (config_.ramp_s > 0.0 ? kPi / config_.ramp_s : 0.0);
   // Orientation: toolface rate up to pi |change| / (2 orient_s) <= pi^2 / (2 orient_s).
   if (schedule_.orients) rate += (kPi + 0.5 * kPi * kPi) / config_.orient_s;
-  for (const auto& e : episodes_) {
-    if (t1_s > e.start_s && t0_s < e.end_s) {
-      rate += 2.0 * kPi * e.frequency_hz + kPi / episode_ramp(e, config_.ramp_s);
-    }
-  }
+  for_episodes_in(t0_s, t1_s, [&](const VibrationEpisodeConfig& e) {
+    rate += 2.0 * kPi * e.frequency_hz + kPi / episode_ramp(e, config_.ramp_s);
+  });
   return rate;
 }
 

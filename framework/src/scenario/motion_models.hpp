@@ -114,8 +114,14 @@ class DrillingMotion final : public TrueMotion {
   double meridian0_plus_h_ = 0.0;
   double transverse0_plus_h_cos_ = 0.0;
   DrillSchedule schedule_;
+  // Calls f(episode) for the episodes overlapping (t0_s, t1_s) (t0_s == t1_s: active at t0_s),
+  // time episodes first, each group in its order.
+  template <typename F>
+  void for_episodes_in(double t0_s, double t1_s, F&& f) const;
+
   std::vector<VibrationEpisodeConfig> episodes_;  // by time, then the depth-tied spans
   std::size_t time_episodes_ = 0;                 // how many of episodes_ are by time
+  bool episode_groups_disjoint_ = true;           // each group ascending and not overlapping
   std::vector<ScenarioPhase> phases_;
   mutable std::size_t segment_cursor_ = 0;
   std::size_t breakpoint_cursor_ = 0;
