@@ -167,5 +167,60 @@ TEST(SimulateScenarioCli, MissingAndMalformedFiles) {
   EXPECT_NE(result.err.find("not valid JSON"), std::string::npos) << result.err;
 }
 
+TEST(SimulateScenarioCli, SlideRotateScenarioRuns) {
+  TempDir dir;
+  nlohmann::json config = shipped("drilling_slide_rotate.json");
+  config["drilling"]["duration_s"] = 90;
+  config["drilling"]["initial_static_s"] = 10;
+  config["drilling"]["orient_s"] = 20;
+  config["aids"]["dropouts"] = {{{"start_s", 50}, {"end_s", 60}}};
+  const std::string path = dir.write("slide.json", config.dump());
+  const auto result =
+      run_cli("simulate scenario '" + path + "' --out '" + dir.file("out") + "'", dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const std::string aids = read(dir.path() / "out" / "aids.csv");
+  EXPECT_EQ(lines(aids), 92u - 11u);  // 0..90 s at 1 Hz without 50..60
+  EXPECT_NE(aids.find("\n0.004,"), std::string::npos) << aids;
+  EXPECT_NE(aids.find("\n49.004,"), std::string::npos) << aids;
+  EXPECT_EQ(aids.find("\n50.004,"), std::string::npos) << aids;
+  const auto scenario = nlohmann::json::parse(read(dir.path() / "out" / "scenario.json"));
+  const auto& phases = scenario["noise_schedule"]["phases"];
+  ASSERT_GE(phases.size(), 3u);
+  EXPECT_EQ(phases[0]["name"], "static");
+  EXPECT_EQ(phases[1]["name"], "orienting");
+  EXPECT_EQ(phases[2]["name"], "drilling");
+  EXPECT_EQ(scenario["config"]["drilling"]["stand_pattern"].size(), 2u);
+  EXPECT_TRUE(scenario["files"]["aids.csv"].contains("timing"));
+}
+
+class BadDrillingScenarioCli : public ::testing::TestWithParam<BadConfigCase> {};
+
+TEST_P(BadDrillingScenarioCli, ExitCodeTwoOneLineWithPointerNoOutput) {
+  const BadConfigCase& c = GetParam();
+  TempDir dir;
+  nlohmann::json config = shipped("drilling_slide_rotate.json");
+  config[nlohmann::json::json_pointer(c.pointer)] = c.value;
+  const std::string path = dir.write("bad.json", config.dump());
+  const auto result =
+      run_cli("simulate scenario '" + path + "' --out '" + dir.file("out") + "'", dir.path());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  ASSERT_FALSE(result.err.empty());
+  EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << "one line: " << result.err;
+  EXPECT_NE(result.err.find("bad.json"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find(c.expected), std::string::npos) << result.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "imu.csv"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BadDrillingScenarioCli,
+    ::testing::Values(BadConfigCase{"pattern_not_summing", "/drilling/stand_pattern/0/length_m", 5,
+                                    "/drilling/stand_pattern: has lengths summing to 24 m"},
+                      BadConfigCase{"section_out_of_range",
+                                    "/drilling/well/sections/1/build_rate_deg_per_30m", -3,
+                                    "/drilling/well/sections/1: drives the inclination"},
+                      BadConfigCase{"dropout_backwards", "/aids/dropouts/0/end_s", 100,
+                                    "/aids/dropouts/0/end_s"}),
+    [](const ::testing::TestParamInfo<BadConfigCase>& case_info) { return case_info.param.name; });
+
 }  // namespace
 }  // namespace stochnav

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <numbers>
 #include <string>
 
 #include "stochnav/core/errors.hpp"
@@ -106,6 +107,135 @@ TEST(ScenarioConfig, DrillingRangesAreChecked) {
   document["drilling"]["ramp_s"] = 5000;
   EXPECT_THROW(scenario_config_from_json(document, "d.json"), ConfigError);
 }
+
+TEST(ScenarioConfig, SlideRotateConfigurationParsesAndEchoesStably) {
+  const ScenarioConfig config =
+      scenario_config_from_json(load("drilling_slide_rotate.json"), "slide_rotate");
+  const nlohmann::json echo = to_json(config);
+  const ScenarioConfig again = scenario_config_from_json(echo, "echo");
+  EXPECT_EQ(to_json(again), echo);
+  const DrillingConfig& d = *config.drilling;
+  ASSERT_EQ(d.well.sections.size(), 3u);
+  EXPECT_NEAR(d.well.start_azimuth_rad, 80.0 * std::numbers::pi / 180.0, 1e-15);
+  EXPECT_NEAR(d.well.sections[2].turn_rate_rad_per_m, 6.0 * std::numbers::pi / 180.0 / 30.0, 1e-15);
+  ASSERT_EQ(d.stand_pattern.size(), 2u);
+  EXPECT_EQ(d.stand_pattern[0].mode, DrillMode::kSlide);
+  EXPECT_EQ(d.stand_pattern[0].rotation_radps, 0.0);
+  EXPECT_NEAR(d.stand_pattern[1].rotation_radps, 100.0 * 2.0 * std::numbers::pi / 60.0, 1e-12);
+  EXPECT_EQ(d.orient_s, 30.0);
+  ASSERT_EQ(d.vibration_episodes.size(), 1u);
+  ASSERT_EQ(d.md_vibration_episodes.size(), 1u);
+  EXPECT_EQ(d.md_vibration_episodes[0].end_md_m, 680.0);
+  EXPECT_EQ(config.aids.clock_offset_s, 0.004);
+  EXPECT_EQ(config.aids.latency_s, 0.5);
+  ASSERT_EQ(config.aids.dropouts.size(), 1u);
+}
+
+TEST(ScenarioConfig, PatternDefaultsComeFromRopAndRotation) {
+  nlohmann::json document = load("drilling_slide_rotate.json");
+  document["drilling"]["stand_pattern"][1].erase("rpm");
+  document["drilling"]["stand_pattern"][1].erase("rop_mph");
+  document["drilling"]["well"] = {{"kickoff_md_m", 300},
+                                  {"build_rate_deg_per_30m", 3},
+                                  {"target_inclination_deg", 30},
+                                  {"azimuth_deg", 80},
+                                  {"turn_rate_deg_per_30m", -2}};
+  const ScenarioConfig config = scenario_config_from_json(document, "defaults");
+  const DrillingConfig& d = *config.drilling;
+  EXPECT_EQ(d.stand_pattern[1].rotation_radps, d.rotation_radps);
+  EXPECT_EQ(d.stand_pattern[1].rop_mps, d.rop_mps);
+  EXPECT_NEAR(d.well.turn_rate_rad_per_m, -2.0 * std::numbers::pi / 180.0 / 30.0, 1e-15);
+  const nlohmann::json echo = to_json(config);
+  EXPECT_EQ(to_json(scenario_config_from_json(echo, "echo")), echo);
+  // Without a turn the plane well echoes as before (no turn key).
+  document["drilling"]["well"].erase("turn_rate_deg_per_30m");
+  EXPECT_FALSE(to_json(scenario_config_from_json(document, "plane"))["drilling"]["well"].contains(
+      "turn_rate_deg_per_30m"));
+}
+
+class BadDrillingScenario : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadDrillingScenario, ThrowsConfigErrorNamingSourceAndPointer) {
+  const BadCase& c = GetParam();
+  nlohmann::json document = load("drilling_slide_rotate.json");
+  const nlohmann::json::json_pointer pointer(c.pointer);
+  if (c.value.is_null()) {
+    document[pointer.parent_pointer()].erase(pointer.back());
+  } else {
+    document[pointer] = c.value;
+  }
+  try {
+    scenario_config_from_json(document, "bad.json");
+    FAIL() << "no error";
+  } catch (const ConfigError& error) {
+    const std::string message = error.what();
+    EXPECT_EQ(message.rfind("bad.json: ", 0), 0u) << message;
+    EXPECT_NE(message.find(c.expected), std::string::npos) << message;
+    EXPECT_NE(message.find("expected"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BadDrillingScenario,
+    ::testing::Values(
+        BadCase{"pattern_not_summing", "/drilling/stand_pattern/1/length_m", 18,
+                "/drilling/stand_pattern: has lengths summing to 27.5 m, not stand_length_m 28.5"},
+        BadCase{"pattern_empty", "/drilling/stand_pattern", nlohmann::json::array(),
+                "/drilling/stand_pattern: is empty"},
+        BadCase{"unknown_mode", "/drilling/stand_pattern/0/mode", "wobble",
+                "/drilling/stand_pattern/0/mode: is \"wobble\"; expected \"rotate\" or \"slide\""},
+        BadCase{"slide_without_toolface", "/drilling/stand_pattern/0/toolface_deg", nullptr,
+                "/drilling/stand_pattern/0/toolface_deg: is missing"},
+        BadCase{"rpm_in_slide", "/drilling/stand_pattern/0/rpm", 50,
+                "/drilling/stand_pattern/0/rpm: is given for a slide segment"},
+        BadCase{"toolface_in_rotate", "/drilling/stand_pattern/1/toolface_deg", 10,
+                "/drilling/stand_pattern/1/toolface_deg: is given for a rotate segment"},
+        BadCase{"segment_shorter_than_ramps", "/drilling/ramp_s", 3000,
+                "/drilling/stand_pattern/0/length_m: is 9.5 m: the ramps alone drill more"},
+        BadCase{"unknown_segment_key", "/drilling/stand_pattern/1/torque", 3,
+                "/drilling/stand_pattern/1/torque: is an unknown key"},
+        BadCase{"orient_zero", "/drilling/orient_s", 0, "/drilling/orient_s: is 0, not > 0"},
+        BadCase{"orient_without_pattern", "/drilling/stand_pattern", nullptr,
+                "/drilling/orient_s: is given without \"stand_pattern\""},
+        BadCase{"section_drops_below_vertical", "/drilling/well/sections/1/build_rate_deg_per_30m",
+                -3, "/drilling/well/sections/1: drives the inclination to -30 deg"},
+        BadCase{"section_beyond_180", "/drilling/well/sections/2/build_rate_deg_per_30m", 40,
+                "/drilling/well/sections/2: drives the inclination to 230 deg"},
+        BadCase{"section_zero_length", "/drilling/well/sections/0/length_m", 0,
+                "/drilling/well/sections/0/length_m: is 0, not > 0"},
+        BadCase{"sections_with_kickoff", "/drilling/well/kickoff_md_m", 500,
+                "/drilling/well/kickoff_md_m: cannot be combined with \"sections\""},
+        BadCase{"sections_empty", "/drilling/well/sections", nlohmann::json::array(),
+                "/drilling/well/sections: is empty"},
+        BadCase{"start_inclination", "/drilling/well/start/inclination_deg", 190,
+                "/drilling/well/start/inclination_deg: is 190"},
+        BadCase{"unknown_section_key", "/drilling/well/sections/0/dogleg", 3,
+                "/drilling/well/sections/0/dogleg: is an unknown key"},
+        BadCase{"md_episode_backwards", "/drilling/vibration_episodes/1/end_md_m", 630,
+                "/drilling/vibration_episodes/1/end_md_m: is 630, not beyond start_md_m"},
+        BadCase{"md_episode_empty", "/drilling/vibration_episodes/1/end_md_m", 640,
+                "/drilling/vibration_episodes/1/end_md_m: is 640, not beyond start_md_m"},
+        BadCase{"md_episodes_overlap", "/drilling/vibration_episodes/2",
+                nlohmann::json::parse(
+                    R"({"start_md_m": 670, "end_md_m": 700, "axial_g": 1, "frequency_hz": 9})"),
+                "/drilling/vibration_episodes/2/start_md_m: overlaps the previous depth episode"},
+        BadCase{"time_episodes_overlap", "/drilling/vibration_episodes/2",
+                nlohmann::json::parse(
+                    R"({"start_s": 1700, "end_s": 1900, "axial_g": 1, "frequency_hz": 9})"),
+                "/drilling/vibration_episodes/2/start_s: overlaps the previous episode"},
+        BadCase{"time_in_md_episode", "/drilling/vibration_episodes/1/start_s", 5,
+                "/drilling/vibration_episodes/1/start_s: is a time in a depth episode"},
+        BadCase{"dropout_backwards", "/aids/dropouts/0/end_s", 9000,
+                "/aids/dropouts/0/end_s: is 9000, not after start_s 9000"},
+        BadCase{"dropouts_overlap", "/aids/dropouts/1",
+                nlohmann::json::parse(R"({"start_s": 9200, "end_s": 9400})"),
+                "/aids/dropouts/1/start_s: overlaps or touches the previous dropout"},
+        BadCase{"dropouts_not_array", "/aids/dropouts", 3, "/aids/dropouts: is a number"},
+        BadCase{"clock_offset_too_large", "/aids/clock_offset_s", 1.5,
+                "/aids/clock_offset_s: is 1.5"},
+        BadCase{"negative_latency", "/aids/latency_s", -0.1, "/aids/latency_s: is -0.1, negative"}),
+    [](const ::testing::TestParamInfo<BadCase>& case_info) { return case_info.param.name; });
 
 }  // namespace
 }  // namespace stochnav

@@ -1,22 +1,29 @@
-// Drilling: a well path (vertical, circular build in the plane of the well azimuth, straight
-// hold), drilled stand by stand with raised-cosine ramps of ROP and toolface rotation, pipe
-// connections (stationary), and axial vibration episodes (the tool oscillates along the hole).
+// Drilling: a well path (scenario/well_path.hpp: vertical / circular build / hold, or general
+// sections of constant build and turn rates), drilled stand by stand (drilling_schedule.hpp:
+// segments of rotary drilling or sliding at their own ROP and rotation, raised-cosine ramps of
+// ROP and rotation, raised-cosine toolface orientation before each slide), pipe connections
+// (stationary), and axial vibration episodes by time or by drilled depth (the tool oscillates
+// along the hole).
 //
 // Truth: the path is parameterised by measured depth md in a local-level frame at the wellhead
 // (E, N, U offsets p(md)); the tool sits at md(t) = md_drill(t) + x_vib(t). The geodetic position
 // is lat = lat0 + p_N / (R_M0 + h0), lon = lon0 + p_E / ((R_N0 + h0) cos lat0), h = h0 + p_U, and
 // v_n, a_n are its exact time derivatives (so horizontal path length differs from md by
-// (R + h) / (R + h0) - 1 < 5e-4 at 3 km depth). Attitude: inclination and azimuth of the path
-// tangent at md(t), toolface = initial toolface + integral of the rotation rate.
+// (R + h) / (R + h0) - 1 < 5e-4 at 3 km depth). With the tangent t(I, A), the high side h and
+// r = t x h = (cos A, -sin A, 0): dp/dt = t md', d2p/dt2 = t md'' + (I' h + A' sin I r) md'^2
+// (I', A' the build and turn rates per metre). Attitude: inclination and azimuth of the path at
+// md(t), toolface TF = initial toolface + integral of the rotation rate (+ orientation changes);
+// omega_nb_b = (I' md' sin TF - A' md' sin I cos TF, I' md' cos TF + A' md' sin I sin TF,
+// TF' + A' md' cos I) (ins/mwd_attitude.hpp mwd_angular_velocity_b).
 //
-// Increments: Gauss-Legendre quadrature (3 nodes) on sub-intervals split at every ramp, segment
-// and episode boundary and short enough that the fastest local rate (rotation, vibration,
-// ramps) turns by at most 0.15 rad, which bounds the relative error by ~1e-11. Earth rate, radii
-// and transport-rate factors are taken once per sub-interval at its midpoint (they change by
-// < 1e-9 relative across it and their linear change integrates exactly); gravity follows each
-// node's height through its gradient. Not split: the
-// two curvature steps of the path (kickoff and end of build); the single interval that crosses
-// one carries an error of about |kappa| ROP dt in its angle increment (~1e-9 rad).
+// Increments: Gauss-Legendre quadrature (3 nodes) on sub-intervals split at every ramp, segment,
+// orientation and episode boundary and short enough that the fastest local rate (rotation,
+// vibration, ramps, orientation) turns by at most 0.15 rad, which bounds the relative error by
+// ~1e-11. Earth rate, radii and transport-rate factors are taken once per sub-interval at its
+// midpoint (they change by < 1e-9 relative across it and their linear change integrates
+// exactly); gravity follows each node's height through its gradient. Not split: the curvature
+// steps of the path (kickoff, end of build, section boundaries, all in md); the single interval
+// that crosses one carries an error of about |kappa| ROP dt in its angle increment (~1e-9 rad).
 
 #include <algorithm>
 #include <cmath>
@@ -73,52 +80,35 @@ double episode_ramp(const VibrationEpisodeConfig& episode, double ramp_s) {
 }  // namespace
 
 DrillingMotion::DrillingMotion(const ScenarioConfig& config)
-    : config_(*config.drilling), site_(config.site) {
-  const WellPathConfig& well = config_.well;
-  build_end_md_m_ = well.kickoff_md_m + well.target_inclination_rad / well.build_rate_rad_per_m;
-  sin_azimuth_ = std::sin(well.azimuth_rad);
-  cos_azimuth_ = std::cos(well.azimuth_rad);
+    : config_(*config.drilling), site_(config.site), path_(config_.well) {
   const EarthRadii radii = earth_radii(site_.latitude_rad);
   meridian0_plus_h_ = radii.meridian_m + site_.height_m;
   transverse0_plus_h_cos_ = (radii.transverse_m + site_.height_m) * std::cos(site_.latitude_rad);
-  drill_segment_s_ = config_.stand_length_m / config_.rop_mps + config_.ramp_s;
-
-  // The stand schedule: alignment, then drill a stand / connect, until the end.
-  double t = 0.0;
-  double md = config_.start_md_m;
-  double toolface = config_.initial_toolface_rad;
+  schedule_ = drill_schedule(config_);
   const double end = config_.duration_s;
-  if (config_.initial_static_s > 0.0) {
-    segments_.push_back({0.0, std::min(config_.initial_static_s, end), false, md, toolface});
-    t = segments_.back().end_s;
+
+  episodes_ = config_.vibration_episodes;
+  time_episodes_ = episodes_.size();
+  for (const auto& span : md_episode_spans(config_, schedule_.segments)) episodes_.push_back(span);
+  for (std::size_t i = 1; i < episodes_.size(); ++i) {
+    if (i != time_episodes_ && episodes_[i].start_s < episodes_[i - 1].end_s) {
+      episode_groups_disjoint_ = false;  // (validated configurations never are)
+    }
   }
-  const double turns_per_stand = config_.rotation_radps / config_.rop_mps * config_.stand_length_m;
-  while (t < end) {
-    segments_.push_back({t, std::min(t + drill_segment_s_, end), true, md, toolface});
-    breakpoints_.push_back(t);
-    breakpoints_.push_back(t + config_.ramp_s);
-    breakpoints_.push_back(t + drill_segment_s_ - config_.ramp_s);
-    t += drill_segment_s_;
-    md += config_.stand_length_m;
-    toolface += turns_per_stand;
-    if (t >= end) break;
-    segments_.push_back({t, std::min(t + config_.connection_s, end), false, md, toolface});
-    breakpoints_.push_back(t);
-    t += config_.connection_s;
-  }
-  for (const auto& episode : config_.vibration_episodes) {
+  auto& breakpoints = schedule_.breakpoints;
+  for (const auto& episode : episodes_) {
     const double ramp = episode_ramp(episode, config_.ramp_s);
     for (double b :
          {episode.start_s, episode.start_s + ramp, episode.end_s - ramp, episode.end_s}) {
-      breakpoints_.push_back(b);
+      breakpoints.push_back(b);
     }
   }
-  std::sort(breakpoints_.begin(), breakpoints_.end());
+  std::sort(breakpoints.begin(), breakpoints.end());
 
   // Phases: the segments cut by the vibration episodes.
   std::vector<double> cuts = {0.0, end};
-  for (const auto& s : segments_) cuts.push_back(s.start_s);
-  for (const auto& e : config_.vibration_episodes) {
+  for (const auto& s : schedule_.segments) cuts.push_back(s.start_s);
+  for (const auto& e : episodes_) {
     cuts.push_back(std::clamp(e.start_s, 0.0, end));
     cuts.push_back(std::clamp(e.end_s, 0.0, end));
   }
@@ -129,10 +119,12 @@ DrillingMotion::DrillingMotion(const ScenarioConfig& config)
     const double b = cuts[i + 1];
     const double mid = 0.5 * (a + b);
     bool vibrating = false;
-    for (const auto& e : config_.vibration_episodes) {
+    for (const auto& e : episodes_) {
       vibrating = vibrating || (mid >= e.start_s && mid < e.end_s);
     }
-    const Segment& segment = segment_at(mid);
+    const DrillSegment& segment = segment_at(mid);
+    const bool still =
+        segment.kind == SegmentKind::kStatic || segment.kind == SegmentKind::kConnection;
     ScenarioPhase phase;
     phase.start_s = a;
     phase.end_s = b;
@@ -140,13 +132,13 @@ DrillingMotion::DrillingMotion(const ScenarioConfig& config)
     if (vibrating) {
       phase.name = "vibration";
       scales = &config_.vibration_noise;
-    } else if (segment.drilling) {
-      phase.name = "drilling";
+    } else if (!still) {
+      phase.name = segment.kind == SegmentKind::kOrient ? "orienting" : "drilling";
       scales = &config_.drilling_noise;
     } else {
-      phase.name = segment.start_s == 0.0 ? "static" : "connection";
+      phase.name = segment.kind == SegmentKind::kStatic ? "static" : "connection";
     }
-    phase.stationary = !vibrating && !segment.drilling;
+    phase.stationary = !vibrating && still;
     phase.gyro_noise_scale = scales->gyro;
     phase.accel_noise_scale = scales->accel;
     if (!phases_.empty() && phases_.back().name == phase.name) {
@@ -158,45 +150,43 @@ DrillingMotion::DrillingMotion(const ScenarioConfig& config)
   segment_cursor_ = 0;
 }
 
-const DrillingMotion::Segment& DrillingMotion::segment_at(double t_s) const {
-  std::size_t i = std::min(segment_cursor_, segments_.size() - 1);
-  if (t_s >= segments_[i].start_s && t_s < segments_[i].end_s) return segments_[i];
-  if (i + 1 < segments_.size() && t_s >= segments_[i + 1].start_s && t_s < segments_[i + 1].end_s) {
+const DrillSegment& DrillingMotion::segment_at(double t_s) const {
+  const auto& segments = schedule_.segments;
+  std::size_t i = std::min(segment_cursor_, segments.size() - 1);
+  if (t_s >= segments[i].start_s && t_s < segments[i].end_s) return segments[i];
+  if (i + 1 < segments.size() && t_s >= segments[i + 1].start_s && t_s < segments[i + 1].end_s) {
     segment_cursor_ = i + 1;
-    return segments_[i + 1];
+    return segments[i + 1];
   }
-  const auto it = std::upper_bound(segments_.begin(), segments_.end(), t_s,
-                                   [](double t, const Segment& s) { return t < s.start_s; });
-  i = it == segments_.begin() ? 0 : static_cast<std::size_t>(it - segments_.begin()) - 1;
+  const auto it = std::upper_bound(segments.begin(), segments.end(), t_s,
+                                   [](double t, const DrillSegment& s) { return t < s.start_s; });
+  i = it == segments.begin() ? 0 : static_cast<std::size_t>(it - segments.begin()) - 1;
   segment_cursor_ = i;
-  return segments_[i];
+  return segments[i];
 }
 
-void DrillingMotion::profile(double tau, double duration, double& position, double& speed,
-                             double& acceleration) const {
-  const double ramp = config_.ramp_s;
-  if (ramp <= 0.0) {
-    position = tau;
-    speed = 1.0;
-    acceleration = 0.0;
-    return;
-  }
-  const double from_end = duration - tau;
-  if (tau < ramp) {
-    const double arg = kPi * tau / ramp;
-    position = 0.5 * tau - ramp / (2.0 * kPi) * std::sin(arg);
-    speed = 0.5 * (1.0 - std::cos(arg));
-    acceleration = 0.5 * kPi / ramp * std::sin(arg);
-  } else if (from_end < ramp) {
-    const double arg = kPi * from_end / ramp;
-    const double total = duration - ramp;  // unit-speed length: duration - 2 ramp + 2 ramp / 2
-    position = total - (0.5 * from_end - ramp / (2.0 * kPi) * std::sin(arg));
-    speed = 0.5 * (1.0 - std::cos(arg));
-    acceleration = -0.5 * kPi / ramp * std::sin(arg);
-  } else {
-    position = 0.5 * ramp + (tau - ramp);
-    speed = 1.0;
-    acceleration = 0.0;
+template <typename F>
+void DrillingMotion::for_episodes_in(double t0_s, double t1_s, F&& f) const {
+  const auto overlaps = [&](const VibrationEpisodeConfig& e) {
+    return t1_s > e.start_s && t0_s < e.end_s;
+  };
+  const auto groups = {std::pair<std::size_t, std::size_t>{0, time_episodes_},
+                       std::pair<std::size_t, std::size_t>{time_episodes_, episodes_.size()}};
+  for (const auto& [first, last] : groups) {
+    const auto begin = episodes_.begin() + static_cast<std::ptrdiff_t>(first);
+    const auto end = episodes_.begin() + static_cast<std::ptrdiff_t>(last);
+    if (!episode_groups_disjoint_) {
+      for (auto it = begin; it != end; ++it) {
+        if (overlaps(*it)) f(*it);
+      }
+      continue;
+    }
+    // Ascending and disjoint: the ends ascend too; start at the first ending after t0_s.
+    auto it = std::upper_bound(
+        begin, end, t0_s, [](double t, const VibrationEpisodeConfig& e) { return t < e.end_s; });
+    for (; it != end && it->start_s < t1_s; ++it) {
+      if (overlaps(*it)) f(*it);
+    }
   }
 }
 
@@ -219,65 +209,53 @@ DrillingMotion::Kinematics DrillingMotion::kinematics(double t_s) const {
 
 DrillingMotion::Kinematics DrillingMotion::kinematics(double t_s, const EarthFactors* earth,
                                                       EarthFactors* computed) const {
-  const Segment& segment = segment_at(t_s);
+  const DrillSegment& segment = segment_at(t_s);
   double md = segment.start_md_m;
   double md_rate = 0.0;
   double md_acceleration = 0.0;
   double toolface = segment.start_toolface_rad;
   double toolface_rate = 0.0;
   Kinematics k;
-  if (segment.drilling) {
-    double position = 0.0;
-    double speed = 0.0;
-    double acceleration = 0.0;
-    profile(t_s - segment.start_s, drill_segment_s_, position, speed, acceleration);
-    md += config_.rop_mps * position;
-    md_rate = config_.rop_mps * speed;
-    md_acceleration = config_.rop_mps * acceleration;
-    toolface += config_.rotation_radps * position;
-    toolface_rate = config_.rotation_radps * speed;
+  if (segment.kind == SegmentKind::kDrill) {
+    const RampProfile profile =
+        ramp_profile(t_s - segment.start_s, segment.profile_s, config_.ramp_s);
+    md += segment.rop_mps * profile.position;
+    md_rate = segment.rop_mps * profile.speed;
+    md_acceleration = segment.rop_mps * profile.acceleration;
+    toolface += segment.rotation_radps * profile.position;
+    toolface_rate = segment.rotation_radps * profile.speed;
     k.rop_mps = md_rate;
+  } else if (segment.kind == SegmentKind::kOrient) {
+    const double arg = kPi * (t_s - segment.start_s) / segment.profile_s;
+    toolface += segment.toolface_change_rad * 0.5 * (1.0 - std::cos(arg));
+    toolface_rate = segment.toolface_change_rad * 0.5 * kPi / segment.profile_s * std::sin(arg);
   }
-  for (const auto& episode : config_.vibration_episodes) {
+  // (An inactive episode would add exact zeros: skipping it changes no bit.)
+  for_episodes_in(t_s, t_s, [&](const VibrationEpisodeConfig& episode) {
     const AxialVibration v = axial_vibration(episode, episode_ramp(episode, config_.ramp_s), t_s);
     md += v.displacement;
     md_rate += v.velocity;
     md_acceleration += v.acceleration;
-  }
+  });
   k.measured_depth_m = md;
 
-  // Path point at md: local offsets p, tangent, high side, inclination, curvature.
-  const WellPathConfig& well = config_.well;
-  const double sin_a = sin_azimuth_;
-  const double cos_a = cos_azimuth_;
-  double inclination = 0.0;
-  double curvature = 0.0;
-  Eigen::Vector3d p;
-  if (md <= well.kickoff_md_m) {
-    p = Eigen::Vector3d(0.0, 0.0, -md);
-  } else {
-    const double radius = 1.0 / well.build_rate_rad_per_m;
-    const double build_md = std::min(md, build_end_md_m_) - well.kickoff_md_m;
-    const double theta = build_md * well.build_rate_rad_per_m;
-    const double horizontal = radius * (1.0 - std::cos(theta));
-    const double vertical = well.kickoff_md_m + radius * std::sin(theta);
-    p = Eigen::Vector3d(horizontal * sin_a, horizontal * cos_a, -vertical);
-    inclination = theta;
-    if (md < build_end_md_m_) {
-      curvature = well.build_rate_rad_per_m;
-    } else {
-      const double hold = md - build_end_md_m_;
-      p += hold *
-           Eigen::Vector3d(std::sin(theta) * sin_a, std::sin(theta) * cos_a, -std::cos(theta));
-    }
-  }
+  // Path point at md: local offsets p, tangent, high side, inclination, build and turn rates.
+  const WellPathPoint point = path_.at(md);
+  const double sin_a = std::sin(point.azimuth_rad);
+  const double cos_a = std::cos(point.azimuth_rad);
+  const double inclination = point.inclination_rad;
+  const double curvature = point.build_rate_rad_per_m;
+  const double turn = point.turn_rate_rad_per_m;
+  const Eigen::Vector3d& p = point.offset_enu_m;
   const double sin_i = std::sin(inclination);
   const double cos_i = std::cos(inclination);
   const Eigen::Vector3d tangent(sin_i * sin_a, sin_i * cos_a, -cos_i);
   const Eigen::Vector3d high_side(cos_i * sin_a, cos_i * cos_a, sin_i);
+  const Eigen::Vector3d right(cos_a, -sin_a, 0.0);
   const Eigen::Vector3d p_dot = tangent * md_rate;
-  const Eigen::Vector3d p_ddot =
-      tangent * md_acceleration + high_side * (curvature * md_rate * md_rate);
+  Eigen::Vector3d p_ddot = tangent * md_acceleration + high_side * (curvature * md_rate * md_rate);
+  // Only with a turn (without one the sums are skipped: the plane well's numbers are unchanged).
+  if (turn != 0.0) p_ddot += right * (sin_i * turn * md_rate * md_rate);
 
   // Geodetic position and the exact derivatives of v_E, v_N, v_U.
   k.latitude_rad = site_.latitude_rad + p.y() / meridian0_plus_h_;
@@ -306,15 +284,19 @@ DrillingMotion::Kinematics DrillingMotion::kinematics(double t_s, const EarthFac
   // Attitude: C_nb = R_z(-A) R_x(I) C_0 R_z(TF) (ins/mwd_attitude.hpp), written with the
   // tangent z_b, the high side h and r = z_b x h = (cos A, -sin A, 0):
   // x_b = cos TF h + sin TF r, y_b = cos TF r - sin TF h; omega_nb_b = (dI sin TF, dI cos TF, dTF).
+  // With a turn: omega_nb_b gains A' md' (-sin I cos TF, sin I sin TF, cos I).
   const double sin_tf = std::sin(toolface);
   const double cos_tf = std::cos(toolface);
-  const Eigen::Vector3d right(cos_a, -sin_a, 0.0);
   k.C_nb.col(0) = cos_tf * high_side + sin_tf * right;
   k.C_nb.col(1) = cos_tf * right - sin_tf * high_side;
   k.C_nb.col(2) = tangent;
   const double inclination_rate = curvature * md_rate;
   k.omega_nb_b =
       Eigen::Vector3d(inclination_rate * sin_tf, inclination_rate * cos_tf, toolface_rate);
+  if (turn != 0.0) {
+    const double azimuth_rate = turn * md_rate;
+    k.omega_nb_b += azimuth_rate * Eigen::Vector3d(-sin_i * cos_tf, sin_i * sin_tf, cos_i);
+  }
   return k;
 }
 
@@ -336,13 +318,12 @@ TruthSample DrillingMotion::truth(double t_s) {
 }
 
 double DrillingMotion::local_rate_bound(double t0_s, double t1_s) const {
-  double rate =
-      std::abs(config_.rotation_radps) + (config_.ramp_s > 0.0 ? kPi / config_.ramp_s : 0.0);
-  for (const auto& e : config_.vibration_episodes) {
-    if (t1_s > e.start_s && t0_s < e.end_s) {
-      rate += 2.0 * kPi * e.frequency_hz + kPi / episode_ramp(e, config_.ramp_s);
-    }
-  }
+  double rate = schedule_.max_rotation_radps + (config_.ramp_s > 0.0 ? kPi / config_.ramp_s : 0.0);
+  // Orientation: toolface rate up to pi |change| / (2 orient_s) <= pi^2 / (2 orient_s).
+  if (schedule_.orients) rate += (kPi + 0.5 * kPi * kPi) / config_.orient_s;
+  for_episodes_in(t0_s, t1_s, [&](const VibrationEpisodeConfig& e) {
+    rate += 2.0 * kPi * e.frequency_hz + kPi / episode_ramp(e, config_.ramp_s);
+  });
   return rate;
 }
 
@@ -353,18 +334,19 @@ void DrillingMotion::integrate(double t0_s, double t1_s, Eigen::Vector3d& delta_
   static constexpr double kNodes[3] = {-kNode, 0.0, kNode};
   delta_theta_b.setZero();
   delta_v_b.setZero();
-  while (breakpoint_cursor_ < breakpoints_.size() && breakpoints_[breakpoint_cursor_] <= t0_s) {
+  const std::vector<double>& breakpoints = schedule_.breakpoints;
+  while (breakpoint_cursor_ < breakpoints.size() && breakpoints[breakpoint_cursor_] <= t0_s) {
     ++breakpoint_cursor_;
   }
-  if (breakpoint_cursor_ > 0 && breakpoints_[breakpoint_cursor_ - 1] > t0_s) {
+  if (breakpoint_cursor_ > 0 && breakpoints[breakpoint_cursor_ - 1] > t0_s) {
     breakpoint_cursor_ = static_cast<std::size_t>(
-        std::upper_bound(breakpoints_.begin(), breakpoints_.end(), t0_s) - breakpoints_.begin());
+        std::upper_bound(breakpoints.begin(), breakpoints.end(), t0_s) - breakpoints.begin());
   }
   double a = t0_s;
   std::size_t next = breakpoint_cursor_;
   while (a < t1_s) {
     const double b =
-        next < breakpoints_.size() && breakpoints_[next] < t1_s ? breakpoints_[next] : t1_s;
+        next < breakpoints.size() && breakpoints[next] < t1_s ? breakpoints[next] : t1_s;
     ++next;
     if (b <= a) continue;
     const int pieces = std::max(
@@ -400,22 +382,81 @@ void DrillingMotion::integrate(double t0_s, double t1_s, Eigen::Vector3d& delta_
 }
 
 nlohmann::json DrillingMotion::describe() const {
+  // The original form unless a feature beyond it is used (shipped scenarios are unchanged).
+  const bool extended =
+      !config_.stand_pattern.empty() || !path_.plane() || episodes_.size() > time_episodes_;
+  const auto kind_name = [](const DrillSegment& s) {
+    switch (s.kind) {
+      case SegmentKind::kDrill:
+        return "drilling";
+      case SegmentKind::kOrient:
+        return "orienting";
+      case SegmentKind::kConnection:
+        return "connection";
+      case SegmentKind::kStatic:
+        break;
+    }
+    return "static";
+  };
   nlohmann::json stands = nlohmann::json::array();
-  for (const auto& s : segments_) {
-    stands.push_back(
-        {{"start_s", s.start_s},
-         {"end_s", s.end_s},
-         {"kind", s.drilling ? "drilling" : (s.start_s == 0.0 ? "static" : "connection")},
-         {"start_md_m", s.start_md_m},
-         {"start_toolface_rad", s.start_toolface_rad}});
+  for (const auto& s : schedule_.segments) {
+    nlohmann::json entry = {{"start_s", s.start_s},
+                            {"end_s", s.end_s},
+                            {"kind", kind_name(s)},
+                            {"start_md_m", s.start_md_m},
+                            {"start_toolface_rad", s.start_toolface_rad}};
+    if (extended && s.kind == SegmentKind::kDrill) {
+      entry["rop_mps"] = s.rop_mps;
+      entry["rotation_radps"] = s.rotation_radps;
+    }
+    if (s.kind == SegmentKind::kOrient) entry["toolface_change_rad"] = s.toolface_change_rad;
+    if (s.pattern_index >= 0) entry["pattern_index"] = s.pattern_index;
+    stands.push_back(std::move(entry));
   }
-  return {{"model",
-           "drilling: well path vertical / circular build / hold in the plane of the well "
-           "azimuth, parameterised by measured depth; stands drilled with raised-cosine ramps "
-           "of ROP and rotation; axial vibration x = -(A/w^2) e(tau) sin(w tau)"},
-          {"build_end_md_m", build_end_md_m_},
-          {"drill_segment_s", drill_segment_s_},
-          {"segments", std::move(stands)}};
+  if (!extended) {
+    return {{"model",
+             "drilling: well path vertical / circular build / hold in the plane of the well "
+             "azimuth, parameterised by measured depth; stands drilled with raised-cosine ramps "
+             "of ROP and rotation; axial vibration x = -(A/w^2) e(tau) sin(w tau)"},
+            {"build_end_md_m", config_.well.kickoff_md_m + config_.well.target_inclination_rad /
+                                                               config_.well.build_rate_rad_per_m},
+            {"drill_segment_s", config_.stand_length_m / config_.rop_mps + config_.ramp_s},
+            {"segments", std::move(stands)}};
+  }
+  nlohmann::json sections = nlohmann::json::array();
+  for (double md : path_.section_start_md_m()) {
+    const WellPathPoint point = path_.at(md);
+    sections.push_back(
+        {{"start_md_m", md},
+         {"inclination_rad", point.inclination_rad},
+         {"azimuth_rad", point.azimuth_rad},
+         {"offset_enu_m", {point.offset_enu_m.x(), point.offset_enu_m.y(), point.offset_enu_m.z()}},
+         {"build_rate_rad_per_m", point.build_rate_rad_per_m},
+         {"turn_rate_rad_per_m", point.turn_rate_rad_per_m}});
+  }
+  nlohmann::json spans = nlohmann::json::array();
+  for (std::size_t i = time_episodes_; i < episodes_.size(); ++i) {
+    spans.push_back({{"start_s", episodes_[i].start_s},
+                     {"end_s", episodes_[i].end_s},
+                     {"axial_mps2", episodes_[i].axial_amplitude_mps2},
+                     {"frequency_hz", episodes_[i].frequency_hz}});
+  }
+  nlohmann::json out = {
+      {"model",
+       "drilling: well path of sections with constant build and turn rates in measured depth "
+       "(inclination and azimuth linear in md, closed-form positions), or vertical / build / "
+       "hold; stands drilled segment by segment (rotate or slide) with raised-cosine ramps of "
+       "ROP and rotation, a raised-cosine toolface orientation (depth still) before each slide; "
+       "axial vibration x = -(A/w^2) e(tau) sin(w tau) by time or while drilling a depth range"},
+      {"segments", std::move(stands)},
+      {"md_vibration_spans", std::move(spans)}};
+  if (path_.plane()) {
+    out["build_end_md_m"] = config_.well.kickoff_md_m +
+                            config_.well.target_inclination_rad / config_.well.build_rate_rad_per_m;
+  } else {
+    out["well_sections"] = std::move(sections);
+  }
+  return out;
 }
 
 }  // namespace stochnav::scenario_detail

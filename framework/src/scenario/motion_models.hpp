@@ -4,9 +4,11 @@
 #include <string_view>
 #include <vector>
 
+#include "drilling_schedule.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/scenario/true_motion.hpp"
 #include "stochnav/scenario/vibration.hpp"
+#include "stochnav/scenario/well_path.hpp"
 
 namespace stochnav::scenario_detail {
 
@@ -103,29 +105,23 @@ class DrillingMotion final : public TrueMotion {
                         EarthFactors* computed = nullptr) const;
 
  private:
-  struct Segment {
-    double start_s = 0.0;
-    double end_s = 0.0;
-    bool drilling = false;  // false: stationary (initial alignment or a connection)
-    double start_md_m = 0.0;
-    double start_toolface_rad = 0.0;
-  };
-  const Segment& segment_at(double t_s) const;
-  // Unit-speed raised-cosine profile of a drilling segment: position, speed, acceleration.
-  void profile(double tau_s, double duration_s, double& position, double& speed,
-               double& acceleration) const;
+  const DrillSegment& segment_at(double t_s) const;
   double local_rate_bound(double t0_s, double t1_s) const;
 
   DrillingConfig config_;
   SiteConfig site_;
-  double build_end_md_m_ = 0.0;
-  double sin_azimuth_ = 0.0;
-  double cos_azimuth_ = 0.0;
+  WellPath path_;
   double meridian0_plus_h_ = 0.0;
   double transverse0_plus_h_cos_ = 0.0;
-  double drill_segment_s_ = 0.0;
-  std::vector<Segment> segments_;
-  std::vector<double> breakpoints_;  // ascending times where the motion is not smooth
+  DrillSchedule schedule_;
+  // Calls f(episode) for the episodes overlapping (t0_s, t1_s) (t0_s == t1_s: active at t0_s),
+  // time episodes first, each group in its order.
+  template <typename F>
+  void for_episodes_in(double t0_s, double t1_s, F&& f) const;
+
+  std::vector<VibrationEpisodeConfig> episodes_;  // by time, then the depth-tied spans
+  std::size_t time_episodes_ = 0;                 // how many of episodes_ are by time
+  bool episode_groups_disjoint_ = true;           // each group ascending and not overlapping
   std::vector<ScenarioPhase> phases_;
   mutable std::size_t segment_cursor_ = 0;
   std::size_t breakpoint_cursor_ = 0;

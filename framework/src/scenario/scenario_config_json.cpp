@@ -319,31 +319,224 @@ NoiseScales parse_scales(ObjectReader& parent, std::string_view key) {
   return scales;
 }
 
+constexpr std::string_view kSectionForm =
+    "{\"length_m\": m > 0, \"build_rate_deg_per_30m\": x, \"turn_rate_deg_per_30m\": x}";
+
+WellPathConfig parse_well(const json& value, const std::string& pointer) {
+  ObjectReader w(value, pointer,
+                 "{\"kickoff_md_m\": m, \"build_rate_deg_per_30m\": x > 0, "
+                 "\"target_inclination_deg\": 0 < x <= 90, \"azimuth_deg\": x, "
+                 "\"turn_rate_deg_per_30m\": x} or {\"start\": {\"inclination_deg\", "
+                 "\"azimuth_deg\"}, \"sections\": [" +
+                     std::string(kSectionForm) + ", ...]}");
+  WellPathConfig well;
+  if (w.has("sections")) {
+    for (const char* key : {"kickoff_md_m", "build_rate_deg_per_30m", "target_inclination_deg",
+                            "azimuth_deg", "turn_rate_deg_per_30m"}) {
+      if (w.has(key)) {
+        fail(w.at(key), "cannot be combined with \"sections\"",
+             "either \"sections\" (with an optional \"start\") or the kickoff / build / target "
+             "form");
+      }
+    }
+    if (w.has("start")) {
+      ObjectReader start(w.get("start"), w.at("start"),
+                         "{\"inclination_deg\": 0..180, \"azimuth_deg\": x}");
+      const double inclination =
+          start.number("inclination_deg", "an inclination in deg, 0..180", Range::kAny, 0.0);
+      if (inclination < 0.0 || inclination > 180.0) {
+        fail(start.at("inclination_deg"), fmt::format("is {}", inclination),
+             "an inclination in deg, 0..180");
+      }
+      well.start_inclination_rad = inclination * kDeg;
+      well.start_azimuth_rad =
+          start.number("azimuth_deg", "an azimuth in deg", Range::kAny, 0.0) * kDeg;
+      start.finish();
+    }
+    const json& sections = w.get("sections");
+    if (!sections.is_array() || sections.empty()) {
+      fail(w.at("sections"),
+           sections.is_array() ? "is empty" : describe_type(sections) + ", not an array",
+           "a list of sections [" + std::string(kSectionForm) + ", ...]");
+    }
+    double inclination_deg = well.start_inclination_rad / kDeg;
+    for (std::size_t i = 0; i < sections.size(); ++i) {
+      const std::string at = w.at("sections") + "/" + std::to_string(i);
+      ObjectReader sr(sections[i], at, std::string(kSectionForm));
+      WellSectionConfig section;
+      section.length_m =
+          sr.number("length_m", "a measured-depth length in m > 0", Range::kPositive);
+      const double build = sr.number("build_rate_deg_per_30m",
+                                     "a build rate in deg/30 m (negative: drop)", Range::kAny, 0.0);
+      const double turn =
+          sr.number("turn_rate_deg_per_30m", "a turn rate in deg/30 m (positive: clockwise)",
+                    Range::kAny, 0.0);
+      sr.finish();
+      section.build_rate_rad_per_m = build * kDeg / 30.0;
+      section.turn_rate_rad_per_m = turn * kDeg / 30.0;
+      inclination_deg += build * section.length_m / 30.0;
+      // Inclination is linear in md: its end value decides (1e-9 deg of rounding allowed).
+      if (inclination_deg < -1e-9 || inclination_deg > 180.0 + 1e-9) {
+        fail(at, fmt::format("drives the inclination to {:.6g} deg at its end", inclination_deg),
+             "an inclination kept within 0..180 deg: a smaller build_rate_deg_per_30m or a "
+             "shorter length_m");
+      }
+      well.sections.push_back(section);
+    }
+    w.finish();
+    return well;
+  }
+  well.kickoff_md_m = w.number("kickoff_md_m", "a measured depth in m >= 0", Range::kNonNegative);
+  well.build_rate_rad_per_m =
+      w.number("build_rate_deg_per_30m", "a build rate in deg/30 m > 0", Range::kPositive) * kDeg /
+      30.0;
+  const double target =
+      w.number("target_inclination_deg", "an inclination in deg, 0 < x <= 90", Range::kPositive);
+  if (target > 90.0) {
+    fail(w.at("target_inclination_deg"), fmt::format("is {}", target),
+         "an inclination in deg, 0 < x <= 90");
+  }
+  well.target_inclination_rad = target * kDeg;
+  well.azimuth_rad = w.number("azimuth_deg", "an azimuth in deg", Range::kAny) * kDeg;
+  well.turn_rate_rad_per_m =
+      w.number("turn_rate_deg_per_30m", "a turn rate in deg/30 m in the build", Range::kAny, 0.0) *
+      kDeg / 30.0;
+  w.finish();
+  return well;
+}
+
+// "stand_pattern": the segments of every stand; defaults from rop_mph and rotation_rpm.
+void parse_stand_pattern(ObjectReader& r, DrillingConfig& d) {
+  constexpr std::string_view kForm =
+      "[{\"mode\": \"rotate\", \"length_m\": m, \"rpm\": x, \"rop_mph\": x} | {\"mode\": "
+      "\"slide\", \"length_m\": m, \"toolface_deg\": x, \"rop_mph\": x}, ...] with lengths "
+      "summing to stand_length_m";
+  const json& pattern = r.get("stand_pattern");
+  if (!pattern.is_array() || pattern.empty()) {
+    fail(r.at("stand_pattern"),
+         pattern.is_array() ? "is empty" : describe_type(pattern) + ", not an array", kForm);
+  }
+  double total = 0.0;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    const std::string at = r.at("stand_pattern") + "/" + std::to_string(i);
+    ObjectReader p(pattern[i], at,
+                   "{\"mode\": \"rotate\" | \"slide\", \"length_m\": m > 0, \"rop_mph\": x > 0, "
+                   "\"rpm\": x (rotate), \"toolface_deg\": x (slide)}");
+    StandSegmentConfig segment;
+    const std::string mode = p.string("mode", "\"rotate\" or \"slide\"");
+    if (mode == "rotate") {
+      segment.mode = DrillMode::kRotate;
+    } else if (mode == "slide") {
+      segment.mode = DrillMode::kSlide;
+    } else {
+      fail(p.at("mode"), fmt::format("is \"{}\"", mode), "\"rotate\" or \"slide\"");
+    }
+    segment.length_m = p.number("length_m", "a length in m > 0", Range::kPositive);
+    segment.rop_mps = d.rop_mps;
+    if (p.has("rop_mph")) {
+      segment.rop_mps =
+          p.number("rop_mph", "a rate of penetration in m/h > 0", Range::kPositive) * kMetrePerHour;
+    }
+    if (segment.mode == DrillMode::kSlide) {
+      if (p.has("rpm")) {
+        fail(p.at("rpm"), "is given for a slide segment",
+             "no rpm in a slide (it holds toolface_deg); \"mode\": \"rotate\" to rotate");
+      }
+      segment.toolface_rad =
+          p.number("toolface_deg", "the toolface in deg held while sliding", Range::kAny) * kDeg;
+    } else {
+      if (p.has("toolface_deg")) {
+        fail(p.at("toolface_deg"), "is given for a rotate segment",
+             "toolface_deg only in a slide segment (\"mode\": \"slide\")");
+      }
+      segment.rotation_radps = d.rotation_radps;
+      if (p.has("rpm")) {
+        segment.rotation_radps =
+            p.number("rpm", "a rotation rate in rpm", Range::kAny) * 2.0 * std::numbers::pi / 60.0;
+      }
+    }
+    if (!(segment.length_m > segment.rop_mps * d.ramp_s)) {
+      fail(p.at("length_m"),
+           fmt::format("is {} m: the ramps alone drill more at this ROP", segment.length_m),
+           "length_m > rop * ramp_s (a longer segment, a lower ROP or a shorter ramp_s)");
+    }
+    p.finish();
+    total += segment.length_m;
+    d.stand_pattern.push_back(segment);
+  }
+  if (std::abs(total - d.stand_length_m) > 1e-9 * d.stand_length_m) {
+    fail(r.at("stand_pattern"),
+         fmt::format("has lengths summing to {} m, not stand_length_m {} m", total,
+                     d.stand_length_m),
+         "segment lengths summing to stand_length_m (change a length_m or stand_length_m)");
+  }
+}
+
+// One vibration episode: by time {"start_s", "end_s", ...} or by depth {"start_md_m", ...}.
+void parse_episode(const json& value, const std::string& at, DrillingConfig& d) {
+  const bool by_depth =
+      value.is_object() && (value.contains("start_md_m") || value.contains("end_md_m"));
+  if (!by_depth) {
+    ObjectReader e(value, at,
+                   "{\"start_s\": s >= 0, \"end_s\": s > start_s, \"axial_g\": a >= 0, "
+                   "\"frequency_hz\": f > 0} or {\"start_md_m\", \"end_md_m\", ...}, ascending "
+                   "and not overlapping");
+    VibrationEpisodeConfig episode;
+    episode.start_s = e.number("start_s", "a time in s >= 0", Range::kNonNegative);
+    episode.end_s = e.number("end_s", "a time in s > start_s", Range::kPositive);
+    if (!(episode.end_s > episode.start_s)) {
+      fail(e.at("end_s"), fmt::format("is {}, not after start_s", episode.end_s),
+           "a time in s > start_s");
+    }
+    if (!d.vibration_episodes.empty() && episode.start_s < d.vibration_episodes.back().end_s) {
+      fail(e.at("start_s"), "overlaps the previous episode",
+           "episodes ascending and not overlapping");
+    }
+    episode.axial_amplitude_mps2 =
+        e.number("axial_g", "a peak axial acceleration in g >= 0", Range::kNonNegative) *
+        kStandardGravity;
+    episode.frequency_hz = e.number("frequency_hz", "a frequency in Hz > 0", Range::kPositive);
+    e.finish();
+    d.vibration_episodes.push_back(episode);
+    return;
+  }
+  ObjectReader e(value, at,
+                 "{\"start_md_m\": m >= 0, \"end_md_m\": m > start_md_m, \"axial_g\": a >= 0, "
+                 "\"frequency_hz\": f > 0}, depth episodes ascending and not overlapping");
+  for (const char* key : {"start_s", "end_s"}) {
+    if (e.has(key)) {
+      fail(e.at(key), "is a time in a depth episode",
+           "either start_s / end_s (by time) or start_md_m / end_md_m (by depth)");
+    }
+  }
+  MdVibrationEpisodeConfig episode;
+  episode.start_md_m = e.number("start_md_m", "a measured depth in m >= 0", Range::kNonNegative);
+  episode.end_md_m = e.number("end_md_m", "a measured depth in m > start_md_m", Range::kPositive);
+  if (!(episode.end_md_m > episode.start_md_m)) {
+    fail(e.at("end_md_m"), fmt::format("is {}, not beyond start_md_m", episode.end_md_m),
+         "a measured depth in m > start_md_m");
+  }
+  if (!d.md_vibration_episodes.empty() &&
+      episode.start_md_m < d.md_vibration_episodes.back().end_md_m) {
+    fail(e.at("start_md_m"), "overlaps the previous depth episode",
+         "depth episodes ascending and not overlapping");
+  }
+  episode.axial_amplitude_mps2 =
+      e.number("axial_g", "a peak axial acceleration in g >= 0", Range::kNonNegative) *
+      kStandardGravity;
+  episode.frequency_hz = e.number("frequency_hz", "a frequency in Hz > 0", Range::kPositive);
+  e.finish();
+  d.md_vibration_episodes.push_back(episode);
+}
+
 DrillingConfig parse_drilling(const json& value, const std::string& pointer) {
   ObjectReader r(value, pointer,
                  "{\"well\": {...}, \"start_md_m\", \"duration_s\", \"initial_static_s\", "
                  "\"rop_mph\", \"rotation_rpm\", \"initial_toolface_deg\", \"stand_length_m\", "
-                 "\"connection_s\", \"ramp_s\", \"vibration_episodes\", \"noise_scales\"}");
+                 "\"connection_s\", \"ramp_s\", \"stand_pattern\", \"orient_s\", "
+                 "\"vibration_episodes\", \"noise_scales\"}");
   DrillingConfig d;
-  {
-    ObjectReader w(r.get("well"), r.at("well"),
-                   "{\"kickoff_md_m\": m, \"build_rate_deg_per_30m\": x > 0, "
-                   "\"target_inclination_deg\": 0 < x <= 90, \"azimuth_deg\": x}");
-    d.well.kickoff_md_m =
-        w.number("kickoff_md_m", "a measured depth in m >= 0", Range::kNonNegative);
-    d.well.build_rate_rad_per_m =
-        w.number("build_rate_deg_per_30m", "a build rate in deg/30 m > 0", Range::kPositive) *
-        kDeg / 30.0;
-    const double target =
-        w.number("target_inclination_deg", "an inclination in deg, 0 < x <= 90", Range::kPositive);
-    if (target > 90.0) {
-      fail(w.at("target_inclination_deg"), fmt::format("is {}", target),
-           "an inclination in deg, 0 < x <= 90");
-    }
-    d.well.target_inclination_rad = target * kDeg;
-    d.well.azimuth_rad = w.number("azimuth_deg", "an azimuth in deg", Range::kAny) * kDeg;
-    w.finish();
-  }
+  d.well = parse_well(r.get("well"), r.at("well"));
   d.start_md_m = r.number("start_md_m", "a measured depth in m >= 0", Range::kNonNegative, 0.0);
   d.duration_s = r.number("duration_s", "a duration in s > 0", Range::kPositive);
   d.initial_static_s =
@@ -358,9 +551,18 @@ DrillingConfig parse_drilling(const json& value, const std::string& pointer) {
   d.stand_length_m = r.number("stand_length_m", "a stand length in m > 0", Range::kPositive);
   d.connection_s = r.number("connection_s", "a duration in s >= 0", Range::kNonNegative);
   d.ramp_s = r.number("ramp_s", "a ramp duration in s > 0", Range::kPositive, 10.0);
-  if (!(d.stand_length_m > d.rop_mps * d.ramp_s)) {
+  if (r.has("stand_pattern")) {
+    parse_stand_pattern(r, d);
+  } else if (!(d.stand_length_m > d.rop_mps * d.ramp_s)) {
     fail(r.at("ramp_s"), fmt::format("is {} s: the ramps alone drill more than a stand", d.ramp_s),
          "ramp_s < stand_length_m / rop");
+  }
+  if (r.has("orient_s")) {
+    if (d.stand_pattern.empty()) {
+      fail(r.at("orient_s"), "is given without \"stand_pattern\"",
+           "orient_s only with a stand_pattern (remove it)");
+    }
+    d.orient_s = r.number("orient_s", "an orientation pause in s > 0", Range::kPositive);
   }
   if (r.has("vibration_episodes")) {
     const json& episodes = r.get("vibration_episodes");
@@ -369,27 +571,7 @@ DrillingConfig parse_drilling(const json& value, const std::string& pointer) {
            "[{\"start_s\", \"end_s\", \"axial_g\", \"frequency_hz\"}, ...]");
     }
     for (std::size_t i = 0; i < episodes.size(); ++i) {
-      const std::string at = r.at("vibration_episodes") + "/" + std::to_string(i);
-      ObjectReader e(episodes[i], at,
-                     "{\"start_s\": s >= 0, \"end_s\": s > start_s, \"axial_g\": a >= 0, "
-                     "\"frequency_hz\": f > 0}, ascending and not overlapping");
-      VibrationEpisodeConfig episode;
-      episode.start_s = e.number("start_s", "a time in s >= 0", Range::kNonNegative);
-      episode.end_s = e.number("end_s", "a time in s > start_s", Range::kPositive);
-      if (!(episode.end_s > episode.start_s)) {
-        fail(e.at("end_s"), fmt::format("is {}, not after start_s", episode.end_s),
-             "a time in s > start_s");
-      }
-      if (!d.vibration_episodes.empty() && episode.start_s < d.vibration_episodes.back().end_s) {
-        fail(e.at("start_s"), "overlaps the previous episode",
-             "episodes ascending and not overlapping");
-      }
-      episode.axial_amplitude_mps2 =
-          e.number("axial_g", "a peak axial acceleration in g >= 0", Range::kNonNegative) *
-          kStandardGravity;
-      episode.frequency_hz = e.number("frequency_hz", "a frequency in Hz > 0", Range::kPositive);
-      e.finish();
-      d.vibration_episodes.push_back(episode);
+      parse_episode(episodes[i], r.at("vibration_episodes") + "/" + std::to_string(i), d);
     }
   }
   if (r.has("noise_scales")) {
@@ -402,6 +584,40 @@ DrillingConfig parse_drilling(const json& value, const std::string& pointer) {
   }
   r.finish();
   return d;
+}
+
+// aids: the timing of the aids.csv rows (a rig's clock, latency, gaps).
+void parse_aid_timing(ObjectReader& aids, AidConfig& config) {
+  config.clock_offset_s =
+      aids.number("clock_offset_s", "a clock offset in s, |x| < 1", Range::kAny, 0.0);
+  if (!(std::abs(config.clock_offset_s) < 1.0)) {
+    fail(aids.at("clock_offset_s"), fmt::format("is {}", config.clock_offset_s),
+         "a clock offset in s, |x| < 1");
+  }
+  config.latency_s = aids.number("latency_s", "a latency in s >= 0", Range::kNonNegative, 0.0);
+  if (!aids.has("dropouts")) return;
+  constexpr std::string_view kForm =
+      "[{\"start_s\": s >= 0, \"end_s\": s > start_s}, ...] ascending and not overlapping";
+  const json& dropouts = aids.get("dropouts");
+  if (!dropouts.is_array()) {
+    fail(aids.at("dropouts"), describe_type(dropouts) + ", not an array", kForm);
+  }
+  for (std::size_t i = 0; i < dropouts.size(); ++i) {
+    const std::string at = aids.at("dropouts") + "/" + std::to_string(i);
+    ObjectReader d(dropouts[i], at, std::string(kForm));
+    const double start = d.number("start_s", "a time in s >= 0", Range::kNonNegative);
+    const double end = d.number("end_s", "a time in s > start_s", Range::kNonNegative);
+    if (!(end > start)) {
+      fail(d.at("end_s"), fmt::format("is {}, not after start_s {}", end, start),
+           "a time in s > start_s");
+    }
+    if (!config.dropouts.empty() && start <= config.dropouts.back()[1]) {
+      fail(d.at("start_s"), "overlaps or touches the previous dropout",
+           "dropouts ascending and not overlapping (merge them into one)");
+    }
+    d.finish();
+    config.dropouts.push_back({start, end});
+  }
 }
 
 void check_rate_divides(ObjectReader& r, std::string_view key, double rate, double imu_rate) {
@@ -481,7 +697,8 @@ ScenarioConfig parse(const json& value) {
   if (r.has("aids")) {
     ObjectReader aids(r.get("aids"), r.at("aids"),
                       "{\"depth_scale_error\": x, \"depth_noise_m\": s >= 0, "
-                      "\"rop_noise_mph\": s >= 0}");
+                      "\"rop_noise_mph\": s >= 0, \"clock_offset_s\": |x| < 1, "
+                      "\"latency_s\": s >= 0, \"dropouts\": [{\"start_s\", \"end_s\"}, ...]}");
     config.aids.depth_scale_error =
         aids.number("depth_scale_error", "a relative error (1e-3 = 0.1 %)", Range::kAny, 0.0);
     config.aids.depth_noise_m =
@@ -489,6 +706,7 @@ ScenarioConfig parse(const json& value) {
     config.aids.rop_noise_mps =
         aids.number("rop_noise_mph", "a 1-sigma in m/h >= 0", Range::kNonNegative, 0.0) *
         kMetrePerHour;
+    parse_aid_timing(aids, config.aids);
     aids.finish();
   }
   for (const char* key : {"noise_variance_scale", "moving_noise_variance_scale"}) {
@@ -542,6 +760,29 @@ json sensor_json(const SensorErrorConfig& sensor, bool gyro) {
       sensor.turn_on_bias_sigma / factor;
   out["scale_factor_ppm"] = scale;
   return out;
+}
+
+json well_json(const WellPathConfig& well) {
+  if (well.sections.empty()) {
+    json out = {{"kickoff_md_m", well.kickoff_md_m},
+                {"build_rate_deg_per_30m", well.build_rate_rad_per_m * 30.0 / kDeg},
+                {"target_inclination_deg", well.target_inclination_rad / kDeg},
+                {"azimuth_deg", well.azimuth_rad / kDeg}};
+    if (well.turn_rate_rad_per_m != 0.0) {
+      out["turn_rate_deg_per_30m"] = well.turn_rate_rad_per_m * 30.0 / kDeg;
+    }
+    return out;
+  }
+  json sections = json::array();
+  for (const auto& s : well.sections) {
+    sections.push_back({{"length_m", s.length_m},
+                        {"build_rate_deg_per_30m", s.build_rate_rad_per_m * 30.0 / kDeg},
+                        {"turn_rate_deg_per_30m", s.turn_rate_rad_per_m * 30.0 / kDeg}});
+  }
+  return {{"start",
+           {{"inclination_deg", well.start_inclination_rad / kDeg},
+            {"azimuth_deg", well.start_azimuth_rad / kDeg}}},
+          {"sections", sections}};
 }
 
 std::string_view motion_name(TableMotion motion) {
@@ -602,6 +843,16 @@ json to_json(const ScenarioConfig& config) {
   out["aids"] = {{"depth_scale_error", config.aids.depth_scale_error},
                  {"depth_noise_m", config.aids.depth_noise_m},
                  {"rop_noise_mph", config.aids.rop_noise_mps / kMetrePerHour}};
+  // The timing keys only when used (echoes of configurations without them are unchanged).
+  if (config.aids.clock_offset_s != 0.0) out["aids"]["clock_offset_s"] = config.aids.clock_offset_s;
+  if (config.aids.latency_s != 0.0) out["aids"]["latency_s"] = config.aids.latency_s;
+  if (!config.aids.dropouts.empty()) {
+    json dropouts = json::array();
+    for (const auto& d : config.aids.dropouts) {
+      dropouts.push_back({{"start_s", d[0]}, {"end_s", d[1]}});
+    }
+    out["aids"]["dropouts"] = dropouts;
+  }
   if (config.vibration_table) {
     const auto& t = *config.vibration_table;
     json phases = json::array();
@@ -643,11 +894,13 @@ json to_json(const ScenarioConfig& config) {
     const auto scales = [](const NoiseScales& s) {
       return json{{"gyro", s.gyro}, {"accel", s.accel}};
     };
-    out["drilling"] = {{"well",
-                        {{"kickoff_md_m", d.well.kickoff_md_m},
-                         {"build_rate_deg_per_30m", d.well.build_rate_rad_per_m * 30.0 / kDeg},
-                         {"target_inclination_deg", d.well.target_inclination_rad / kDeg},
-                         {"azimuth_deg", d.well.azimuth_rad / kDeg}}},
+    for (const auto& e : d.md_vibration_episodes) {
+      episodes.push_back({{"start_md_m", e.start_md_m},
+                          {"end_md_m", e.end_md_m},
+                          {"axial_g", e.axial_amplitude_mps2 / kStandardGravity},
+                          {"frequency_hz", e.frequency_hz}});
+    }
+    out["drilling"] = {{"well", well_json(d.well)},
                        {"start_md_m", d.start_md_m},
                        {"duration_s", d.duration_s},
                        {"initial_static_s", d.initial_static_s},
@@ -662,6 +915,22 @@ json to_json(const ScenarioConfig& config) {
                         {{"static", scales(d.static_noise)},
                          {"drilling", scales(d.drilling_noise)},
                          {"vibration", scales(d.vibration_noise)}}}};
+    if (!d.stand_pattern.empty()) {
+      json pattern = json::array();
+      for (const auto& p : d.stand_pattern) {
+        json segment = {{"mode", p.mode == DrillMode::kSlide ? "slide" : "rotate"},
+                        {"length_m", p.length_m},
+                        {"rop_mph", p.rop_mps / kMetrePerHour}};
+        if (p.mode == DrillMode::kSlide) {
+          segment["toolface_deg"] = p.toolface_rad / kDeg;
+        } else {
+          segment["rpm"] = p.rotation_radps * 60.0 / (2.0 * std::numbers::pi);
+        }
+        pattern.push_back(std::move(segment));
+      }
+      out["drilling"]["stand_pattern"] = std::move(pattern);
+      out["drilling"]["orient_s"] = d.orient_s;
+    }
   }
   return out;
 }

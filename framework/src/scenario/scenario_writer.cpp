@@ -162,12 +162,25 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
       static_cast<std::uint64_t>(std::llround(rate / config.imu.truth_rate_hz));
   const auto aid_every = static_cast<std::uint64_t>(std::llround(rate / config.imu.aid_rate_hz));
   NormalGenerator aid_noise(derive_stream_seed(options.seed, 4000));
+  const AidConfig& timing = config.aids;
+  // With latency the readings come from a second copy of the motion, so the one that integrates
+  // the IMU is queried exactly as without it.
+  const std::unique_ptr<TrueMotion> delayed_motion =
+      timing.latency_s > 0.0 ? make_true_motion(run_config, options.seed) : nullptr;
   const auto append_aid = [&](const TruthSample& t) {
-    const double depth = t.measured_depth_m * (1.0 + config.aids.depth_scale_error) +
+    TruthSample delayed;
+    if (delayed_motion) delayed = delayed_motion->truth(std::max(0.0, t.t_s - timing.latency_s));
+    const TruthSample& read = delayed_motion ? delayed : t;
+    const double depth = read.measured_depth_m * (1.0 + config.aids.depth_scale_error) +
                          config.aids.depth_noise_m * aid_noise();
-    const double rop = t.rop_mps + config.aids.rop_noise_mps * aid_noise();
-    fmt::format_to(std::back_inserter(aids.buffer()), "{},{},{},{},{},{}", t.t_s, depth,
-                   rop * kMpsToMph, t.stationary ? 1 : 0, t.measured_depth_m,
+    const double rop = read.rop_mps + config.aids.rop_noise_mps * aid_noise();
+    // A dropped row still draws its noise: the other rows are those of the run without gaps.
+    const bool dropped = std::any_of(timing.dropouts.begin(), timing.dropouts.end(),
+                                     [&](const auto& d) { return t.t_s >= d[0] && t.t_s <= d[1]; });
+    if (dropped) return;
+    const double written_t = timing.clock_offset_s != 0.0 ? t.t_s + timing.clock_offset_s : t.t_s;
+    fmt::format_to(std::back_inserter(aids.buffer()), "{},{},{},{},{},{}", written_t, depth,
+                   rop * kMpsToMph, read.stationary ? 1 : 0, t.measured_depth_m,
                    t.rop_mps * kMpsToMph);
     // The channel at the aid time itself (the IMU sampler reads it at interval midpoints).
     for (const auto& channel : channels) {
@@ -244,6 +257,14 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
                "N(0, rop_noise^2); zupt = 1 when the tool is stationary; then the true values; "
                "then the auxiliary channels that the aux_sensitivity terms read (their profile "
                "at t, in the channel's units, e.g. degC)"}}}};
+  if (timing.clock_offset_s != 0.0 || timing.latency_s > 0.0 || !timing.dropouts.empty()) {
+    document["files"]["aids.csv"]["timing"] = fmt::format(
+        "rows are sampled at true times k / aid_rate_hz; t = true time + clock_offset_s ({} s); "
+        "measured_depth_m, rop_mph and zupt are the readings of true time t_true - latency_s "
+        "({} s, from 0 at the start); the *_true columns and the channels are at t_true; no rows "
+        "at true times inside the {} dropouts",
+        timing.clock_offset_s, timing.latency_s, timing.dropouts.size());
+  }
   constexpr double kDegPerHour = std::numbers::pi / 180.0 / 3600.0;
   constexpr double kMilliG = 9.80665e-3;
   nlohmann::json gyro_bias = nlohmann::json::array();

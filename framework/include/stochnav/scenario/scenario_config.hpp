@@ -72,11 +72,31 @@ struct VibrationTableConfig {
   std::vector<TablePhaseConfig> phases;  ///< in time order
 };
 
+/// One section of a general well path: inclination and azimuth change linearly with measured
+/// depth (constant build and turn rates; both zero: a straight hold).
+struct WellSectionConfig {
+  double length_m = 0.0;              ///< measured-depth length of the section (m), > 0
+  double build_rate_rad_per_m = 0.0;  ///< dI/dmd (rad/m), any sign (negative: drop)
+  double turn_rate_rad_per_m = 0.0;   ///< dA/dmd (rad/m), any sign (positive: clockwise)
+};
+
+/// The well path, measured depth 0 at the wellhead. Two forms:
+/// - plane (sections empty): vertical to kickoff_md_m, a build at build_rate_rad_per_m (turning
+///   at turn_rate_rad_per_m, default 0 = in the plane of azimuth_rad) to target_inclination_rad,
+///   then a straight hold;
+/// - sections: from start_inclination_rad / start_azimuth_rad at md 0, the sections in order,
+///   then a straight hold beyond the last one. Inclination stays in [0, pi] (validated).
+/// The azimuth is a parameter of the path, defined also where the path is vertical: it fixes
+/// the high side there (the convention of ins/mwd_attitude.hpp's construction).
 struct WellPathConfig {
   double kickoff_md_m = 0.0;            ///< measured depth where the build starts (m)
   double build_rate_rad_per_m = 0.0;    ///< inclination gain per metre in the build (rad/m), > 0
   double target_inclination_rad = 0.0;  ///< hold inclination (rad), (0, pi/2]
   double azimuth_rad = 0.0;             ///< azimuth of the well plane (rad)
+  double turn_rate_rad_per_m = 0.0;     ///< azimuth change per metre in the build (rad/m)
+  std::vector<WellSectionConfig> sections;  ///< non-empty: the sections form
+  double start_inclination_rad = 0.0;       ///< sections form: inclination at md 0 (rad)
+  double start_azimuth_rad = 0.0;           ///< sections form: azimuth at md 0 (rad)
 };
 
 struct VibrationEpisodeConfig {
@@ -84,6 +104,27 @@ struct VibrationEpisodeConfig {
   double end_s = 0.0;                 ///< s, > start_s
   double axial_amplitude_mps2 = 0.0;  ///< peak axial acceleration (m/s^2)
   double frequency_hz = 0.0;          ///< axial vibration frequency (Hz)
+};
+
+/// Axial vibration tied to the drilled depth: active only while the tool drills (measured depth
+/// advancing; never in connections or orientation pauses) with its depth in [start_md_m,
+/// end_md_m); each such time span gets the raised-cosine envelope of a time episode.
+struct MdVibrationEpisodeConfig {
+  double start_md_m = 0.0;            ///< m
+  double end_md_m = 0.0;              ///< m, > start_md_m
+  double axial_amplitude_mps2 = 0.0;  ///< peak axial acceleration (m/s^2)
+  double frequency_hz = 0.0;          ///< axial vibration frequency (Hz)
+};
+
+enum class DrillMode { kRotate, kSlide };
+
+/// One segment of the per-stand drilling pattern.
+struct StandSegmentConfig {
+  DrillMode mode = DrillMode::kRotate;
+  double length_m = 0.0;        ///< measured depth drilled (m), > 0
+  double rop_mps = 0.0;         ///< rate of penetration (m/s), > 0
+  double rotation_radps = 0.0;  ///< rotate: toolface rotation rate (rad/s); slide: 0
+  double toolface_rad = 0.0;    ///< slide: the toolface held (rad); rotate: unused
 };
 
 struct NoiseScales {
@@ -103,6 +144,14 @@ struct DrillingConfig {
   double connection_s = 0.0;    ///< stationary time of a pipe connection (s)
   double ramp_s = 0.0;          ///< raised-cosine ramp of ROP and rotation (s)
   std::vector<VibrationEpisodeConfig> vibration_episodes;  ///< ascending, non-overlapping
+  /// Episodes by measured depth; ascending, non-overlapping among themselves.
+  std::vector<MdVibrationEpisodeConfig> md_vibration_episodes;
+  /// Each stand drills these segments in order (lengths sum to stand_length_m). Empty: one
+  /// segment per stand at rop_mps and rotation_radps, without orientation pause.
+  std::vector<StandSegmentConfig> stand_pattern;
+  /// Before each slide segment the tool stands still in depth while the toolface turns to the
+  /// slide toolface (shortest way) with a raised-cosine profile over orient_s (s), > 0.
+  double orient_s = 30.0;
   NoiseScales static_noise;     ///< scheduled-noise scales when stationary
   NoiseScales drilling_noise;   ///< when drilling without a vibration episode
   NoiseScales vibration_noise;  ///< during vibration episodes
@@ -112,6 +161,12 @@ struct AidConfig {
   double depth_scale_error = 0.0;  ///< relative error of the pipe tally (dimensionless)
   double depth_noise_m = 0.0;      ///< white error of each depth reading (m, 1-sigma)
   double rop_noise_mps = 0.0;      ///< white error of each ROP reading (m/s, 1-sigma)
+  /// aids.csv time = the sample's true time + clock_offset_s (s), |x| < 1: a rig clock off the
+  /// IMU's; samples are still taken on the aid_rate_hz grid of true time.
+  double clock_offset_s = 0.0;
+  double latency_s = 0.0;  ///< the readings written at true time t are those of t - latency_s (s)
+  /// True-time spans [start, end] (s) without aids.csv rows; ascending, not overlapping.
+  std::vector<std::array<double, 2>> dropouts;
 };
 
 struct ScenarioConfig {

@@ -13,7 +13,11 @@
 //                "scale_factor_ppm": [x, y, z] | v},
 //      "accel": {"noise": ..., "scheduled_noise": ..., "bias_mg": ..., "turn_on_bias_sigma_mg": s,
 //                "scale_factor_ppm": ...}},
-//    "aids": {"depth_scale_error": 1e-3, "depth_noise_m": 0.05, "rop_noise_mph": 0.5},
+//    "aids": {"depth_scale_error": 1e-3, "depth_noise_m": 0.05, "rop_noise_mph": 0.5,
+//             "clock_offset_s": 0.004,    // optional, |x| < 1: aids.csv t = true time + x
+//             "latency_s": 0.5,           // optional, >= 0: readings of true time t - latency
+//             "dropouts": [{"start_s": 9000, "end_s": 9300}]},  // optional: no rows at true
+//                                         // times in [start_s, end_s]; ascending, disjoint
 //    "noise_variance_scale": {"gyro": 10, "accel": 1},          // optional, default 1:
 //            factors on the VARIANCE of the scheduled noise (amplitude x sqrt(factor)) on top
 //            of the phase scales, in every phase (a noise-level sweep)
@@ -26,10 +30,24 @@
 //                             "components": 128},
 //                  "gyro_noise_scale": 1, "accel_noise_scale": 1}, ...]},
 //    "drilling": {"well": {"kickoff_md_m", "build_rate_deg_per_30m", "target_inclination_deg",
-//                          "azimuth_deg"},
+//                          "azimuth_deg", "turn_rate_deg_per_30m": 0}   // turn: in the build
+//              | {"start": {"inclination_deg": 0, "azimuth_deg": 0},     // at MD 0, optional
+//                 "sections": [{"length_m": L > 0, "build_rate_deg_per_30m": b,  // b, t: any
+//                               "turn_rate_deg_per_30m": t}, ...]},   // sign, default 0; the
+//            // path holds beyond the last section; inclination must stay in 0..180 deg
 //      "start_md_m", "duration_s", "initial_static_s", "rop_mph", "rotation_rpm",
 //      "initial_toolface_deg", "stand_length_m", "connection_s", "ramp_s",
-//      "vibration_episodes": [{"start_s", "end_s", "axial_g", "frequency_hz"}],
+//      "stand_pattern": [                                  // optional: every stand, in order
+//        {"mode": "slide", "length_m": 9.5, "toolface_deg": 75, "rop_mph": 15},
+//        {"mode": "rotate", "length_m": 19, "rpm": 100, "rop_mph": 40}],  // lengths sum to
+//            // stand_length_m; rop_mph defaults to rop_mph, rpm to rotation_rpm; a slide
+//            // holds toolface_deg (no rpm), after an orientation pause of orient_s
+//      "orient_s": 30,       // with stand_pattern: depth still, toolface to the slide's the
+//                            // shortest way with a raised-cosine profile (phase "orienting")
+//      "vibration_episodes": [{"start_s", "end_s", "axial_g", "frequency_hz"}      // by time
+//                           | {"start_md_m", "end_md_m", "axial_g", "frequency_hz"}],  // by
+//            // drilled depth: only while drilling (never in connections or orientation),
+//            // with the existing ramp at each edge of an active span
 //      "noise_scales": {"static": {"gyro": 1, "accel": 1}, "drilling": {...},
 //                       "vibration": {...}}},
 //    "comments": {...}}                                               // free text, ignored

@@ -17,6 +17,12 @@
 //                 noise has aux_sensitivity terms, their channels follow, one column each (the
 //                 term's `column`, e.g. temperature_c): its profile at t (model/noise_term.hpp),
 //                 the channel the simulated bias follows; without such terms the file is as above.
+//                 Aid timing (aids in scenario_config.hpp): rows are sampled at true times
+//                 k / aid_rate_hz; t is written as true time + clock_offset_s; the measured
+//                 columns and zupt are those of true time max(0, t - latency_s), the *_true
+//                 columns and the channels those of the true time; no rows at true times inside
+//                 a dropout (the aid noise is drawn for them all the same, so the other rows are
+//                 those of the run without dropouts).
 //   scenario.json the configuration with every default filled in and the seed used, the column
 //                 units, the turn-on biases drawn, the phases, the noise schedule (per phase and
 //                 axis, the exact noise model in force) and the derived truth parameters.

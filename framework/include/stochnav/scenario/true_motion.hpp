@@ -23,10 +23,11 @@ namespace stochnav {
 
 /// A time span of a scenario with one motion kind and one noise scale.
 struct ScenarioPhase {
-  std::string name;         ///< "static", "sine", "random", "drilling", "connection", "vibration"
-  double start_s = 0.0;     ///< s
-  double end_s = 0.0;       ///< s
-  bool stationary = false;  ///< the tool does not move relative to Earth (ZUPT valid)
+  /// "static", "sine", "random", "drilling", "orienting", "connection", "vibration"
+  std::string name;
+  double start_s = 0.0;            ///< s
+  double end_s = 0.0;              ///< s
+  bool stationary = false;         ///< the tool does not move relative to Earth (ZUPT valid)
   double gyro_noise_scale = 1.0;   ///< factor on the scheduled gyro noise
   double accel_noise_scale = 1.0;  ///< factor on the scheduled accelerometer noise
 };
