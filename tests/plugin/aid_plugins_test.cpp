@@ -7,10 +7,12 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "aid_test_support.hpp"
 #include "stochnav/core/angles.hpp"
@@ -233,13 +235,18 @@ TEST(RopAid, JacobianAndCovarianceAreTheDocumentedFormulas) {
   const NavState state = drilling_state();
   const Eigen::Matrix3d c_bn = state.q_nb.toRotationMatrix().transpose();
   const Eigen::Vector3d mean_v_n = state.q_nb * Eigen::Vector3d(0.002, 0.001, 0.02);
+  // The attitude columns are taken about the reference velocity (ImuSample::reference_v_n),
+  // which is not the INS's mean velocity; about the INS's they are the residual's derivative.
+  const Eigen::Vector3d reference_v_n = state.q_nb * Eigen::Vector3d(0.0, 0.0, 0.0167);
   for (const Map& map : {velocity_only_map(), drifting_map(state, 2.0)}) {
-    const ImuSample imu = interval_sample(2.0, 2.0, mean_v_n, map);
+    ImuSample imu = interval_sample(2.0, 2.0, mean_v_n, map);
+    imu.reference_v_n = reference_v_n;
     const Measurement m = measure(*aid, 2.0, state, imu);
     ASSERT_TRUE(m.ok);
     Eigen::MatrixXd h = c_bn * map;
-    h.block<3, 3>(0, cs::kAttitude) -= c_bn * skew(mean_v_n);
+    h.block<3, 3>(0, cs::kAttitude) -= c_bn * skew(reference_v_n);
     EXPECT_LT((m.h - h).cwiseAbs().maxCoeff(), 1e-12) << m.h;
+    imu.reference_v_n = mean_v_n;
     expect_jacobian_is_the_derivative(*aid, 2.0, state, imu);
     Eigen::Matrix3d r = c_bn * imu.interval.mean_velocity_noise_covariance * c_bn.transpose();
     r.diagonal() += Eigen::Vector3d(4e-8, 4e-8, 1e-6 + 2.0 * 0.005 * 0.005);  // sd / T = 0.005
@@ -285,13 +292,16 @@ TEST(PipeLengthAid, JacobianAndCovarianceAreTheDocumentedFormulas) {
   const NavState state = drilling_state();
   const Eigen::Vector3d axis_n = state.q_nb * Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d mean_v_n = state.q_nb * Eigen::Vector3d(0.002, 0.001, 0.02);
+  // About a reference velocity along the axis the axis' own attitude term vanishes; about the
+  // INS's mean velocity it is the residual's derivative.
   for (const Map& map : {velocity_only_map(), drifting_map(state, 2.0)}) {
-    const ImuSample imu = interval_sample(2.0, 2.0, mean_v_n, map);
+    ImuSample imu = interval_sample(2.0, 2.0, mean_v_n, map);
+    imu.reference_v_n = axis_n * 0.02;
     const Measurement m = measure(*aid, 2.0, state, imu);
     ASSERT_TRUE(m.ok);
-    Eigen::MatrixXd h = axis_n.transpose() * map;
-    h.block<1, 3>(0, cs::kAttitude) += mean_v_n.cross(axis_n).transpose();
+    const Eigen::MatrixXd h = axis_n.transpose() * map;
     EXPECT_LT((m.h - h).cwiseAbs().maxCoeff(), 1e-12) << m.h;
+    imu.reference_v_n = mean_v_n;
     expect_jacobian_is_the_derivative(*aid, 2.0, state, imu);
     const double scale_part = 1e-3 * 0.04;
     const double r = axis_n.dot(imu.interval.mean_velocity_noise_covariance * axis_n) +
@@ -299,6 +309,47 @@ TEST(PipeLengthAid, JacobianAndCovarianceAreTheDocumentedFormulas) {
     EXPECT_NEAR(m.r(0, 0), r, 1e-15);
     expect_positive_definite(m.r);
   }
+}
+
+// Aids that state the tool's velocity (the navigator's reference trajectory).
+TEST(AidPlugins, ZuptRopAndTallyStateTheVelocityTheyImply) {
+  const NavState state = drilling_state();
+  const Eigen::Vector3d axis_n = state.q_nb * Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d v_n;
+  double sigma = 0.0;
+
+  const AidData rop_data("aids.csv", {"t", "rop_mph"}, {{0.0, 1.0}, {36.0, 72.0}});
+  const auto rop = make_aid("rop", {{"sigma_rop_mps", 1e-3}}, rop_data);
+  EXPECT_TRUE(rop->states_velocity());
+  ASSERT_TRUE(rop->stated_velocity_n(1.0, state, v_n, sigma));
+  EXPECT_LT((v_n - axis_n * 0.02).norm(), 1e-15);  // 72 m/h along the axis
+  EXPECT_EQ(sigma, 1e-3);
+  EXPECT_FALSE(rop->stated_velocity_n(0.5, state, v_n, sigma));
+
+  // The tally states its mean rate over the rows of the last 60 s, with that rate's sigma.
+  std::vector<double> t, md;
+  for (int k = 0; k <= 100; ++k) {
+    t.push_back(k);
+    md.push_back(100.0 + 0.01 * k);
+  }
+  const AidData tally_data("aids.csv", {"t", "measured_depth_m"}, {t, md});
+  const auto tally =
+      make_aid("pipe_length", {{"sigma_scale", 0.0}, {"sigma_random_m", 0.05}}, tally_data);
+  EXPECT_TRUE(tally->states_velocity());
+  ASSERT_TRUE(tally->stated_velocity_n(100.0, state, v_n, sigma));
+  EXPECT_LT((v_n - axis_n * 0.01).norm(), 1e-12);
+  EXPECT_NEAR(sigma, std::sqrt(2.0) * 0.05 / 60.0, 1e-15);
+  ASSERT_TRUE(tally->stated_velocity_n(1.0, state, v_n, sigma));  // one row back only
+  EXPECT_NEAR(sigma, std::sqrt(2.0) * 0.05, 1e-15);
+  EXPECT_FALSE(tally->stated_velocity_n(0.0, state, v_n, sigma));
+
+  const AidData zupt_data("aids.csv", {"t", "zupt"}, {{0.0, 1.0}, {1.0, 1.0}});
+  const auto zupt = make_aid("zupt", {{"sigma_velocity_mps", 2e-3}}, zupt_data);
+  EXPECT_TRUE(zupt->states_velocity());
+  v_n.setConstant(1.0);
+  ASSERT_TRUE(zupt->stated_velocity_n(1.0, state, v_n, sigma));
+  EXPECT_EQ(v_n, Eigen::Vector3d::Zero());
+  EXPECT_EQ(sigma, 2e-3);
 }
 
 // --- static_position ---

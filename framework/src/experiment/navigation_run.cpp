@@ -17,6 +17,7 @@
 #include "stochnav/experiment/initial_state.hpp"
 #include "stochnav/experiment/navigation_files.hpp"
 #include "stochnav/experiment/run_consistency.hpp"
+#include "stochnav/experiment/station_qc.hpp"
 #include "stochnav/experiment/survey.hpp"
 #include "stochnav/filter/mwd_navigator.hpp"
 #include "stochnav/ins/earth.hpp"
@@ -29,6 +30,9 @@ namespace {
 
 constexpr double kTimeMatch_s = plugin::kEpochMatchTolerance_s;
 constexpr std::string_view kMeasuredDepthColumn = "measured_depth_m";
+// Stationary aid epochs further apart than this (s) are two stationary spans (ZUPTs come at
+// about 1 Hz).
+constexpr double kMaximumStaticGap_s = 2.5;
 
 // Position, velocity and attitude error of the estimate as the first nine core states.
 Eigen::Matrix<double, 9, 1> navigation_error_state(const NavState& estimate,
@@ -99,6 +103,59 @@ InputError non_finite_state(const plugin::RunConfig& config, double t_s) {
       "{}: the navigation solution is not finite from t = {:.9g} s on; the IMU samples near "
       "that time or the noise parameters of the run config are absurd: check both",
       config.data.imu.string(), t_s));
+}
+
+// The budget of the station QC: the sensors' error sigmas before any estimation (the run
+// config's initial sigmas, not the alignment's: the check must not lean on the filter it
+// checks) and the noise models' white-noise PSDs at the start.
+StationQcBudget station_qc_budget(const plugin::RunConfig& config, const NavState& site,
+                                  plugin::NoiseModelPlugin& gyro, plugin::NoiseModelPlugin& accel,
+                                  double t_s) {
+  StationQcBudget budget;
+  budget.latitude_rad = site.latitude_rad;
+  budget.height_m = site.height_m;
+  budget.gyro_bias_sigma_radps = config.filter.options.gyro_bias_sigma_radps;
+  budget.accel_bias_sigma_mps2 = config.filter.options.accel_bias_sigma_mps2;
+  budget.accel_scale_factor_sigma = config.filter.options.accel_scale_factor_sigma;
+  Eigen::MatrixXd q(3, 3);
+  gyro.white_noise_covariance(t_s, 1.0, q);
+  budget.gyro_white_psd = q.diagonal();
+  accel.white_noise_covariance(t_s, 1.0, q);
+  budget.accel_white_psd = q.diagonal();
+  return budget;
+}
+
+// The survey QC's verdict into the self-check: a station whose continuous solution leaves the
+// connection's static solution by more than 3 combined sigma (or whose gravity or Earth-rate
+// total is off) makes the run's self-check optimistic, truth or not.
+void add_survey_qc(const std::vector<SurveyStation>& stations, NavigationRunResult& result) {
+  std::size_t checked = 0;
+  std::size_t flagged = 0;
+  double worst_inclination = 0.0;
+  double worst_azimuth = 0.0;
+  for (const SurveyStation& station : stations) {
+    if (!station.qc.checked) continue;
+    ++checked;
+    flagged += station.qc.flagged ? 1 : 0;
+    worst_inclination = std::max(worst_inclination, station.qc.inclination_difference_sigmas);
+    if (std::isfinite(station.qc.azimuth_difference_sigmas)) {
+      worst_azimuth = std::max(worst_azimuth, station.qc.azimuth_difference_sigmas);
+    }
+  }
+  result.self_check["survey_qc"] = {{"stations", stations.size()},
+                                    {"checked", checked},
+                                    {"flagged", flagged},
+                                    {"worst_inclination_sigmas", worst_inclination},
+                                    {"worst_azimuth_sigmas", worst_azimuth}};
+  if (flagged == 0) return;
+  const std::string reason = fmt::format(
+      "survey QC: {} of {} stations off their connection's static solution (inclination up to "
+      "{:.1f} sigma, azimuth up to {:.1f} sigma)",
+      flagged, checked, worst_inclination, worst_azimuth);
+  const std::string previous = result.self_check.value("reason", std::string());
+  result.self_check["optimistic"] = true;
+  result.self_check["reason"] = previous.empty() ? reason : previous + "; " + reason;
+  result.warnings.push_back("warning: " + reason);
 }
 
 // A run with aids that never accepted an update navigated on the IMU alone while looking like
@@ -239,7 +296,11 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   if (config.initial_state && config.initial_state->tie_on.measured_depth_m) {
     tie_on.measured_depth_m = *config.initial_state->tie_on.measured_depth_m;
   }
-  SurveyRecorder survey(tie_on);
+  SurveyRecorder survey(
+      tie_on, station_qc_budget(config, tie_on_state, *plugins.gyro, *plugins.accel, initial.t_s));
+  StaticSpan since_aid_epoch;  // raw increments since the last aid epoch
+  StaticSpan connection_span;  // of the current stationary span (a connection)
+  bool was_stationary = false;
   std::vector<bool> is_zupt;
   for (const auto& type : aid_types) is_zupt.push_back(type == "zupt");
 
@@ -268,6 +329,7 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
       files->write_innovations(innovations);
       if (output_epoch) files->write_state(navigator);
     }
+    since_aid_epoch.add(increment.delta_theta_b, increment.delta_v_b, increment.dt_s);
     while (truth_pending && truth.t_s < increment.t_s - kTimeMatch_s) {
       truth_pending = truth_reader->next(truth);
     }
@@ -282,8 +344,19 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
       if (has_md) {
         if (const auto row = aid_rows.row_at(increment.t_s)) md = aid_md[*row];
       }
+      if (stationary) {
+        // A span continues across consecutive ZUPT epochs only: an aid that measures only at
+        // rest leaves no epoch while the tool drills, which must not join two connections.
+        if (was_stationary && since_aid_epoch.duration_s <= kMaximumStaticGap_s) {
+          connection_span.add(since_aid_epoch);
+        } else {
+          connection_span = StaticSpan{};
+        }
+      }
+      was_stationary = stationary;
+      since_aid_epoch = StaticSpan{};
       survey.observe(navigator.state(), navigator.covariance().topLeftCorner<9, 9>(), stationary,
-                     md, truth_now ? &truth : nullptr);
+                     md, truth_now ? &truth : nullptr, &connection_span);
     }
     if (truth_now) {
       const auto errors = navigation_errors(navigator.state(), truth);
@@ -314,6 +387,7 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   result.consistency_line = consistency.consistency_line();
   result.self_check = consistency.self_check_json();
   result.warnings = consistency.aid_warnings();
+  add_survey_qc(survey.stations(), result);
   result.survey_stations = survey.stations().size();
   result.aid_rows = aid_epochs.summary_json();
   result.wall_seconds =

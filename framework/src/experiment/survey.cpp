@@ -79,7 +79,8 @@ std::vector<WellPathPoint> minimum_curvature_path(const std::vector<SurveyStatio
   return path;
 }
 
-SurveyRecorder::SurveyRecorder(const SurveyTieOn& tie_on) : tie_on_(tie_on) {
+SurveyRecorder::SurveyRecorder(const SurveyTieOn& tie_on, std::optional<StationQcBudget> qc_budget)
+    : tie_on_(tie_on), qc_budget_(qc_budget) {
   const EarthRadii radii = earth_radii(tie_on.latitude_rad);
   north_m_per_rad_ = radii.meridian_m + tie_on.height_m;
   east_m_per_rad_ = (radii.transverse_m + tie_on.height_m) * std::cos(tie_on.latitude_rad);
@@ -138,7 +139,7 @@ SurveyStation SurveyRecorder::station_error(const SurveyStation& station, const 
 
 void SurveyRecorder::observe(const NavState& state, const Eigen::Matrix<double, 9, 9>& covariance,
                              bool stationary, std::optional<double> measured_depth_m,
-                             const NavState* truth) {
+                             const NavState* truth, const StaticSpan* static_span) {
   const Eigen::Vector3d position_m = tie_on_position_m(state);
   if (previous_position_m_) ins_path_length_m_ += (position_m - *previous_position_m_).norm();
   previous_position_m_ = position_m;
@@ -152,6 +153,11 @@ void SurveyRecorder::observe(const NavState& state, const Eigen::Matrix<double, 
   // Still in the connection: this epoch replaces the previous candidate, so the station ends
   // up at the connection's last stationary epoch, after all of its ZUPTs.
   open_station_ = station_candidate(state, covariance, position_m, md_m);
+  open_station_->qc =
+      station_qc(qc_budget_ && static_span ? *static_span : StaticSpan{},
+                 qc_budget_.value_or(StationQcBudget{}), open_station_->inclination_deg,
+                 open_station_->inclination_sigma_deg, open_station_->azimuth_deg,
+                 open_station_->azimuth_sigma_deg);
   open_error_.reset();
   if (truth != nullptr) open_error_ = station_error(*open_station_, state, *truth);
 }

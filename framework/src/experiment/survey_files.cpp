@@ -20,7 +20,12 @@ namespace {
 /// DESIGN.md's survey.csv columns; survey_errors.csv uses the same.
 constexpr std::string_view kSurveyHeader =
     "t_s,md_m,inclination_deg,azimuth_deg,toolface_deg,tvd_m,north_m,east_m,"
-    "inclination_sigma_deg,azimuth_sigma_deg,north_sigma_m,east_sigma_m,tvd_sigma_m";
+    "inclination_sigma_deg,azimuth_sigma_deg,north_sigma_m,east_sigma_m,tvd_sigma_m,"
+    // The station QC (experiment/station_qc.hpp), after DESIGN.md's columns.
+    "qc_static_s,qc_inclination_deg,qc_inclination_sigma_deg,qc_azimuth_deg,"
+    "qc_azimuth_sigma_deg,qc_gravity_total_m_s2,qc_gravity_model_m_s2,qc_gravity_sigma_m_s2,"
+    "qc_earth_rate_total_deg_h,qc_earth_rate_sigma_deg_h,qc_inclination_sigmas,"
+    "qc_azimuth_sigmas,qc_flag";
 constexpr std::string_view kWellPathHeader = "source,md_m,north_m,east_m,tvd_m";
 
 /// A CSV number: 9 significant digits (0.01 mm at 1 km, 1 ms at 200 h); any NaN as "nan" (the
@@ -45,7 +50,20 @@ std::string stations_csv(const std::vector<SurveyStation>& stations) {
                               s.azimuth_sigma_deg,
                               s.north_sigma_m,
                               s.east_sigma_m,
-                              s.tvd_sigma_m};
+                              s.tvd_sigma_m,
+                              s.qc.static_duration_s,
+                              s.qc.static_inclination_deg,
+                              s.qc.static_inclination_sigma_deg,
+                              s.qc.gyrocompass_azimuth_deg,
+                              s.qc.gyrocompass_azimuth_sigma_deg,
+                              s.qc.gravity_total_m_s2,
+                              s.qc.gravity_model_m_s2,
+                              s.qc.gravity_sigma_m_s2,
+                              s.qc.earth_rate_total_deg_h,
+                              s.qc.earth_rate_sigma_deg_h,
+                              s.qc.inclination_difference_sigmas,
+                              s.qc.azimuth_difference_sigmas,
+                              s.qc.checked ? (s.qc.flagged ? 1.0 : 0.0) : std::nan("")};
     for (std::size_t i = 0; i < std::size(columns); ++i) {
       if (i > 0) csv += ',';
       csv += csv_number(columns[i]);

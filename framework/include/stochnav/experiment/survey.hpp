@@ -47,6 +47,7 @@
 #include <optional>
 #include <vector>
 
+#include "stochnav/experiment/station_qc.hpp"
 #include "stochnav/ins/nav_state.hpp"
 #include "stochnav/io/atomic_file.hpp"
 
@@ -77,6 +78,9 @@ struct SurveyStation {
   double tvd_sigma_m = 0.0;
   /// Horizontal position covariance [[NN, NE], [NE, EE]] (m^2): the 2-sigma ellipse of the plot.
   Eigen::Matrix2d horizontal_covariance_m2 = Eigen::Matrix2d::Zero();
+  /// The QC of the station from its connection's static data alone (experiment/station_qc.hpp):
+  /// the survey.csv columns after the DESIGN.md ones.
+  StationQc qc;
 };
 
 /// The point of the minimum-curvature well path at a station.
@@ -96,7 +100,10 @@ std::vector<WellPathPoint> minimum_curvature_path(const std::vector<SurveyStatio
 /// Collects stations while a run goes, and an INS path (thinned) for the plot.
 class SurveyRecorder final {
  public:
-  explicit SurveyRecorder(const SurveyTieOn& tie_on);
+  /// With a budget, every station gets its static QC (StationQc) from the span observe() is
+  /// given; without, the QC columns are NaN.
+  explicit SurveyRecorder(const SurveyTieOn& tie_on,
+                          std::optional<StationQcBudget> qc_budget = std::nullopt);
 
   /// Call at every epoch at which any aid measured (and may be called at others).
   ///   state:        the navigator's state after the epoch's updates
@@ -104,8 +111,11 @@ class SurveyRecorder final {
   ///   stationary:   a zero-velocity update was accepted at this epoch
   ///   measured_depth_m: the aid data's measured depth at this epoch, if the run has one
   ///   truth:        the true state at this epoch, when there is truth (for survey_errors.csv)
+  ///   static_span:  the raw increments of the connection's stationary span so far (its first
+  ///                 stationary aid epoch to this one), for the station's QC; may be null
   void observe(const NavState& state, const Eigen::Matrix<double, 9, 9>& covariance,
-               bool stationary, std::optional<double> measured_depth_m, const NavState* truth);
+               bool stationary, std::optional<double> measured_depth_m, const NavState* truth,
+               const StaticSpan* static_span = nullptr);
 
   /// Closes an open connection at the end of the record (its last stationary epoch becomes a
   /// station). Call once, after the last epoch.
@@ -132,6 +142,7 @@ class SurveyRecorder final {
   void close_open_station();
 
   SurveyTieOn tie_on_;
+  std::optional<StationQcBudget> qc_budget_;
   double north_m_per_rad_ = 0.0;  ///< (R_M(lat0) + h0): latitude change to north metres
   double east_m_per_rad_ = 0.0;   ///< (R_N(lat0) + h0) cos(lat0): longitude change to east metres
   std::vector<SurveyStation> stations_;

@@ -1,0 +1,146 @@
+// The drilling filter off the well it was tuned on, from a field start (tie-on + 600-s static
+// alignment in the hole, configs/runs/drilling_recording.json), survey stations checked against
+// the truth kept aside (docs/drilling-envelope.md):
+//   - sliding (no rotation) on the shipped well for 12 h: the azimuth inside 3 sigma at every
+//     station. Before the reference trajectory (filter/mwd_navigator.hpp) the filter
+//     linearised about the INS velocity and the measured specific force, read the INS's own
+//     velocity error and the accelerometer noise as heading information, claimed a 1.8-deg
+//     azimuth and was 10 deg off at 5.5 sigma on this seed (10-66 deg on others);
+//   - a deliberately wrong gyro model (a bias 25 times too well known) on a sliding well and in
+//     an east-west hole: the survey QC without truth flags the run (self_check optimistic).
+// Not checked, because not yet right (docs/drilling-envelope.md, section 4): the sliding
+// well's inclination (8-11 sigma, which the survey QC flags) and, on some seeds, its east
+// position; the east-west hole at 60 N on the shipped seed (azimuth 5 sigma after a 13-deg
+// alignment error at 3.8 sigma).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "csv_columns.hpp"
+#include "run_cli.hpp"
+#include "sanitized_build.hpp"
+#include "temp_dir.hpp"
+
+namespace {
+
+using stochnav::testing::read_csv_columns;
+
+nlohmann::json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// Simulates the shipped scenario with `changes` merged into "drilling" (and "site") for
+// `duration_s`, and runs the shipped recording config from the record's first truth row as
+// tie-on. Returns the run folder.
+std::string simulate_and_run(
+    const stochnav::testing::TempDir& scratch, const std::string& tag,
+    const nlohmann::json& drilling, const nlohmann::json& site,
+    const std::function<void(nlohmann::json&)>& edit_config = [](nlohmann::json&) {}) {
+  const std::string source = STOCHNAV_SOURCE_DIR;
+  nlohmann::json scenario = read_json(source + "/configs/scenarios/drilling_build_hold.json");
+  scenario["drilling"].merge_patch(drilling);
+  nlohmann::json episodes = nlohmann::json::array();  // those inside the shortened record
+  for (const auto& episode : scenario["drilling"]["vibration_episodes"]) {
+    if (episode["end_s"].get<double>() < scenario["drilling"]["duration_s"].get<double>()) {
+      episodes.push_back(episode);
+    }
+  }
+  scenario["drilling"]["vibration_episodes"] = episodes;
+  scenario["site"].merge_patch(site);
+  std::ofstream(scratch.file(tag + ".json")) << scenario.dump();
+  const std::string data = scratch.file(tag);
+  const auto simulated = stochnav::testing::run_cli(
+      "simulate scenario '" + scratch.file(tag + ".json") + "' --out '" + data + "'",
+      scratch.path().string());
+  EXPECT_EQ(simulated.exit_code, 0) << simulated.err;
+
+  const auto truth = read_csv_columns(data + "/truth.csv");
+  nlohmann::json config = read_json(source + "/configs/runs/drilling_recording.json");
+  config.erase("data");
+  config["initial_state"]["tie_on"] = {{"latitude_deg", truth.at("lat").front()},
+                                       {"longitude_deg", truth.at("lon").front()},
+                                       {"height_m", truth.at("h").front()}};
+  edit_config(config);
+  std::ofstream(scratch.file(tag + "_run.json")) << config.dump();
+  const std::string out = scratch.file(tag + "_run");
+  const auto result =
+      stochnav::testing::run_cli("run '" + scratch.file(tag + "_run.json") + "' --out '" + out +
+                                     "' --data '" + data + "' --no-plot",
+                                 scratch.path().string());
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  return out;
+}
+
+// Stations with a finite error and sigma, and how many are inside 3 sigma.
+struct Inside {
+  int counted = 0;
+  int inside = 0;
+};
+
+Inside stations_inside(const stochnav::testing::CsvColumns& errors, const std::string& column,
+                       const std::string& sigma_column) {
+  Inside result;
+  for (std::size_t i = 0; i < errors.at(column).size(); ++i) {
+    const double error = errors.at(column)[i];
+    const double sigma = errors.at(sigma_column)[i];
+    if (!std::isfinite(error) || !std::isfinite(sigma)) continue;
+    ++result.counted;
+    result.inside += std::abs(error) <= 3.0 * sigma ? 1 : 0;
+  }
+  return result;
+}
+
+const double kDuration_s = stochnav::testing::study_size(43200.0, 7200.0);
+
+TEST(DrillingEnvelope, SlidingKeepsTheAzimuthInsideItsThreeSigma) {
+  const stochnav::testing::TempDir scratch;
+  const std::string out =
+      simulate_and_run(scratch, "slide", {{"rotation_rpm", 0}, {"duration_s", kDuration_s}},
+                       nlohmann::json::object());
+  const auto errors = read_csv_columns(out + "/survey_errors.csv");
+  const Inside azimuth = stations_inside(errors, "azimuth_deg", "azimuth_sigma_deg");
+  if (stochnav::testing::study_at_full_size()) {
+    EXPECT_GE(azimuth.counted, 8);
+  }
+  EXPECT_EQ(azimuth.inside, azimuth.counted);
+}
+
+// The survey QC without truth (experiment/station_qc.hpp) flags a run whose gyro model is
+// deliberately wrong (a bias 25 times too well known, no bias walk): the azimuth and
+// inclination leave their 3 sigma, and each connection's static solution says so.
+void expect_wrong_gyro_model_flagged(const std::string& tag, const nlohmann::json& drilling,
+                                     const nlohmann::json& site) {
+  const stochnav::testing::TempDir scratch;
+  nlohmann::json wrong_gyro = {{"plugin", "white"}, {"params", {{"N", 5.5e-4}, {"K", 0.01}}}};
+  const std::string out =
+      simulate_and_run(scratch, tag, drilling, site, [&](nlohmann::json& config) {
+        config["noise"]["gyro"] = wrong_gyro;
+        config["filter"]["initial_sigma"]["gyro_bias_deg_h"] = 0.02;
+      });
+  const nlohmann::json self_check = read_json(out + "/metrics.json")["self_check"];
+  EXPECT_TRUE(self_check["optimistic"].get<bool>()) << self_check.dump();
+  EXPECT_GT(self_check["survey_qc"]["flagged"].get<int>(), 0) << self_check.dump();
+  EXPECT_NE(self_check["reason"].get<std::string>().find("survey QC"), std::string::npos);
+}
+
+TEST(DrillingEnvelope, SurveyQcFlagsAWrongGyroModelOnASlidingWell) {
+  expect_wrong_gyro_model_flagged("slide_wrong", {{"rotation_rpm", 0}, {"duration_s", 14400}},
+                                  nlohmann::json::object());
+}
+
+TEST(DrillingEnvelope, SurveyQcFlagsAWrongGyroModelInAnEastWestHole) {
+  expect_wrong_gyro_model_flagged("east_wrong",
+                                  {{"well", {{"azimuth_deg", 90}, {"kickoff_md_m", 100}}},
+                                   {"start_md_m", 1000},
+                                   {"duration_s", 14400}},
+                                  {{"latitude_deg", 60}});
+}
+
+}  // namespace
