@@ -1,17 +1,18 @@
 // The drilling filter off the well it was tuned on, from a field start (tie-on + 600-s static
 // alignment in the hole, configs/runs/drilling_recording.json), survey stations checked against
 // the truth kept aside (docs/drilling-envelope.md):
-//   - sliding (no rotation) on the shipped well for 12 h: the azimuth inside 3 sigma at every
-//     station. Before the reference trajectory (filter/mwd_navigator.hpp) the filter
-//     linearised about the INS velocity and the measured specific force, read the INS's own
-//     velocity error and the accelerometer noise as heading information, claimed a 1.8-deg
-//     azimuth and was 10 deg off at 5.5 sigma on this seed (10-66 deg on others);
+//   - sliding (no rotation) on the shipped well for 12 h: every station inside 3 sigma in
+//     inclination, azimuth, north, east and TVD. Before, the filter linearised about the INS
+//     velocity and the measured specific force (filter/mwd_navigator.hpp: the reference
+//     trajectory), read the INS's own velocity error and the accelerometer noise as heading
+//     information, claimed a 1.8-deg azimuth and was 10-66 deg off; and the white + rate
+//     random walk gyro model let it chase the noise into the bias (the recording config now
+//     carries the sensors' flicker terms);
 //   - a deliberately wrong gyro model (a bias 25 times too well known) on a sliding well and in
 //     an east-west hole: the survey QC without truth flags the run (self_check optimistic).
-// Not checked, because not yet right (docs/drilling-envelope.md, section 4): the sliding
-// well's inclination (8-11 sigma, which the survey QC flags) and, on some seeds, its east
-// position; the east-west hole at 60 N on the shipped seed (azimuth 5 sigma after a 13-deg
-// alignment error at 3.8 sigma).
+// Not checked, because not yet right (docs/drilling-envelope.md): rotary drilling in an
+// east-west hole at high inclination from a field start (azimuth and north 4-7 sigma on most
+// seeds).
 
 #include <gtest/gtest.h>
 
@@ -98,18 +99,37 @@ Inside stations_inside(const stochnav::testing::CsvColumns& errors, const std::s
 }
 
 const double kDuration_s = stochnav::testing::study_size(43200.0, 7200.0);
+// Long enough for stations in the build (sliding) or several connections (east-west).
+const double kWrongModelDuration_s = stochnav::testing::study_size(14400.0, 5400.0);
 
-TEST(DrillingEnvelope, SlidingKeepsTheAzimuthInsideItsThreeSigma) {
+// Every station quantity of a run inside its own 3 sigma.
+void expect_every_station_inside(const std::string& out) {
+  const auto errors = read_csv_columns(out + "/survey_errors.csv");
+  for (const auto& [column, sigma] : std::vector<std::pair<std::string, std::string>>{
+           {"inclination_deg", "inclination_sigma_deg"},
+           {"azimuth_deg", "azimuth_sigma_deg"},
+           {"north_m", "north_sigma_m"},
+           {"east_m", "east_sigma_m"},
+           {"tvd_m", "tvd_sigma_m"}}) {
+    const Inside share = stations_inside(errors, column, sigma);
+    EXPECT_EQ(share.inside, share.counted) << column;
+  }
+}
+
+TEST(DrillingEnvelope, SlidingIsInsideItsThreeSigmaFromAFieldStart) {
   const stochnav::testing::TempDir scratch;
-  const std::string out =
-      simulate_and_run(scratch, "slide", {{"rotation_rpm", 0}, {"duration_s", kDuration_s}},
-                       nlohmann::json::object());
+  const std::string out = simulate_and_run(
+      scratch, "slide", {{"rotation_rpm", 0}, {"duration_s", kDuration_s}}, nlohmann::json::object());
   const auto errors = read_csv_columns(out + "/survey_errors.csv");
   const Inside azimuth = stations_inside(errors, "azimuth_deg", "azimuth_sigma_deg");
   if (stochnav::testing::study_at_full_size()) {
     EXPECT_GE(azimuth.counted, 8);
   }
-  EXPECT_EQ(azimuth.inside, azimuth.counted);
+  expect_every_station_inside(out);
+  // The azimuth no aid observes is honestly uncertain: degrees, not the 1.8 deg claimed before.
+  if (azimuth.counted > 0) {
+    EXPECT_GT(errors.at("azimuth_sigma_deg").back(), 2.0);
+  }
 }
 
 // The survey QC without truth (experiment/station_qc.hpp) flags a run whose gyro model is
@@ -131,7 +151,8 @@ void expect_wrong_gyro_model_flagged(const std::string& tag, const nlohmann::jso
 }
 
 TEST(DrillingEnvelope, SurveyQcFlagsAWrongGyroModelOnASlidingWell) {
-  expect_wrong_gyro_model_flagged("slide_wrong", {{"rotation_rpm", 0}, {"duration_s", 14400}},
+  expect_wrong_gyro_model_flagged("slide_wrong",
+                                  {{"rotation_rpm", 0}, {"duration_s", kWrongModelDuration_s}},
                                   nlohmann::json::object());
 }
 

@@ -62,16 +62,17 @@ TEST(StationQc, StaticSolutionIsTheAttitudeWithinItsSigmas) {
       const Eigen::Vector3d accel_bias(1e-3 * normal(random), 1e-3 * normal(random),
                                        1e-3 * normal(random));
       const StaticSpan span = static_span(inclination, azimuth, 30.0, gyro_bias, accel_bias, 300.0);
-      const StationQc qc = station_qc(span, b, inclination, 0.001, azimuth, 0.01);
+      const StationQc qc = station_qc(span, b, 0.0, inclination, 0.001, azimuth, 0.01);
       ASSERT_TRUE(qc.checked);
       ++cases;
       inclination_inside += std::abs(qc.static_inclination_deg - inclination) <=
                             3.0 * qc.static_inclination_sigma_deg;
       azimuth_inside += std::abs(std::remainder(qc.gyrocompass_azimuth_deg - azimuth, 360.0)) <=
                         3.0 * qc.gyrocompass_azimuth_sigma_deg;
-      // The gravity and Earth-rate totals of a static tool are inside their tolerance.
+      // The gravity total of a static tool is inside its tolerance, and so is the Earth rate.
       EXPECT_LT(std::abs(qc.gravity_total_m_s2 - qc.gravity_model_m_s2),
                 3.0 * qc.gravity_sigma_m_s2 + 1e-9);
+      EXPECT_LT(std::abs(qc.earth_rate_total_deg_h - 15.041), 3.0 * qc.earth_rate_sigma_deg_h);
     }
   }
   EXPECT_GE(inclination_inside, cases - 1);
@@ -84,7 +85,7 @@ TEST(StationQc, GyrocompassSigmaIsTheBiasOverTheHorizontalEarthRate) {
   const StationQcBudget b = budget();
   const StaticSpan span =
       static_span(90.0, 90.0, 0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 300.0);
-  const StationQc qc = station_qc(span, b, 90.0, 0.001, 90.0, 0.01);
+  const StationQc qc = station_qc(span, b, 0.0, 90.0, 0.001, 90.0, 0.01);
   const double floor_deg =
       b.gyro_bias_sigma_radps.z() / (wgs84::kEarthRate_radps * std::cos(kLatitude)) / kDeg;
   EXPECT_GT(qc.gyrocompass_azimuth_sigma_deg, floor_deg * 0.99);
@@ -97,27 +98,33 @@ TEST(StationQc, FlagsAContinuousSolutionOffByFiveSigmaAndNotOneInside) {
   const StationQcBudget b = budget();
   const StaticSpan span =
       static_span(30.0, 60.0, 10.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 300.0);
-  const StationQc reference = station_qc(span, b, 30.0, 0.002, 60.0, 0.5);
+  const StationQc reference = station_qc(span, b, 0.0, 30.0, 0.002, 60.0, 0.5);
   EXPECT_FALSE(reference.flagged);
   const double inclination_sigma = std::hypot(0.002, reference.static_inclination_sigma_deg);
   const StationQc off_inclination =
-      station_qc(span, b, 30.0 + 5.0 * inclination_sigma, 0.002, 60.0, 0.5);
+      station_qc(span, b, 0.0, 30.0 + 5.0 * inclination_sigma, 0.002, 60.0, 0.5);
+  // The bias walk widens the static solution's sigma with the time since the start.
+  StationQcBudget walking = b;
+  walking.gyro_bias_walk_psd.setConstant(std::pow(1.0 * kDeg / 3600.0, 2) / 3600.0);
+  EXPECT_GT(
+      station_qc(span, walking, 36000.0, 30.0, 0.002, 60.0, 0.5).gyrocompass_azimuth_sigma_deg,
+      2.0 * reference.gyrocompass_azimuth_sigma_deg);
   EXPECT_TRUE(off_inclination.flagged);
   EXPECT_NEAR(off_inclination.inclination_difference_sigmas, 5.0, 1e-6);
   const double azimuth_sigma = std::hypot(0.5, reference.gyrocompass_azimuth_sigma_deg);
-  EXPECT_TRUE(station_qc(span, b, 30.0, 0.002, 60.0 - 5.0 * azimuth_sigma, 0.5).flagged);
-  EXPECT_FALSE(station_qc(span, b, 30.0, 0.002, 60.0 - 2.0 * azimuth_sigma, 0.5).flagged);
+  EXPECT_TRUE(station_qc(span, b, 0.0, 30.0, 0.002, 60.0 - 5.0 * azimuth_sigma, 0.5).flagged);
+  EXPECT_FALSE(station_qc(span, b, 0.0, 30.0, 0.002, 60.0 - 2.0 * azimuth_sigma, 0.5).flagged);
   // Near vertical the azimuth is not checked; a span too short gives no QC.
   const StationQc vertical = station_qc(
-      static_span(1.0, 60.0, 10.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 300.0), b, 1.0,
-      0.002, 100.0, 0.5);
+      static_span(1.0, 60.0, 10.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 300.0), b, 0.0,
+      1.0, 0.002, 100.0, 0.5);
   EXPECT_TRUE(std::isnan(vertical.azimuth_difference_sigmas));
   EXPECT_FALSE(vertical.flagged);
   StaticSpan short_span = span;
   short_span.delta_theta_b *= 5.0 / 300.0;
   short_span.delta_v_b *= 5.0 / 300.0;
   short_span.duration_s = 5.0;
-  EXPECT_FALSE(station_qc(short_span, b, 30.0, 0.002, 60.0, 0.5).checked);
+  EXPECT_FALSE(station_qc(short_span, b, 0.0, 30.0, 0.002, 60.0, 0.5).checked);
 }
 
 }  // namespace

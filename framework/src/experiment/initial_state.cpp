@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -25,6 +26,9 @@ Eigen::Vector3d vector_of(const std::array<double, 3>& a) { return {a[0], a[1], 
 
 // Zero velocity and the known position (ENU, against the site), once a second from the start:
 // the fine alignment's measurement. Residual = estimate - measurement.
+// The fine alignment's attitude prior, in units of the coarse alignment's error budget.
+constexpr double kCoarsePriorFactor = 10.0;
+
 class AtRestAid final : public plugin::AidPlugin {
  public:
   AtRestAid(const NavState& site, double position_sigma_m, double velocity_sigma_mps)
@@ -53,6 +57,16 @@ class AtRestAid final : public plugin::AidPlugin {
     r.setZero();
     r.diagonal().head<3>().setConstant(position_sigma_m_ * position_sigma_m_);
     r.diagonal().tail<3>().setConstant(velocity_sigma_mps_ * velocity_sigma_mps_);
+    return true;
+  }
+  // At rest: the fine alignment linearises about zero velocity and gravity (MwdNavigator's
+  // reference trajectory), not about the measured specific force, whose noise would read as
+  // heading information.
+  bool states_velocity() const override { return true; }
+  bool stated_velocity_n(double, const NavState&, Eigen::Ref<Eigen::Vector3d> v_n,
+                         double& sigma_mps) const override {
+    v_n.setZero();
+    sigma_mps = velocity_sigma_mps_;
     return true;
   }
   std::string describe() const override {
@@ -122,16 +136,22 @@ AlignedStart align_at_rest(std::span<const ImuIncrement> span, const NavState& s
   if (config.attitude_sigma_deg) {
     fine.attitude_sigma_rad = vector_of(*config.attitude_sigma_deg) * kRadPerDeg;
   } else {
-    // The coarse-alignment error budget: tilt = accel bias / g, heading = gyro bias / the
-    // horizontal Earth rate; floored so that the linearised filter is not over-confident.
+    // The coarse alignment's errors ARE the sensor biases' (tilt = accel bias / g, heading =
+    // gyro bias / the horizontal Earth rate): a prior of that size, independent of the biases'
+    // own priors, counts the same uncertainty twice (the heading came out sqrt(2) too sure: an
+    // east-west hole at 60 N started 13 deg off at 3.8 sigma). The attitude prior is therefore
+    // kCoarsePriorFactor times that budget (uninformative beside the biases, which then set the
+    // aligned attitude's sigma), floored so that the linearised filter is not over-confident,
+    // capped where the linearisation would not hold.
     const double g = normal_gravity(site.latitude_rad, site.height_m);
     const double horizontal_rate = wgs84::kEarthRate_radps * std::cos(site.latitude_rad);
-    const double tilt =
-        std::max(options.accel_bias_sigma_mps2.maxCoeff() / g, 0.1 * kRadPerDeg);
-    const double heading =
-        std::max(options.gyro_bias_sigma_radps.head<2>().maxCoeff() / horizontal_rate,
-                 1.0 * kRadPerDeg);
-    fine.attitude_sigma_rad = Eigen::Vector3d(tilt, tilt, std::min(heading, 30.0 * kRadPerDeg));
+    const double tilt = std::clamp(
+        kCoarsePriorFactor * options.accel_bias_sigma_mps2.maxCoeff() / g, 0.1 * kRadPerDeg,
+        2.0 * kRadPerDeg);
+    const double heading = std::clamp(
+        kCoarsePriorFactor * options.gyro_bias_sigma_radps.head<2>().maxCoeff() / horizontal_rate,
+        1.0 * kRadPerDeg, 30.0 * kRadPerDeg);
+    fine.attitude_sigma_rad = Eigen::Vector3d(tilt, tilt, heading);
   }
   AtRestAid at_rest(start, config.position_sigma_m, config.zero_velocity_sigma_m_s);
   const FineAlignmentResult result =
@@ -147,6 +167,9 @@ AlignedStart align_at_rest(std::span<const ImuIncrement> span, const NavState& s
   out.gyro_bias_sigma_radps = result.gyro_bias_sigma_radps;
   out.initial_accel_bias_mps2 = result.accel_bias_b;
   out.initial_gyro_bias_radps = result.gyro_bias_b;
+  // With the correlations: the heading and the horizontal gyro biases are known together far
+  // better than apart, and the run must not count that information a second time.
+  out.initial_core_covariance = result.core_covariance;
   return aligned;
 }
 

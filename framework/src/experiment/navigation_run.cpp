@@ -8,6 +8,7 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <tuple>
 
 #include "run_files.hpp"
 #include "stochnav/core/errors.hpp"
@@ -114,14 +115,30 @@ StationQcBudget station_qc_budget(const plugin::RunConfig& config, const NavStat
   StationQcBudget budget;
   budget.latitude_rad = site.latitude_rad;
   budget.height_m = site.height_m;
-  budget.gyro_bias_sigma_radps = config.filter.options.gyro_bias_sigma_radps;
-  budget.accel_bias_sigma_mps2 = config.filter.options.accel_bias_sigma_mps2;
+  budget.start_t_s = t_s;
   budget.accel_scale_factor_sigma = config.filter.options.accel_scale_factor_sigma;
   Eigen::MatrixXd q(3, 3);
-  gyro.white_noise_covariance(t_s, 1.0, q);
-  budget.gyro_white_psd = q.diagonal();
-  accel.white_noise_covariance(t_s, 1.0, q);
-  budget.accel_white_psd = q.diagonal();
+  for (auto [model, initial_sigma, bias_sigma, walk, white] :
+       {std::tuple{&gyro, config.filter.options.gyro_bias_sigma_radps,
+                   &budget.gyro_bias_sigma_radps, &budget.gyro_bias_walk_psd,
+                   &budget.gyro_white_psd},
+        std::tuple{&accel, config.filter.options.accel_bias_sigma_mps2,
+                   &budget.accel_bias_sigma_mps2, &budget.accel_bias_walk_psd,
+                   &budget.accel_white_psd}}) {
+    Eigen::Array3d variance = initial_sigma.array().square();
+    if (const int size = model->augmented_size(); size > 0) {
+      // The stationary variance of the correlated states (a flicker bank) on each axis.
+      Eigen::MatrixXd p0(size, size), map(3, size);
+      model->augmented_initial_covariance(p0);
+      model->augmented_sensor_map(map);
+      variance += (map * p0 * map.transpose()).diagonal().array();
+    }
+    *bias_sigma = variance.sqrt().matrix();
+    model->bias_walk_covariance(t_s, 1.0, q);
+    *walk = q.diagonal();
+    model->white_noise_covariance(t_s, 1.0, q);
+    *white = q.diagonal();
+  }
   return budget;
 }
 

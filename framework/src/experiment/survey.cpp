@@ -155,7 +155,7 @@ void SurveyRecorder::observe(const NavState& state, const Eigen::Matrix<double, 
   open_station_ = station_candidate(state, covariance, position_m, md_m);
   open_station_->qc =
       station_qc(qc_budget_ && static_span ? *static_span : StaticSpan{},
-                 qc_budget_.value_or(StationQcBudget{}), open_station_->inclination_deg,
+                 qc_budget_.value_or(StationQcBudget{}), state.t_s, open_station_->inclination_deg,
                  open_station_->inclination_sigma_deg, open_station_->azimuth_deg,
                  open_station_->azimuth_sigma_deg);
   open_error_.reset();

@@ -96,6 +96,7 @@ FineAlignmentResult fine_alignment(const NavState& initial,
   result.attitude_sigma_rad = sigma.segment<3>(6);
   result.accel_bias_sigma_mps2 = sigma.segment<3>(9);
   result.gyro_bias_sigma_radps = sigma.segment<3>(12);
+  result.core_covariance = navigator.covariance().topLeftCorner<15, 15>();
   return result;
 }
 

@@ -23,6 +23,7 @@ Eigen::MatrixXd initial_covariance(const plugin::StateLayout& layout, const Filt
   p.diagonal().segment<3>(cs::kAttitude) = o.attitude_sigma_rad.array().square().matrix();
   p.diagonal().segment<3>(cs::kAccelBias) = o.accel_bias_sigma_mps2.array().square().matrix();
   p.diagonal().segment<3>(cs::kGyroBias) = o.gyro_bias_sigma_radps.array().square().matrix();
+  if (o.initial_core_covariance) p.topLeftCorner<cs::kSize, cs::kSize>() = *o.initial_core_covariance;
   for (auto [name, sigma] : {std::pair{"gyro_scale_factor", &o.gyro_scale_factor_sigma},
                              std::pair{"accel_scale_factor", &o.accel_scale_factor_sigma}}) {
     if (const plugin::StateBlock* block = layout.find(name)) {

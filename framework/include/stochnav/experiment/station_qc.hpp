@@ -15,11 +15,11 @@
 // gyro bias across the Earth rate is bias / (W cos lat): the gyrocompass sigma is large near
 // the poles and in an east-west hole for the along-hole bias, and says so.
 //
-// Flags: |inclination_continuous - inclination_static| > 3 sqrt(sigma_c^2 + sigma_s^2), the same
-// for the azimuth (where the hole is more than kMinimumInclination_deg off vertical), and the
-// totals outside 3 sigma of the model. The continuous and static solutions share the span's
-// data through the ZUPTs, so the test is conservative (it would be sharper with the
-// correlation), never optimistic.
+// Flag: |inclination_continuous - inclination_static| > 3 sqrt(sigma_c^2 + sigma_s^2), or the
+// same for the azimuth (where the hole is more than kMinimumInclination_deg off vertical). The
+// continuous and static solutions share the span's data through the ZUPTs, so the test is
+// conservative (it would be sharper with the correlation). The gravity and Earth-rate totals
+// check the sensors, not the solution: reported with their sigmas, not flagged.
 //
 // Units: degrees, m/s^2, deg/h in the outputs; radians and SI inside.
 
@@ -40,12 +40,18 @@ struct StaticSpan {
   void add(const StaticSpan& other) { add(other.delta_theta_b, other.delta_v_b, other.duration_s); }
 };
 
-/// The sensor error budget of the QC (1-sigma, body axes, SI).
+/// The sensor error budget of the QC (1-sigma, body axes, SI). The bias variance at a station
+/// elapsed_s after the start is bias_sigma^2 + bias_walk_psd * elapsed_s: the turn-on bias and
+/// the stationary variance of the noise model's correlated states (a flicker bank), plus its
+/// bias random walk.
 struct StationQcBudget {
   double latitude_rad = 0.0;
   double height_m = 0.0;
+  double start_t_s = 0.0;  ///< when the biases had the sigmas below (s)
   Eigen::Vector3d gyro_bias_sigma_radps = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_bias_sigma_mps2 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gyro_bias_walk_psd = Eigen::Vector3d::Zero();   ///< (rad/s)^2 / s
+  Eigen::Vector3d accel_bias_walk_psd = Eigen::Vector3d::Zero();  ///< (m/s^2)^2 / s
   Eigen::Vector3d accel_scale_factor_sigma = Eigen::Vector3d::Zero();  ///< dimensionless
   Eigen::Vector3d gyro_white_psd = Eigen::Vector3d::Zero();            ///< (rad/s)^2 / Hz
   Eigen::Vector3d accel_white_psd = Eigen::Vector3d::Zero();           ///< (m/s^2)^2 / Hz
@@ -74,9 +80,9 @@ struct StationQc {
   bool checked = false;  ///< the span was long enough for a QC
 };
 
-/// The QC of a station from its span, against the continuous solution's angles (deg) and
+/// The QC of a station at t_s from its span, against the continuous solution's angles (deg) and
 /// their 1-sigmas.
-StationQc station_qc(const StaticSpan& span, const StationQcBudget& budget,
+StationQc station_qc(const StaticSpan& span, const StationQcBudget& budget, double t_s,
                      double continuous_inclination_deg, double continuous_inclination_sigma_deg,
                      double continuous_azimuth_deg, double continuous_azimuth_sigma_deg);
 

@@ -56,12 +56,13 @@ struct FineAlignmentResult {
   Eigen::Vector3d gyro_bias_b = Eigen::Vector3d::Zero();         ///< rad/s
   Eigen::Vector3d accel_bias_b = Eigen::Vector3d::Zero();        ///< m/s^2
   Eigen::Vector3d attitude_sigma_rad = Eigen::Vector3d::Zero();  ///< 1-sigma of phi, E N U
-  // The other core 1-sigmas at the end (diagonal of P: the correlations, notably of heading
-  // with the horizontal gyro biases, are not carried over).
+  // The other core 1-sigmas at the end (the diagonal of core_covariance).
   Eigen::Vector3d position_sigma_m = Eigen::Vector3d::Zero();       ///< ENU (m)
   Eigen::Vector3d velocity_sigma_mps = Eigen::Vector3d::Zero();     ///< ENU (m/s)
   Eigen::Vector3d accel_bias_sigma_mps2 = Eigen::Vector3d::Zero();  ///< body (m/s^2)
   Eigen::Vector3d gyro_bias_sigma_radps = Eigen::Vector3d::Zero();  ///< body (rad/s)
+  /// The whole core block of P at the end (core_state order), correlations included.
+  Eigen::Matrix<double, 15, 15> core_covariance = Eigen::Matrix<double, 15, 15>::Zero();
 };
 FineAlignmentResult fine_alignment(const NavState& initial,
                                    std::span<const ImuIncrement> increments,

@@ -5,6 +5,7 @@
 // else are they written.
 
 #include <Eigen/Core>
+#include <optional>
 
 namespace stochnav {
 
@@ -43,6 +44,13 @@ struct FilterOptions {
   Eigen::Vector3d attitude_sigma_rad{1e-3, 1e-3, 1e-2};     ///< phi about E, N, U (rad)
   Eigen::Vector3d accel_bias_sigma_mps2{1e-3, 1e-3, 1e-3};  ///< body axes (m/s^2)
   Eigen::Vector3d gyro_bias_sigma_radps{5e-6, 5e-6, 5e-6};  ///< body axes (rad/s) (~1 deg/h)
+
+  /// When set, the 15 x 15 core block of the initial P, correlations included (core_state
+  /// order; a static alignment hands its final covariance over this way: the heading and the
+  /// horizontal gyro biases are known together far better than apart). Its diagonal must agree
+  /// with the sigmas above, which the run reports; the scale-factor and augmented blocks start
+  /// as documented below.
+  std::optional<Eigen::Matrix<double, 15, 15>> initial_core_covariance;
 
   // Initial estimates of the sensor biases (the navigator starts from these, not from zero):
   // a run started from an alignment hands over its bias estimates here, and a run config's
