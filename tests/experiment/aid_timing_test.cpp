@@ -16,17 +16,19 @@
 #include <string>
 
 #include "csv_columns.hpp"
+#include "json_file.hpp"
 #include "run_cli.hpp"
 #include "temp_dir.hpp"
 
 namespace {
 
 using stochnav::testing::read_csv_columns;
+using stochnav::testing::read_json;
 
 // The short drilling scenario cut to 40 min (alignment, a stand, a connection), simulated
 // with the given aids.csv clock offset into scratch/<tag>.
-std::string simulate_short(const stochnav::testing::TempDir& scratch, const std::string& tag,
-                           double clock_offset_s) {
+std::string simulate_short_drilling(const stochnav::testing::TempDir& scratch,
+                                    const std::string& tag, double clock_offset_s) {
   std::ifstream in(std::string(STOCHNAV_SOURCE_DIR) + "/configs/scenarios/drilling_short.json");
   nlohmann::json scenario = nlohmann::json::parse(in);
   scenario["drilling"]["duration_s"] = 2400;
@@ -40,25 +42,21 @@ std::string simulate_short(const stochnav::testing::TempDir& scratch, const std:
   return scratch.file(tag);
 }
 
-stochnav::testing::CliResult run_shipped(const stochnav::testing::TempDir& scratch,
-                                         const std::string& data, const std::string& out) {
+stochnav::testing::CliResult run_shipped_drilling_config(const stochnav::testing::TempDir& scratch,
+                                                         const std::string& data,
+                                                         const std::string& out) {
   return stochnav::testing::run_cli("run '" + std::string(STOCHNAV_SOURCE_DIR) +
                                         "/configs/runs/drilling_build_hold.json' --out '" + out +
                                         "' --data '" + data + "' --no-plot",
                                     scratch.path().string());
 }
 
-nlohmann::json read_json(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
-
 TEST(AidTiming, RowsOffTheImuGridAreAppliedAtTheNextEpoch) {
   const stochnav::testing::TempDir scratch;
-  const std::string on_grid = simulate_short(scratch, "on_grid", 0.0);
-  const std::string off_grid = simulate_short(scratch, "off_grid", 0.004);
-  const auto a = run_shipped(scratch, on_grid, scratch.file("run_on"));
-  const auto b = run_shipped(scratch, off_grid, scratch.file("run_off"));
+  const std::string on_grid = simulate_short_drilling(scratch, "on_grid", 0.0);
+  const std::string off_grid = simulate_short_drilling(scratch, "off_grid", 0.004);
+  const auto a = run_shipped_drilling_config(scratch, on_grid, scratch.file("run_on"));
+  const auto b = run_shipped_drilling_config(scratch, off_grid, scratch.file("run_off"));
   ASSERT_EQ(a.exit_code, 0) << a.err;
   ASSERT_EQ(b.exit_code, 0) << b.err;
 
@@ -112,9 +110,9 @@ void shift_aid_times(const std::string& folder, double shift_s) {
 
 TEST(AidTiming, ARunWhoseAidsNeverUpdateFailsAndWritesNothing) {
   const stochnav::testing::TempDir scratch;
-  const std::string data = simulate_short(scratch, "late", 0.0);
+  const std::string data = simulate_short_drilling(scratch, "late", 0.0);
   shift_aid_times(data, 1e5);  // every row after the end of the IMU record
-  const auto result = run_shipped(scratch, data, scratch.file("run"));
+  const auto result = run_shipped_drilling_config(scratch, data, scratch.file("run"));
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.err.find("no aid update was accepted"), std::string::npos) << result.err;
   EXPECT_NE(result.err.find("after the end"), std::string::npos) << result.err;
@@ -124,7 +122,7 @@ TEST(AidTiming, ARunWhoseAidsNeverUpdateFailsAndWritesNothing) {
 
 TEST(AidTiming, RowsCloserThanOneAndAHalfImuPeriodsAreRefused) {
   const stochnav::testing::TempDir scratch;
-  const std::string data = simulate_short(scratch, "dense", 0.0);
+  const std::string data = simulate_short_drilling(scratch, "dense", 0.0);
   std::ifstream in(data + "/aids.csv");
   std::string header, first, second;
   std::getline(in, header);
@@ -140,7 +138,7 @@ TEST(AidTiming, RowsCloserThanOneAndAHalfImuPeriodsAreRefused) {
                                     << first << '\n'
                                     << close_row.str() << '\n'
                                     << second << '\n';
-  const auto result = run_shipped(scratch, data, scratch.file("run"));
+  const auto result = run_shipped_drilling_config(scratch, data, scratch.file("run"));
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.err.find("less than 1.5 IMU periods"), std::string::npos) << result.err;
   EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << "one line: " << result.err;

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "csv_columns.hpp"
+#include "json_file.hpp"
 #include "run_cli.hpp"
 #include "sanitized_build.hpp"
 #include "temp_dir.hpp"
@@ -31,16 +32,12 @@
 namespace {
 
 using stochnav::testing::read_csv_columns;
-
-nlohmann::json read_json(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
+using stochnav::testing::read_json;
 
 // Simulates the shipped scenario with `changes` merged into "drilling" (and "site") for
 // `duration_s`, and runs the shipped recording config from the record's first truth row as
 // tie-on. Returns the run folder.
-std::string simulate_and_run(
+std::string simulate_and_run_from_field_start(
     const stochnav::testing::TempDir& scratch, const std::string& tag,
     const nlohmann::json& drilling, const nlohmann::json& site,
     const std::function<void(nlohmann::json&)>& edit_config = [](nlohmann::json&) {}) {
@@ -80,14 +77,14 @@ std::string simulate_and_run(
 }
 
 // Stations with a finite error and sigma, and how many are inside 3 sigma.
-struct Inside {
+struct StationsInside {
   int counted = 0;
   int inside = 0;
 };
 
-Inside stations_inside(const stochnav::testing::CsvColumns& errors, const std::string& column,
-                       const std::string& sigma_column) {
-  Inside result;
+StationsInside stations_inside(const stochnav::testing::CsvColumns& errors,
+                               const std::string& column, const std::string& sigma_column) {
+  StationsInside result;
   for (std::size_t i = 0; i < errors.at(column).size(); ++i) {
     const double error = errors.at(column)[i];
     const double sigma = errors.at(sigma_column)[i];
@@ -111,17 +108,18 @@ void expect_every_station_inside(const std::string& out) {
            {"north_m", "north_sigma_m"},
            {"east_m", "east_sigma_m"},
            {"tvd_m", "tvd_sigma_m"}}) {
-    const Inside share = stations_inside(errors, column, sigma);
+    const StationsInside share = stations_inside(errors, column, sigma);
     EXPECT_EQ(share.inside, share.counted) << column;
   }
 }
 
 TEST(DrillingEnvelope, SlidingIsInsideItsThreeSigmaFromAFieldStart) {
   const stochnav::testing::TempDir scratch;
-  const std::string out = simulate_and_run(
-      scratch, "slide", {{"rotation_rpm", 0}, {"duration_s", kDuration_s}}, nlohmann::json::object());
+  const std::string out = simulate_and_run_from_field_start(
+      scratch, "slide", {{"rotation_rpm", 0}, {"duration_s", kDuration_s}},
+      nlohmann::json::object());
   const auto errors = read_csv_columns(out + "/survey_errors.csv");
-  const Inside azimuth = stations_inside(errors, "azimuth_deg", "azimuth_sigma_deg");
+  const StationsInside azimuth = stations_inside(errors, "azimuth_deg", "azimuth_sigma_deg");
   if (stochnav::testing::study_at_full_size()) {
     EXPECT_GE(azimuth.counted, 8);
   }
@@ -140,7 +138,7 @@ void expect_wrong_gyro_model_flagged(const std::string& tag, const nlohmann::jso
   const stochnav::testing::TempDir scratch;
   nlohmann::json wrong_gyro = {{"plugin", "white"}, {"params", {{"N", 5.5e-4}, {"K", 0.01}}}};
   const std::string out =
-      simulate_and_run(scratch, tag, drilling, site, [&](nlohmann::json& config) {
+      simulate_and_run_from_field_start(scratch, tag, drilling, site, [&](nlohmann::json& config) {
         config["noise"]["gyro"] = wrong_gyro;
         config["filter"]["initial_sigma"]["gyro_bias_deg_h"] = 0.02;
       });

@@ -7,7 +7,6 @@
 namespace stochnav::scenario_detail {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kShortestSpan = 1e-3;  // s
 
 // One segment per stand from rop_mps and rotation_radps (the form before stand patterns).
@@ -58,16 +57,16 @@ RampProfile ramp_profile(double tau, double duration, double ramp) {
   }
   const double from_end = duration - tau;
   if (tau < ramp) {
-    const double arg = kPi * tau / ramp;
-    p.position = 0.5 * tau - ramp / (2.0 * kPi) * std::sin(arg);
+    const double arg = std::numbers::pi * tau / ramp;
+    p.position = 0.5 * tau - ramp / (2.0 * std::numbers::pi) * std::sin(arg);
     p.speed = 0.5 * (1.0 - std::cos(arg));
-    p.acceleration = 0.5 * kPi / ramp * std::sin(arg);
+    p.acceleration = 0.5 * std::numbers::pi / ramp * std::sin(arg);
   } else if (from_end < ramp) {
-    const double arg = kPi * from_end / ramp;
+    const double arg = std::numbers::pi * from_end / ramp;
     const double total = duration - ramp;  // unit-speed length: duration - 2 ramp + 2 ramp / 2
-    p.position = total - (0.5 * from_end - ramp / (2.0 * kPi) * std::sin(arg));
+    p.position = total - (0.5 * from_end - ramp / (2.0 * std::numbers::pi) * std::sin(arg));
     p.speed = 0.5 * (1.0 - std::cos(arg));
-    p.acceleration = -0.5 * kPi / ramp * std::sin(arg);
+    p.acceleration = -0.5 * std::numbers::pi / ramp * std::sin(arg);
   } else {
     p.position = 0.5 * ramp + (tau - ramp);
     p.speed = 1.0;
@@ -109,7 +108,8 @@ DrillSchedule drill_schedule(const DrillingConfig& config) {
         orient.start_md_m = md;
         orient.start_toolface_rad = toolface;
         orient.profile_s = config.orient_s;
-        orient.toolface_change_rad = std::remainder(p.toolface_rad - toolface, 2.0 * kPi);
+        orient.toolface_change_rad =
+            std::remainder(p.toolface_rad - toolface, 2.0 * std::numbers::pi);
         orient.pattern_index = index;
         segments.push_back(orient);
         breakpoints.push_back(t);

@@ -1,0 +1,171 @@
+#!/usr/bin/env python3
+"""A seeded family of drilling wells across the envelope, each simulated with truth, navigated
+from a field start with the shipped recording config (configs/runs/drilling_recording.json) with
+the truth kept aside, and scored station by station: the share of survey stations inside their
+own 3 sigma per quantity and the worst error in sigmas, per case class.
+
+The family (seed fixes every draw; stratified, see draw_well): latitude uniform in [-80, 80] deg
+(both hemispheres), a
+start at a drawn inclination (0-90 deg) and azimuth (0-360) that turns by a drawn rate, a mode
+(rotary at 30-180 rpm, sliding, or a slide/rotate stand pattern at a drawn toolface), ROP 5-60
+m/h, 28.5-m stands with 2-10 min connections, a vibration episode tied to the drilled depth, and
+the sensor errors of configs/scenarios/drilling_build_hold.json
+(a FOG MWD datasheet: 0.5 deg/h flicker and turn-on bias, 10-20 ppm scale factors).
+Classes: mode x (east-west at high inclination: |sin azimuth| > 0.7 and inclination > 45 deg).
+
+Usage: envelope.py STOCHNAV OUT_DIR [--wells N] [--hours H] [--seed S]
+Writes OUT_DIR/summary.json and OUT_DIR/summary.md; each well's scenario, run and files in
+OUT_DIR/well_K/. Python 3 standard library only.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import random
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+QUANTITIES = [("inclination_deg", "inclination_sigma_deg"), ("azimuth_deg", "azimuth_sigma_deg"),
+              ("north_m", "north_sigma_m"), ("east_m", "east_sigma_m"), ("tvd_m", "tvd_sigma_m")]
+
+
+def draw_well(rng, k, hours):
+    """Well k's scenario (JSON) and its class. Stratified so that every class is drawn: the
+    mode cycles through rotate, slide and pattern, and every other well is east-west at high
+    inclination (azimuth 90 or 270 +- 20 deg, inclination 50-90 deg)."""
+    with open(os.path.join(ROOT, "configs/scenarios/drilling_build_hold.json")) as f:
+        scenario = json.load(f)
+    scenario.pop("comments", None)
+    scenario["seed"] = rng.randrange(1, 1 << 30)
+    latitude = rng.uniform(-80.0, 80.0)
+    if k % 2 == 1:
+        inclination = rng.uniform(50.0, 90.0)
+        azimuth = rng.choice([90.0, 270.0]) + rng.uniform(-20.0, 20.0)
+    else:
+        inclination = rng.choice([rng.uniform(0.0, 30.0), rng.uniform(30.0, 90.0)])
+        azimuth = rng.uniform(0.0, 360.0)
+    turn = rng.choice([0.0, rng.uniform(-3.0, 3.0)])
+    mode = ["rotate", "slide", "pattern"][k % 3]
+    rop = rng.uniform(5.0, 60.0)
+    scenario["site"]["latitude_deg"] = latitude
+    d = scenario["drilling"]
+    d.pop("well")
+    d["well"] = {"start": {"inclination_deg": inclination, "azimuth_deg": azimuth},
+                 "sections": [{"length_m": 20.0, "build_rate_deg_per_30m": 0.0,
+                               "turn_rate_deg_per_30m": 0.0},
+                              {"length_m": 2000.0, "build_rate_deg_per_30m": 0.0,
+                               "turn_rate_deg_per_30m": turn}]}
+    d["start_md_m"] = 10.0
+    d["duration_s"] = hours * 3600.0
+    d["rop_mph"] = rop
+    d["connection_s"] = rng.uniform(120.0, 600.0)
+    d["rotation_rpm"] = 0.0 if mode == "slide" else rng.uniform(30.0, 180.0)
+    if mode == "pattern":
+        slide = rng.uniform(5.0, 15.0)
+        d["stand_pattern"] = [
+            {"mode": "slide", "length_m": slide, "toolface_deg": rng.uniform(0.0, 360.0),
+             "rop_mph": rop / 2.0},
+            {"mode": "rotate", "length_m": d["stand_length_m"] - slide}]
+    start_md = d["start_md_m"] + rop * 0.5  # half an hour into the drilling
+    d["vibration_episodes"] = [{"start_md_m": start_md, "end_md_m": start_md + 5.0,
+                                "axial_g": rng.uniform(1.0, 3.0),
+                                "frequency_hz": rng.choice([8.0, 10.0, 12.0, 15.0])}]
+    east_west = abs(math.sin(math.radians(azimuth))) > 0.7 and inclination > 45.0
+    scenario["description"] = (f"envelope well: lat {latitude:.1f}, inc {inclination:.1f}, "
+                               f"az {azimuth:.1f}, turn {turn:.2f} deg/30 m, {mode}, ROP {rop:.0f}")
+    return scenario, f"{mode}{' east-west' if east_west else ''}"
+
+
+def run(stochnav, *args):
+    result = subprocess.run([stochnav, *args], capture_output=True, text=True)
+    if result.returncode != 0:
+        raise RuntimeError(f"stochnav {' '.join(args)}: {result.stderr.strip()}")
+
+
+def score_well(stochnav, folder, scenario):
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, "scenario.json"), "w") as f:
+        json.dump(scenario, f, indent=1)
+    data = os.path.join(folder, "data")
+    run(stochnav, "simulate", "scenario", os.path.join(folder, "scenario.json"), "--out", data)
+    with open(os.path.join(data, "truth.csv")) as f:
+        first = next(csv.DictReader(f))
+    with open(os.path.join(ROOT, "configs/runs/drilling_recording.json")) as f:
+        config = json.load(f)
+    config.pop("data")
+    config["initial_state"]["tie_on"] = {"latitude_deg": float(first["lat"]),
+                                         "longitude_deg": float(first["lon"]),
+                                         "height_m": float(first["h"])}
+    with open(os.path.join(folder, "run.json"), "w") as f:
+        json.dump(config, f, indent=1)
+    out = os.path.join(folder, "run")
+    run(stochnav, "run", os.path.join(folder, "run.json"), "--data", data, "--out", out,
+        "--no-plot")
+    errors = os.path.join(out, "survey_errors.csv")
+    if not os.path.exists(errors):  # no station yet (a stand longer than the record)
+        return {q: {"stations": 0, "inside": 0, "worst_sigmas": 0.0} for q, _ in QUANTITIES}, 0
+    with open(errors) as f:
+        rows = list(csv.DictReader(f))  # stations with truth at their epoch
+    with open(os.path.join(out, "metrics.json")) as f:
+        self_check = json.load(f)["self_check"]
+    score = {}
+    for quantity, sigma in QUANTITIES:
+        pairs = [(float(r[quantity]), float(r[sigma])) for r in rows]
+        pairs = [(e, s) for e, s in pairs if math.isfinite(e) and math.isfinite(s) and s > 0]
+        score[quantity] = {"stations": len(pairs),
+                           "inside": sum(abs(e) <= 3.0 * s for e, s in pairs),
+                           "worst_sigmas": max((abs(e) / s for e, s in pairs), default=0.0)}
+    flagged = self_check.get("survey_qc", {}).get("flagged", 0)
+    return score, flagged
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("stochnav")
+    parser.add_argument("out")
+    parser.add_argument("--wells", type=int, default=12)
+    parser.add_argument("--hours", type=float, default=8.0)
+    parser.add_argument("--seed", type=int, default=25)
+    args = parser.parse_args()
+    rng = random.Random(args.seed)
+    classes = {}
+    wells = []
+    for k in range(args.wells):
+        scenario, case_class = draw_well(rng, k, args.hours)
+        score, flagged = score_well(args.stochnav, os.path.join(args.out, f"well_{k}"), scenario)
+        wells.append({"well": k, "class": case_class, "description": scenario["description"],
+                      "score": score, "survey_qc_flagged": flagged})
+        total = classes.setdefault(case_class, {q: {"stations": 0, "inside": 0, "worst_sigmas": 0.0}
+                                                for q, _ in QUANTITIES} | {"wells": 0, "flagged_wells": 0})
+        total["wells"] += 1
+        total["flagged_wells"] += flagged > 0
+        for q, _ in QUANTITIES:
+            for key in ("stations", "inside"):
+                total[q][key] += score[q][key]
+            total[q]["worst_sigmas"] = max(total[q]["worst_sigmas"], score[q]["worst_sigmas"])
+        print(f"well {k} ({case_class}): " + ", ".join(
+            f"{q.split('_')[0]} {score[q]['inside']}/{score[q]['stations']}" for q, _ in QUANTITIES),
+            flush=True)
+    with open(os.path.join(args.out, "summary.json"), "w") as f:
+        json.dump({"seed": args.seed, "hours": args.hours, "classes": classes, "wells": wells}, f,
+                  indent=1)
+    lines = ["| class | wells | " + " | ".join(q.split("_")[0] for q, _ in QUANTITIES) +
+             " | wells flagged by the survey QC |",
+             "|---|---|" + "---|" * len(QUANTITIES) + "---|"]
+    for name, total in sorted(classes.items()):
+        cells = []
+        for q, _ in QUANTITIES:
+            t = total[q]
+            share = 100.0 * t["inside"] / t["stations"] if t["stations"] else float("nan")
+            cells.append(f"{share:.0f} % of {t['stations']} (worst {t['worst_sigmas']:.1f})")
+        lines.append(f"| {name} | {total['wells']} | " + " | ".join(cells) +
+                     f" | {total['flagged_wells']} |")
+    with open(os.path.join(args.out, "summary.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
