@@ -21,6 +21,11 @@
 //                     "aid_rows": {"rows", "on_grid", "moved", "max_offset_s",
 //                     "before_start", "after_end"} (experiment/aid_epochs.hpp: rows off the
 //                     IMU grid are applied at the next epoch),
+//                     "self_check": {"source", "optimistic", "reason", "survey_qc":
+//                     {"stations", "checked", "flagged", "worst_inclination_sigmas",
+//                     "worst_azimuth_sigmas"}} (a station whose continuous solution leaves its
+//                     connection's static solution, experiment/station_qc.hpp, makes the run
+//                     optimistic),
 //                     "filter_health": {...}, "epochs", "duration_s", "noise_models":
 //                     {"gyro", "accel"}, "survey_stations", "initial": {"t_s", position
 //                     and MWD angles of the start (after any alignment, before the deliberate
@@ -28,7 +33,8 @@
 //                     started with}}
 //   errors.png       errors with their 3-sigma bounds over time (with truth, gnuplot installed)
 //   survey.csv, survey_errors.csv (with truth), well_path.csv, survey.png
-//                    survey stations at the connections (experiment/survey.hpp)
+//                    survey stations at the connections (experiment/survey.hpp), each with
+//                    its static QC in the qc_* columns after DESIGN.md's
 //
 // The start (plugin/run_config.hpp): with "initial_state", the tie-on with the given attitude
 // at the start of the IMU record, or the static alignment over its first static_s seconds
