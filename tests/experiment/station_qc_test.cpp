@@ -18,32 +18,32 @@
 namespace stochnav {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kLatitude = 46.58 * kDeg;
+constexpr double kQcRadPerDegree = std::numbers::pi / 180.0;
+constexpr double kQcLatitude = 46.58 * kQcRadPerDegree;
 
-StationQcBudget budget() {
+StationQcBudget qc_budget() {
   StationQcBudget b;
-  b.latitude_rad = kLatitude;
+  b.latitude_rad = kQcLatitude;
   b.height_m = -300.0;
-  b.gyro_bias_sigma_radps.setConstant(0.5 * kDeg / 3600.0);
+  b.gyro_bias_sigma_radps.setConstant(0.5 * kQcRadPerDegree / 3600.0);
   b.accel_bias_sigma_mps2.setConstant(1e-3);
   b.accel_scale_factor_sigma.setConstant(1e-4);
-  b.gyro_white_psd.setConstant(std::pow(0.005 * kDeg / 60.0, 2));  // 0.005 deg/sqrt(h)
-  b.accel_white_psd.setConstant(std::pow(0.06 / 60.0, 2));         // 0.06 m/s/sqrt(h)
+  b.gyro_white_psd.setConstant(std::pow(0.005 * kQcRadPerDegree / 60.0, 2));  // 0.005 deg/sqrt(h)
+  b.accel_white_psd.setConstant(std::pow(0.06 / 60.0, 2));                    // 0.06 m/s/sqrt(h)
   return b;
 }
 
 // The span a static tool at the given angles records over `duration_s`, with sensor biases.
-StaticSpan static_span(double inclination_deg, double azimuth_deg, double toolface_deg,
-                       const Eigen::Vector3d& gyro_bias, const Eigen::Vector3d& accel_bias,
-                       double duration_s) {
+StaticSpan synthetic_static_span(double inclination_deg, double azimuth_deg, double toolface_deg,
+                                 const Eigen::Vector3d& gyro_bias,
+                                 const Eigen::Vector3d& accel_bias, double duration_s) {
   MwdAttitude attitude;
-  attitude.inclination_rad = inclination_deg * kDeg;
-  attitude.azimuth_rad = azimuth_deg * kDeg;
-  attitude.toolface_rad = toolface_deg * kDeg;
+  attitude.inclination_rad = inclination_deg * kQcRadPerDegree;
+  attitude.azimuth_rad = azimuth_deg * kQcRadPerDegree;
+  attitude.toolface_rad = toolface_deg * kQcRadPerDegree;
   const Eigen::Matrix3d c_bn = quaternion_from_mwd(attitude).toRotationMatrix().transpose();
-  const Eigen::Vector3d omega_b = c_bn * earth_rate_n(kLatitude) + gyro_bias;
-  const Eigen::Vector3d f_b = -(c_bn * gravity_n(kLatitude, -300.0)) + accel_bias;
+  const Eigen::Vector3d omega_b = c_bn * earth_rate_n(kQcLatitude) + gyro_bias;
+  const Eigen::Vector3d f_b = -(c_bn * gravity_n(kQcLatitude, -300.0)) + accel_bias;
   StaticSpan span;
   span.add(omega_b * duration_s, f_b * duration_s, duration_s);
   return span;
@@ -52,7 +52,7 @@ StaticSpan static_span(double inclination_deg, double azimuth_deg, double toolfa
 TEST(StationQc, StaticSolutionIsTheAttitudeWithinItsSigmas) {
   std::mt19937_64 random(5);
   std::normal_distribution<double> normal;
-  const StationQcBudget b = budget();
+  const StationQcBudget b = qc_budget();
   int inclination_inside = 0, azimuth_inside = 0, cases = 0;
   for (double inclination : {10.0, 45.0, 80.0, 90.0}) {
     for (double azimuth : {0.0, 60.0, 90.0, 200.0, 300.0}) {
@@ -61,7 +61,8 @@ TEST(StationQc, StaticSolutionIsTheAttitudeWithinItsSigmas) {
                                       b.gyro_bias_sigma_radps.z() * normal(random));
       const Eigen::Vector3d accel_bias(1e-3 * normal(random), 1e-3 * normal(random),
                                        1e-3 * normal(random));
-      const StaticSpan span = static_span(inclination, azimuth, 30.0, gyro_bias, accel_bias, 300.0);
+      const StaticSpan span =
+          synthetic_static_span(inclination, azimuth, 30.0, gyro_bias, accel_bias, 300.0);
       const StationQc qc = station_qc(span, b, 0.0, inclination, 0.001, azimuth, 0.01);
       ASSERT_TRUE(qc.checked);
       ++cases;
@@ -82,12 +83,12 @@ TEST(StationQc, StaticSolutionIsTheAttitudeWithinItsSigmas) {
 TEST(StationQc, GyrocompassSigmaIsTheBiasOverTheHorizontalEarthRate) {
   // A horizontal east-west tool: the along-hole (z) bias is east, across the horizontal Earth
   // rate W cos lat; the azimuth sigma is at least sigma_b / (W cos lat).
-  const StationQcBudget b = budget();
-  const StaticSpan span =
-      static_span(90.0, 90.0, 0.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 300.0);
+  const StationQcBudget b = qc_budget();
+  const StaticSpan span = synthetic_static_span(90.0, 90.0, 0.0, Eigen::Vector3d::Zero(),
+                                                Eigen::Vector3d::Zero(), 300.0);
   const StationQc qc = station_qc(span, b, 0.0, 90.0, 0.001, 90.0, 0.01);
-  const double floor_deg =
-      b.gyro_bias_sigma_radps.z() / (wgs84::kEarthRate_radps * std::cos(kLatitude)) / kDeg;
+  const double floor_deg = b.gyro_bias_sigma_radps.z() /
+                           (wgs84::kEarthRate_radps * std::cos(kQcLatitude)) / kQcRadPerDegree;
   EXPECT_GT(qc.gyrocompass_azimuth_sigma_deg, floor_deg * 0.99);
   EXPECT_LT(qc.gyrocompass_azimuth_sigma_deg, floor_deg * 1.5);
   EXPECT_NEAR(qc.gyrocompass_azimuth_deg, 90.0, 1e-6);
@@ -95,9 +96,9 @@ TEST(StationQc, GyrocompassSigmaIsTheBiasOverTheHorizontalEarthRate) {
 }
 
 TEST(StationQc, FlagsAContinuousSolutionOffByFiveSigmaAndNotOneInside) {
-  const StationQcBudget b = budget();
-  const StaticSpan span =
-      static_span(30.0, 60.0, 10.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 300.0);
+  const StationQcBudget b = qc_budget();
+  const StaticSpan span = synthetic_static_span(30.0, 60.0, 10.0, Eigen::Vector3d::Zero(),
+                                                Eigen::Vector3d::Zero(), 300.0);
   const StationQc reference = station_qc(span, b, 0.0, 30.0, 0.002, 60.0, 0.5);
   EXPECT_FALSE(reference.flagged);
   const double inclination_sigma = std::hypot(0.002, reference.static_inclination_sigma_deg);
@@ -105,7 +106,7 @@ TEST(StationQc, FlagsAContinuousSolutionOffByFiveSigmaAndNotOneInside) {
       station_qc(span, b, 0.0, 30.0 + 5.0 * inclination_sigma, 0.002, 60.0, 0.5);
   // The bias walk widens the static solution's sigma with the time since the start.
   StationQcBudget walking = b;
-  walking.gyro_bias_walk_psd.setConstant(std::pow(1.0 * kDeg / 3600.0, 2) / 3600.0);
+  walking.gyro_bias_walk_psd.setConstant(std::pow(1.0 * kQcRadPerDegree / 3600.0, 2) / 3600.0);
   EXPECT_GT(
       station_qc(span, walking, 36000.0, 30.0, 0.002, 60.0, 0.5).gyrocompass_azimuth_sigma_deg,
       2.0 * reference.gyrocompass_azimuth_sigma_deg);
@@ -115,9 +116,10 @@ TEST(StationQc, FlagsAContinuousSolutionOffByFiveSigmaAndNotOneInside) {
   EXPECT_TRUE(station_qc(span, b, 0.0, 30.0, 0.002, 60.0 - 5.0 * azimuth_sigma, 0.5).flagged);
   EXPECT_FALSE(station_qc(span, b, 0.0, 30.0, 0.002, 60.0 - 2.0 * azimuth_sigma, 0.5).flagged);
   // Near vertical the azimuth is not checked; a span too short gives no QC.
-  const StationQc vertical = station_qc(
-      static_span(1.0, 60.0, 10.0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 300.0), b, 0.0,
-      1.0, 0.002, 100.0, 0.5);
+  const StationQc vertical =
+      station_qc(synthetic_static_span(1.0, 60.0, 10.0, Eigen::Vector3d::Zero(),
+                                       Eigen::Vector3d::Zero(), 300.0),
+                 b, 0.0, 1.0, 0.002, 100.0, 0.5);
   EXPECT_TRUE(std::isnan(vertical.azimuth_difference_sigmas));
   EXPECT_FALSE(vertical.flagged);
   StaticSpan short_span = span;

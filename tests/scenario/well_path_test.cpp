@@ -10,8 +10,8 @@
 namespace stochnav {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr double kPerThirtyMetres = kDeg / 30.0;  // rad/m per deg/30 m
+constexpr double kRadPerDegree = std::numbers::pi / 180.0;
+constexpr double kPerThirtyMetres = kRadPerDegree / 30.0;  // rad/m per deg/30 m
 
 Eigen::Vector3d tangent(double inclination, double azimuth) {
   return {std::sin(inclination) * std::sin(azimuth), std::sin(inclination) * std::cos(azimuth),
@@ -21,8 +21,8 @@ Eigen::Vector3d tangent(double inclination, double azimuth) {
 WellPathConfig sections_well(double inclination_deg, double azimuth_deg,
                              std::vector<WellSectionConfig> sections) {
   WellPathConfig well;
-  well.start_inclination_rad = inclination_deg * kDeg;
-  well.start_azimuth_rad = azimuth_deg * kDeg;
+  well.start_inclination_rad = inclination_deg * kRadPerDegree;
+  well.start_azimuth_rad = azimuth_deg * kRadPerDegree;
   well.sections = std::move(sections);
   return well;
 }
@@ -31,8 +31,8 @@ TEST(WellPath, PureBuildSectionIsTheCircularArc) {
   const double build = 3.0 * kPerThirtyMetres;
   const WellPath path(sections_well(10.0, 40.0, {{600.0, build, 0.0}}));
   const double radius = 1.0 / build;
-  const double i0 = 10.0 * kDeg;
-  const double a = 40.0 * kDeg;
+  const double i0 = 10.0 * kRadPerDegree;
+  const double a = 40.0 * kRadPerDegree;
   for (double md : {0.0, 1e-3, 17.0, 299.9, 600.0}) {
     const WellPathPoint point = path.at(md);
     const double inclination = i0 + build * md;
@@ -73,8 +73,8 @@ TEST(WellPath, PlaneFormEqualsItsSections) {
   WellPathConfig plane;
   plane.kickoff_md_m = 500.0;
   plane.build_rate_rad_per_m = 3.0 * kPerThirtyMetres;
-  plane.target_inclination_rad = 90.0 * kDeg;
-  plane.azimuth_rad = 60.0 * kDeg;
+  plane.target_inclination_rad = 90.0 * kRadPerDegree;
+  plane.azimuth_rad = 60.0 * kRadPerDegree;
   const WellPath original(plane);
   ASSERT_TRUE(original.plane());
   WellPathConfig sections = sections_well(0.0, 60.0, well_sections(plane));
