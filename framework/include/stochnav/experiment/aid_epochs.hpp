@@ -1,7 +1,7 @@
 #pragma once
 // Aid rows on the IMU's epochs. A rig's surface channels (tally, ROP, slips) are stamped by
 // their own clock, so an aids.csv row rarely falls on an IMU epoch; the filter applies
-// measurements at IMU epochs only. The rule (documented in docs/user-guide.md):
+// measurements at IMU epochs only. The rule (docs/drilling-envelope.md, section 6):
 //
 //   a row at time r is applied at the FIRST IMU epoch t_k with t_k >= r - 1 us, i.e. at most
 //   one IMU period after r; its time in the run's aid data becomes t_k.
