@@ -106,9 +106,10 @@ InputError non_finite_state(const plugin::RunConfig& config, double t_s) {
       config.data.imu.string(), t_s));
 }
 
-// The budget of the station QC: the sensors' error sigmas before any estimation (the run
+// The budget of the station QC: the sensors' bias sigmas before any estimation (the run
 // config's initial sigmas, not the alignment's: the check must not lean on the filter it
-// checks) and the noise models' white-noise PSDs at the start.
+// checks) with the stationary variance of the noise models' correlated states, their bias
+// walk and white-noise PSDs at the start.
 StationQcBudget station_qc_budget(const plugin::RunConfig& config, const NavState& site,
                                   plugin::NoiseModelPlugin& gyro, plugin::NoiseModelPlugin& accel,
                                   double t_s) {
@@ -142,9 +143,9 @@ StationQcBudget station_qc_budget(const plugin::RunConfig& config, const NavStat
   return budget;
 }
 
-// The survey QC's verdict into the self-check: a station whose continuous solution leaves the
-// connection's static solution by more than 3 combined sigma (or whose gravity or Earth-rate
-// total is off) makes the run's self-check optimistic, truth or not.
+// The survey QC's verdict into the self-check: a station whose continuous inclination or
+// azimuth leaves the connection's static solution by more than 3 combined sigma makes the run's
+// self-check optimistic, truth or not.
 void add_survey_qc(const std::vector<SurveyStation>& stations, NavigationRunResult& result) {
   std::size_t checked = 0;
   std::size_t flagged = 0;
