@@ -7,7 +7,7 @@
 // sanitized). Under the sanitizers a study looks for memory and undefined-behaviour errors in
 // the code it runs, so that CI's asan stage can run every test within its time; the floors that
 // need the full size are checked only at full size (the release suite).
-// STOCHNAV_STUDY_FULL_SIZE=1 runs the studies at full size in a sanitized build too (README.md,
+// STOCHNAV_STUDY_FULL_SIZE=1 runs the studies at full size in a sanitized build too (docs/reliability.md,
 // "Sanitizers": the by-hand run).
 
 #include <cstdlib>

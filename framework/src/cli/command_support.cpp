@@ -97,7 +97,7 @@ CLI::Validator whole_number_in(std::uint64_t low, std::uint64_t high) {
         }
         if (*value > high) {
           return text + " is above the limit of " + std::to_string(high) +
-                 " (README.md, Limits on work); give at most " + std::to_string(high);
+                 " (docs/reliability.md, Limits on work); give at most " + std::to_string(high);
         }
         return {};
       },

@@ -79,7 +79,7 @@ std::uint64_t checked_sample_count(const NoiseArguments& arguments) {
   }
   if (arguments.rate_hz > limits::kMaxSimulatedRateHz) {
     throw ConfigError(fmt::format("--rate {:g} Hz is above the limit of {:g} Hz; give a lower "
-                                  "--rate (README.md, Limits on work)",
+                                  "--rate (docs/reliability.md, Limits on work)",
                                   arguments.rate_hz, limits::kMaxSimulatedRateHz));
   }
   const double samples = std::round(arguments.duration_s * arguments.rate_hz);
@@ -87,7 +87,7 @@ std::uint64_t checked_sample_count(const NoiseArguments& arguments) {
     throw ConfigError(fmt::format(
         "--duration {:g} s at --rate {:g} Hz is {:.3g} samples, above the limit of {:.3g} per "
         "record; shorten --duration or lower --rate, or simulate several records with different "
-        "--seed (README.md, Limits on work)",
+        "--seed (docs/reliability.md, Limits on work)",
         arguments.duration_s, arguments.rate_hz, samples, limits::kMaxSimulatedSamples));
   }
   if (samples < 2) throw ConfigError("--duration x --rate gives fewer than 2 samples");

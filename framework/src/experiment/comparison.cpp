@@ -358,15 +358,15 @@ void validate_variants(const ExperimentConfig& config) {
 void check_work_limits(const ExperimentConfig& config) {
   if (config.seeds.size() > limits::kMaxCompareSeeds) {
     throw ConfigError(fmt::format("{}: {} seeds, above the limit of {} per comparison; use fewer "
-                                  "seeds (README.md, Limits on work)",
+                                  "seeds (docs/reliability.md, Limits on work)",
                                   config.file.string(), config.seeds.size(),
                                   limits::kMaxCompareSeeds));
   }
   const std::uint64_t runs = config.seeds.size() * config.variants.size();
   if (runs > limits::kMaxCompareRuns) {
     throw ConfigError(fmt::format("{}: {} variants x {} seeds = {} filter runs, above the limit "
-                                  "of {} per comparison; use fewer seeds or variants (README.md, "
-                                  "Limits on work)",
+                                  "of {} per comparison; use fewer seeds or variants "
+                                  "(docs/reliability.md, Limits on work)",
                                   config.file.string(), config.variants.size(),
                                   config.seeds.size(), runs, limits::kMaxCompareRuns));
   }
@@ -441,7 +441,7 @@ ComparisonResult run_comparison(const ExperimentConfig& config, const fs::path& 
   // this the jobs loaded the libraries concurrently (each job's registry, while no other job held
   // them), one job running a library's static initialisers while another used its globals, the
   // two ordered only by the dynamic loader's internal lock, which the thread sanitizer cannot
-  // see (README.md, "Thread sanitizer").
+  // see (docs/reliability.md, "Thread sanitizer").
   const plugin::PluginRegistry loaded_plugins(plugin::default_search_path(config.config_dir));
   run_parallel(job_count, threads, progress, done, [&](std::size_t job) {
     const std::size_t v = job / seed_count;

@@ -58,7 +58,7 @@ std::vector<std::uint64_t> parse_seeds(const nlohmann::json& seeds) {
                                                seeds.get<std::uint64_t>() > limits::kMaxCompareSeeds;
   if (too_many) {
     throw ConfigError(fmt::format("/data/seeds: {} seeds, above the limit of {} per comparison; "
-                                  "use fewer seeds (README.md, Limits on work)",
+                                  "use fewer seeds (docs/reliability.md, Limits on work)",
                                   seeds.is_array() ? seeds.size() : seeds.get<std::uint64_t>(),
                                   limits::kMaxCompareSeeds));
   }

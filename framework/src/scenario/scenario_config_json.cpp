@@ -733,7 +733,7 @@ ScenarioConfig parse(const json& value) {
         config.kind == ScenarioKind::kDrilling ? "/drilling/duration_s" : "/vibration_table/phases",
         fmt::format("gives {:.3g} IMU epochs", epochs),
         fmt::format("a duration of 2 to {:.3g} epochs at imu/rate_hz (the limit on work, "
-                    "README.md)", limits::kMaxScenarioEpochs));
+                    "docs/reliability.md)", limits::kMaxScenarioEpochs));
   }
   return config;
 }

@@ -3,7 +3,7 @@
 // inputs (records are read once; analyses are linear or n log n in their length); these limits
 // bound what is not an input but a number typed in: simulated lengths, seeds, iterations.
 // A request beyond a limit is refused up front with a ConfigError (CLI exit code 2) naming the
-// option, the limit and what to change. README.md ("Limits on work") lists them.
+// option, the limit and what to change. docs/reliability.md ("Limits on work") lists them.
 
 #include <cstdint>
 
