@@ -17,17 +17,6 @@ namespace {
 
 using testing::kDeg;
 
-NavState nav_state(const TruthSample& truth) {
-  NavState state;
-  state.t_s = truth.t_s;
-  state.latitude_rad = truth.latitude_rad;
-  state.longitude_rad = truth.longitude_rad;
-  state.height_m = truth.height_m;
-  state.v_n = truth.v_n;
-  state.q_nb = Eigen::Quaterniond(truth.C_nb);
-  return state;
-}
-
 struct Errors {
   double attitude_rad = 0.0;
   double velocity_mps = 0.0;
@@ -38,7 +27,7 @@ struct Errors {
 // Runs the integrator over the whole scenario on ideal increments; largest errors seen.
 Errors follow(const ScenarioConfig& config) {
   ScenarioSimulator simulator(config, 1, /*sensor_errors=*/false);
-  StrapdownIntegrator ins(nav_state(simulator.initial_truth()));
+  StrapdownIntegrator ins(testing::nav_state_of(simulator.initial_truth()));
   Errors worst;
   ScenarioEpoch epoch;
   while (simulator.epochs_done() < simulator.epoch_count()) {

@@ -10,22 +10,18 @@ namespace stochnav::testing {
 inline constexpr double kPerThirtyMetres = kDeg / 30.0;
 inline constexpr double kSlideToolfaceRad = 40.0 * kDeg;
 
+// drilling_config's rig and sensors (scenario_builders.hpp) on the general path.
 inline ScenarioConfig pattern_config(double duration_s) {
-  ScenarioConfig config = base_config(ScenarioKind::kDrilling);
-  DrillingConfig d;
+  ScenarioConfig config = drilling_config(duration_s);
+  DrillingConfig& d = *config.drilling;
+  d.well = WellPathConfig{};
   d.well.start_inclination_rad = 20.0 * kDeg;
   d.well.start_azimuth_rad = 80.0 * kDeg;
   d.well.sections = {{45.0, 0.0, 0.0}, {400.0, 8.0 * kPerThirtyMetres, 6.0 * kPerThirtyMetres}};
   d.start_md_m = 40.0;
-  d.duration_s = duration_s;
   d.initial_static_s = 60.0;
-  d.rop_mps = 120.0 / 3600.0;
-  d.rotation_radps = 2.0 * std::numbers::pi;
-  d.initial_toolface_rad = 0.3;
-  d.stand_length_m = 9.0;
-  d.connection_s = 60.0;
-  d.ramp_s = 10.0;
   d.orient_s = 20.0;
+  d.vibration_episodes.clear();
   StandSegmentConfig slide;
   slide.mode = DrillMode::kSlide;
   slide.length_m = 3.0;
@@ -38,8 +34,6 @@ inline ScenarioConfig pattern_config(double duration_s) {
   rotate.rotation_radps = 3.0 * std::numbers::pi;  // 90 rpm
   d.stand_pattern = {slide, rotate};
   d.md_vibration_episodes = {{50.0, 62.0, 2.0 * kG, 12.0}};
-  d.vibration_noise = {10.0, 3.0};
-  config.drilling = d;
   return config;
 }
 

@@ -26,21 +26,10 @@ double angle_difference(double a, double b) {
   return std::remainder(a - b, 2.0 * std::numbers::pi);
 }
 
-NavState nav_state(const TruthSample& truth) {
-  NavState state;
-  state.t_s = truth.t_s;
-  state.latitude_rad = truth.latitude_rad;
-  state.longitude_rad = truth.longitude_rad;
-  state.height_m = truth.height_m;
-  state.v_n = truth.v_n;
-  state.q_nb = Eigen::Quaterniond(truth.C_nb);
-  return state;
-}
-
 TEST(DrillingPattern, StrapdownOfTheIncrementsFollowsTruth) {
   const ScenarioConfig config = testing::pattern_config(1500.0);
   ScenarioSimulator simulator(config, 1, /*sensor_errors=*/false);
-  StrapdownIntegrator ins(nav_state(simulator.initial_truth()));
+  StrapdownIntegrator ins(testing::nav_state_of(simulator.initial_truth()));
   double attitude = 0.0;
   double velocity = 0.0;
   double horizontal = 0.0;

@@ -4,7 +4,9 @@
 
 #include <numbers>
 
+#include "stochnav/ins/nav_state.hpp"
 #include "stochnav/scenario/scenario_config.hpp"
+#include "stochnav/scenario/true_motion.hpp"
 
 namespace stochnav::testing {
 
@@ -83,6 +85,18 @@ inline ScenarioConfig drilling_config(double duration_s) {
   d.vibration_noise = {10.0, 3.0};
   config.drilling = d;
   return config;
+}
+
+/// The navigation state of a truth sample (to start a strapdown run on the truth).
+inline NavState nav_state_of(const TruthSample& truth) {
+  NavState state;
+  state.t_s = truth.t_s;
+  state.latitude_rad = truth.latitude_rad;
+  state.longitude_rad = truth.longitude_rad;
+  state.height_m = truth.height_m;
+  state.v_n = truth.v_n;
+  state.q_nb = Eigen::Quaterniond(truth.C_nb);
+  return state;
 }
 
 }  // namespace stochnav::testing
