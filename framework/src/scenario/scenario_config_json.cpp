@@ -473,6 +473,17 @@ void parse_stand_pattern(ObjectReader& r, DrillingConfig& d) {
 }
 
 // One vibration episode: by time {"start_s", "end_s", ...} or by depth {"start_md_m", ...}.
+
+// The vibration of an episode, by time or by depth alike: its peak axial acceleration (m/s^2)
+// and frequency (Hz); the last keys of the episode's object.
+void read_axial_vibration(ObjectReader& e, double& amplitude_mps2, double& frequency_hz) {
+  amplitude_mps2 =
+      e.number("axial_g", "a peak axial acceleration in g >= 0", Range::kNonNegative) *
+      kStandardGravity;
+  frequency_hz = e.number("frequency_hz", "a frequency in Hz > 0", Range::kPositive);
+  e.finish();
+}
+
 void parse_episode(const json& value, const std::string& at, DrillingConfig& d) {
   const bool by_depth =
       value.is_object() && (value.contains("start_md_m") || value.contains("end_md_m"));
@@ -492,11 +503,7 @@ void parse_episode(const json& value, const std::string& at, DrillingConfig& d) 
       fail(e.at("start_s"), "overlaps the previous episode",
            "episodes ascending and not overlapping");
     }
-    episode.axial_amplitude_mps2 =
-        e.number("axial_g", "a peak axial acceleration in g >= 0", Range::kNonNegative) *
-        kStandardGravity;
-    episode.frequency_hz = e.number("frequency_hz", "a frequency in Hz > 0", Range::kPositive);
-    e.finish();
+    read_axial_vibration(e, episode.axial_amplitude_mps2, episode.frequency_hz);
     d.vibration_episodes.push_back(episode);
     return;
   }
@@ -521,11 +528,7 @@ void parse_episode(const json& value, const std::string& at, DrillingConfig& d) 
     fail(e.at("start_md_m"), "overlaps the previous depth episode",
          "depth episodes ascending and not overlapping");
   }
-  episode.axial_amplitude_mps2 =
-      e.number("axial_g", "a peak axial acceleration in g >= 0", Range::kNonNegative) *
-      kStandardGravity;
-  episode.frequency_hz = e.number("frequency_hz", "a frequency in Hz > 0", Range::kPositive);
-  e.finish();
+  read_axial_vibration(e, episode.axial_amplitude_mps2, episode.frequency_hz);
   d.md_vibration_episodes.push_back(episode);
 }
 
