@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "stochnav/filter/core_covariance.hpp"
+#include "stochnav/filter/second_order_attitude.hpp"
 #include "stochnav/ins/earth.hpp"
 
 namespace stochnav {
@@ -305,7 +306,7 @@ void MwdNavigator::propagate_covariance() {
     phi_.topLeftCorner(head_size_, head_size_) += head_f_ + 0.5 * head_f_ * head_f_;
   }
   q_d_.setZero();
-  q_d_.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_;
+  q_d_.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_ + second_order_noise(interval);
   q_d_.block<3, 3>(cs::kVelocity, cs::kVelocity) = velocity_noise_;
   gyro_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
   q_d_.block<3, 3>(cs::kGyroBias, cs::kGyroBias) = bias_walk_;
@@ -348,7 +349,7 @@ void MwdNavigator::propagate_core_states(const CoreMatrix& f_t, double interval)
   CoreMatrix phi = second_order_transition_increment(f_t);
   phi.diagonal().array() += 1.0;
   CoreMatrix q_d = CoreMatrix::Zero();
-  q_d.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_;
+  q_d.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_ + second_order_noise(interval);
   q_d.block<3, 3>(cs::kVelocity, cs::kVelocity) = velocity_noise_;
   gyro_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
   q_d.block<3, 3>(cs::kGyroBias, cs::kGyroBias) = bias_walk_;
@@ -356,6 +357,19 @@ void MwdNavigator::propagate_core_states(const CoreMatrix& f_t, double interval)
   q_d.block<3, 3>(cs::kAccelBias, cs::kAccelBias) = bias_walk_;
   filter_.propagate_core(phi, q_d);
   close_interval(interval);
+}
+
+// The attitude error's second-order rate while the heading is uncertain by degrees
+// (filter/second_order_attitude.hpp), from the covariance at the interval's start.
+Eigen::Matrix3d MwdNavigator::second_order_noise(double interval) const {
+  if (!(options_.second_order_attitude_correlation_s > 0.0)) return Eigen::Matrix3d::Zero();
+  const NavState& state = ins_.state();
+  const LatitudeTrig trig(state.latitude_rad);
+  const Eigen::Vector3d omega_in_n =
+      earth_rate_n(trig) + transport_rate_n(trig, state.height_m, state.v_n);
+  return second_order_attitude_noise(
+      filter_.covariance().block<3, 3>(cs::kAttitude, cs::kAttitude), omega_in_n, interval,
+      options_.second_order_attitude_correlation_s);
 }
 
 void MwdNavigator::close_interval(double interval) {

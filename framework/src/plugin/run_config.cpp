@@ -331,6 +331,9 @@ FilterConfig parse_filter_section(const nlohmann::json& json, const std::string&
   }
   out.covariance_interval_s = reader.number_or("covariance_interval_s", out.covariance_interval_s,
                                                Bound::kNonNegative, "s");
+  out.second_order_attitude_correlation_s =
+      reader.number_or("second_order_attitude_correlation_s",
+                       out.second_order_attitude_correlation_s, Bound::kNonNegative, "s");
   if (reader.has("max_consecutive_rejections")) {
     const std::uint64_t count = non_negative_integer(reader, "max_consecutive_rejections");
     if (count > 1'000'000'000u) {

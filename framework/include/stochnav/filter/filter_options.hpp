@@ -68,6 +68,18 @@ struct FilterOptions {
   Eigen::Vector3d gyro_scale_factor_sigma{0.0, 0.0, 0.0};   ///< body axes (dimensionless)
   Eigen::Vector3d accel_scale_factor_sigma{0.0, 0.0, 0.0};  ///< body axes (dimensionless)
 
+  /// Correlation time (s) of the attitude error's second-order rate, -1/2 [phi x]^2 omega_in
+  /// (filter/second_order_attitude.hpp), added as process noise while the heading is uncertain
+  /// by degrees; 0 leaves it out (the first-order filter). Without it, an east-west hole drilled
+  /// from a field start at 46-80 deg latitude ended 4-7 sigma off in azimuth and north: the
+  /// filter read an unmodelled tilt drift as heading information. The term is a random
+  /// constant for as long as the heading error stays put; 900 s is the horizon of the
+  /// levelling loop (ZUPT and ROP updates observe a tilt drift within minutes). 600-1200 s
+  /// gave the same consistency on the envelope cases, 300 s and 7200 s did not
+  /// (docs/drilling-envelope.md, section 4); with the heading known to 0.1 deg it adds
+  /// nothing measurable.
+  double second_order_attitude_correlation_s = 900.0;
+
   /// Covariance products by blocks (filter/error_state_filter.hpp, BlockTransition and
   /// JosephForm::kExpanded): augmented states cost O(n^2) per propagation and update instead of
   /// O(n^3), with the same results to rounding. false: the dense products, kept as the

@@ -22,6 +22,7 @@
 //                         "accel_bias_m_s2": 0.001, "gyro_bias_deg_h": 1.03},
 //       "covariance_interval_s": 0.1,                   // >= 0 (0: every IMU epoch)
 //       "max_consecutive_rejections": 3,                // integer >= 0 (0: strict gate)
+//       "second_order_attitude_correlation_s": 900,     // >= 0 (0: first order only)
 //       "scale_factor_sigma_ppm": {"gyro": 0, "accel": 0},   // >= 0; > 0 adds the 3 states
 //       "feedback": "closed_loop"},                     // the only mode implemented
 //     "initial_state": {                                // optional with truth, required without
