@@ -1,19 +1,27 @@
-// The catalogue of issue #17 (a fuzzing and sanitizer pass over every subcommand) as one table:
+// The catalogue of issues #17 (a fuzzing and sanitizer pass over every subcommand) and #26 (the
+// tool as a trusted Unix tool: write errors, special files, inputs checked whole) as tables:
 // each defect found, run through the command-line tool. Every bad input gives exit code 2 and
 // one printable line saying what and where, names no internal function, and leaves no output,
 // no temporary file and no folder behind; the inputs that were mishandled although valid (a
 // UTF-8 byte-order mark, a subnormal number) now work.
 
 #include <gtest/gtest.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "json_file.hpp"
@@ -108,6 +116,7 @@ class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
     dir_ = new TempDir();
     const TempDir& d = *dir_;
     d.write("good.csv", csv(200));
+    d.write("long.csv", csv(2000));
     std::string alternating = "t,x\n";
     for (int i = 0; i < 200; ++i)
       alternating += std::to_string(i) + (i % 2 ? ",1e308\n" : ",-1e308\n");
@@ -223,7 +232,8 @@ std::vector<std::string> temporary_files(const fs::path& root) {
 TEST_P(Catalogue, HandledAsDocumented) {
   const CatalogueCase& c = GetParam();
   const std::string dir = dir_->path().string();
-  const CliResult result = run_in_shell(c.shell_prefix, replace_at(c.arguments, dir), dir);
+  const CliResult result =
+      run_in_shell(replace_at(c.shell_prefix, dir), replace_at(c.arguments, dir), dir);
   EXPECT_EQ(result.exit_code, c.exit_code) << result.err;
   if (c.exit_code == 0) {
     EXPECT_NE(result.out.find(c.fragment), std::string::npos) << result.out;
@@ -411,6 +421,47 @@ INSTANTIATE_TEST_SUITE_P(
                       2,
                       "above the limit of 32",
                       {"@/d"}}),
+    [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
+
+constexpr const char* kFull = "exec >/dev/full";
+constexpr const char* kStdoutFull = "standard output: cannot write (No space left on device); ";
+
+// Issue #26: write errors are never ignored (standard output included), outputs never replace
+// a special file, and inputs are checked whole (gzip to its end, truth in time order, JSON
+// without duplicate keys).
+INSTANTIATE_TEST_SUITE_P(
+    Issue26, Catalogue,
+    ::testing::Values(
+        // Every write and the final flush of standard output is checked.
+        CatalogueCase{"allan_stdout_full", "allan --input @/good.csv", 2, kStdoutFull, {}, kFull},
+        CatalogueCase{"allan_json_stdout_full", "allan --input @/good.csv --format json", 2,
+                      kStdoutFull, {}, kFull},
+        CatalogueCase{"davar_stdout_full", "davar --input @/good.csv --window 50 --step 25", 2,
+                      kStdoutFull, {}, kFull},
+        CatalogueCase{"fit_stdout_full", "fit --input @/good.csv --format json", 2, kStdoutFull,
+                      {}, kFull},
+        CatalogueCase{"plugins_list_stdout_full", "plugins list", 2, kStdoutFull, {}, kFull},
+        CatalogueCase{"run_stdout_full", "run @/run.json --out @/run_full --no-plot", 2,
+                      kStdoutFull, {}, kFull},
+        CatalogueCase{"help_stdout_full", "--help", 2, kStdoutFull, {}, kFull},
+        CatalogueCase{"allan_stdout_closed", "allan --input @/good.csv", 2,
+                      "standard output: cannot write (Bad file descriptor)", {}, "exec >&-"},
+        CatalogueCase{"run_stdout_closed", "run @/run.json --out @/run_closed --no-plot", 2,
+                      "standard output: cannot write (Bad file descriptor)", {}, "exec >&-"},
+        // (ulimit -f 8: a few KB, room for the one line on stderr, not for the output.)
+        CatalogueCase{"allan_stdout_file_too_large", "allan --input @/long.csv --taus all", 2,
+                      "standard output: cannot write (File too large)", {},
+                      "ulimit -f 8; trap '' XFSZ; exec >'@/stdout.txt'"},
+        CatalogueCase{"allan_output_file_too_large",
+                      "allan --input @/long.csv --taus all --output @/allan.csv", 2,
+                      "allan.csv: cannot write (File too large)", {"@/allan.csv"},
+                      "ulimit -f 8; trap '' XFSZ"},
+        CatalogueCase{"davar_output_file_too_large",
+                      "davar --input @/long.csv --window 50 --step 5 --output @/davar.csv", 2,
+                      "davar.csv: cannot write (File too large)", {"@/davar.csv"},
+                      "ulimit -f 8; trap '' XFSZ"},
+        CatalogueCase{"run_output_file_too_large", "run @/run.json --out @/run_big --no-plot", 2,
+                      "cannot write (File too large)", {"@/run_big"}, "ulimit -f 8; trap '' XFSZ"}),
     [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
 
 TEST_F(Catalogue, SubnormalScenarioIsWrittenWhole) {
