@@ -194,6 +194,20 @@ class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
     d.write("experiment_1e6_seeds.json", many_seeds.dump());
     text = experiment.dump();
     d.write("experiment_1e400.json", text.replace(text.find("0.005"), 5, "1e400"));
+
+    // Issue #26.
+    // A socket: no output may be written there.
+    const int socket_fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    const std::string socket_path = d.file("socket");
+    if (socket_path.size() < sizeof address.sun_path) {
+      std::memcpy(address.sun_path, socket_path.c_str(), socket_path.size() + 1);
+      if (::bind(socket_fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
+        setup_error_ = "cannot make a socket";
+      }
+    }
+    ::close(socket_fd);
   }
   static void TearDownTestSuite() {
     delete dir_;
@@ -461,7 +475,12 @@ INSTANTIATE_TEST_SUITE_P(
                       "davar.csv: cannot write (File too large)", {"@/davar.csv"},
                       "ulimit -f 8; trap '' XFSZ"},
         CatalogueCase{"run_output_file_too_large", "run @/run.json --out @/run_big --no-plot", 2,
-                      "cannot write (File too large)", {"@/run_big"}, "ulimit -f 8; trap '' XFSZ"}),
+                      "cannot write (File too large)", {"@/run_big"}, "ulimit -f 8; trap '' XFSZ"},
+        // A special file is not replaced.
+        CatalogueCase{"output_is_a_folder", "allan --input @/good.csv --output @/folder.json", 2,
+                      "folder.json: is a folder; an output must be a regular file"},
+        CatalogueCase{"output_is_a_socket", "allan --input @/good.csv --output @/socket", 2,
+                      "socket: is a socket; an output must be a regular file"}),
     [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
 
 TEST_F(Catalogue, SubnormalScenarioIsWrittenWhole) {
@@ -471,6 +490,46 @@ TEST_F(Catalogue, SubnormalScenarioIsWrittenWhole) {
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json written = read_json(dir_->path() / "subnormal" / "scenario.json");
   EXPECT_NE(written.dump().find("angle_random_walk"), std::string::npos);
+}
+
+// Issue #26: an output named through a symbolic link replaces the link's target; the link stays.
+TEST_F(Catalogue, OutputThroughASymlinkReplacesItsTarget) {
+  const TempDir& d = *dir_;
+  fs::create_directories(d.path() / "linked");
+  d.write("linked/allan.csv", "old\n");
+  fs::create_symlink("linked/allan.csv", d.path() / "allan_link.csv");
+  const CliResult result = testing::run_cli(
+      replace_at("allan --input @/good.csv --format csv --output @/allan_link.csv",
+                 d.path().string()),
+      d.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(fs::is_symlink(d.path() / "allan_link.csv"));
+  std::ifstream written(d.path() / "linked" / "allan.csv");
+  std::string header;
+  std::getline(written, header);
+  EXPECT_EQ(header.rfind("m,tau,n", 0), 0u) << header;
+  EXPECT_EQ(temporary_files(d.path()), std::vector<std::string>{});
+}
+
+// Issue #26: a FIFO named as the output is written into, not replaced by a regular file.
+TEST_F(Catalogue, OutputToAFifoIsStreamedInPlace) {
+  const TempDir& d = *dir_;
+  const fs::path fifo = d.path() / "allan.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string read;
+  std::thread reader([&] {
+    std::ifstream in(fifo);
+    read.assign(std::istreambuf_iterator<char>(in), {});
+  });
+  const CliResult result = testing::run_cli(
+      replace_at("allan --input @/good.csv --format csv --output @/allan.fifo",
+                 d.path().string()),
+      d.path().string());
+  reader.join();
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(read.rfind("m,tau,n", 0), 0u) << read;
+  EXPECT_EQ(fs::status(fifo).type(), fs::file_type::fifo);
+  fs::remove(fifo);
 }
 
 }  // namespace
