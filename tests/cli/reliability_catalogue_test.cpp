@@ -196,6 +196,22 @@ class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
     d.write("experiment_1e400.json", text.replace(text.find("0.005"), 5, "1e400"));
 
     // Issue #26.
+    // gzip records: whole, cut short, a byte of the data changed, no gzip header.
+    d.write("record.txt", [] {
+      std::string record;
+      for (int i = 0; i < 2000; ++i) record += std::to_string((i * 37) % 101 - 50) + "\n";
+      return record;
+    }());
+    const std::string gzip = "gzip -n -c '" + d.file("record.txt") + "' > '" +
+                             d.file("record.txt.gz") + "'";
+    if (std::system(gzip.c_str()) != 0) setup_error_ = "gzip failed";
+    std::ifstream compressed(d.file("record.txt.gz"), std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(compressed), {}};
+    d.write("truncated.txt.gz", bytes.substr(0, bytes.size() / 3));
+    std::string corrupt = bytes;
+    corrupt[corrupt.size() - 6] = static_cast<char>(corrupt[corrupt.size() - 6] ^ 0x55);
+    d.write("corrupt.txt.gz", corrupt);
+    d.write("headerless.txt.gz", bytes.substr(3));
     // A socket: no output may be written there.
     const int socket_fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
     sockaddr_un address{};
@@ -480,7 +496,16 @@ INSTANTIATE_TEST_SUITE_P(
         CatalogueCase{"output_is_a_folder", "allan --input @/good.csv --output @/folder.json", 2,
                       "folder.json: is a folder; an output must be a regular file"},
         CatalogueCase{"output_is_a_socket", "allan --input @/good.csv --output @/socket", 2,
-                      "socket: is a socket; an output must be a regular file"}),
+                      "socket: is a socket; an output must be a regular file"},
+        // gzip checked to the end.
+        CatalogueCase{"gzip_whole", "allan --input @/record.txt.gz --rate 100 --format csv", 0,
+                      "m,tau,n"},
+        CatalogueCase{"gzip_truncated", "allan --input @/truncated.txt.gz --rate 100", 2,
+                      "truncated.txt.gz: truncated gzip file (unexpected end of file)"},
+        CatalogueCase{"gzip_corrupt", "allan --input @/corrupt.txt.gz --rate 100", 2,
+                      "corrupt.txt.gz: corrupt gzip data (incorrect data check)"},
+        CatalogueCase{"gzip_no_header", "allan --input @/headerless.txt.gz --rate 100", 2,
+                      "headerless.txt.gz: not a gzip file"}),
     [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
 
 TEST_F(Catalogue, SubnormalScenarioIsWrittenWhole) {
