@@ -110,6 +110,26 @@ void edited_imu(const fs::path& source, const fs::path& folder, Edit edit) {
   }
 }
 
+// Copies the recording folder `source` to `folder` with the data lines (after the header) of
+// `file` passed through `edit`.
+template <typename Edit>
+void edited_lines(const fs::path& source, const std::string& file, const fs::path& folder,
+                  Edit edit) {
+  fs::create_directories(folder);
+  for (const char* name : {"imu.csv", "aids.csv", "truth.csv", "scenario.json"}) {
+    if (name != file) fs::copy_file(source / name, folder / name);
+  }
+  std::ifstream in(source / file);
+  std::string header;
+  std::getline(in, header);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  edit(lines);
+  std::ofstream out(folder / file);
+  out << header << '\n';
+  for (const std::string& line : lines) out << line << '\n';
+}
+
 class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
  protected:
   static void SetUpTestSuite() {
@@ -196,6 +216,12 @@ class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
     d.write("experiment_1e400.json", text.replace(text.find("0.005"), 5, "1e400"));
 
     // Issue #26.
+    edited_lines(d.path() / "table", "truth.csv", d.path() / "truth_swapped",
+                 [](std::vector<std::string>& lines) { std::swap(lines[150], lines[151]); });
+    edited_lines(d.path() / "table", "truth.csv", d.path() / "truth_duplicated",
+                 [](std::vector<std::string>& lines) {
+                   lines.insert(lines.begin() + 200, lines[200]);
+                 });
     // gzip records: whole, cut short, a byte of the data changed, no gzip header.
     d.write("record.txt", [] {
       std::string record;
@@ -505,7 +531,18 @@ INSTANTIATE_TEST_SUITE_P(
         CatalogueCase{"gzip_corrupt", "allan --input @/corrupt.txt.gz --rate 100", 2,
                       "corrupt.txt.gz: corrupt gzip data (incorrect data check)"},
         CatalogueCase{"gzip_no_header", "allan --input @/headerless.txt.gz --rate 100", 2,
-                      "headerless.txt.gz: not a gzip file"}),
+                      "headerless.txt.gz: not a gzip file"},
+        // truth.csv in time order.
+        CatalogueCase{"run_truth_swapped",
+                      "run @/run.json --data @/truth_swapped --out @/r",
+                      2,
+                      "truth.csv:153: time does not increase",
+                      {"@/r"}},
+        CatalogueCase{"run_truth_duplicated",
+                      "run @/run.json --data @/truth_duplicated --out @/r",
+                      2,
+                      "truth.csv:203: time does not increase",
+                      {"@/r"}}),
     [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
 
 TEST_F(Catalogue, SubnormalScenarioIsWrittenWhole) {
