@@ -130,6 +130,14 @@ void edited_lines(const fs::path& source, const std::string& file, const fs::pat
   for (const std::string& line : lines) out << line << '\n';
 }
 
+// `text` (a JSON object as nlohmann dumps it) with `"key":value` written a second time after
+// the first occurrence of `"key":value`.
+std::string with_key_twice(std::string text, const std::string& key_value) {
+  const std::size_t at = text.find(key_value);
+  if (at == std::string::npos) return "key not found: " + key_value;
+  return text.insert(at + key_value.size(), "," + key_value);
+}
+
 class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
  protected:
   static void SetUpTestSuite() {
@@ -222,6 +230,13 @@ class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
                  [](std::vector<std::string>& lines) {
                    lines.insert(lines.begin() + 200, lines[200]);
                  });
+    d.write("model_duplicate.json", R"({"units": "deg/h", "rate_hz": 10, "terms": [
+        {"type": "angle_random_walk", "N": 0.1, "N": 0.2}]})");
+    d.write("run_duplicate.json",
+            with_key_twice(run.dump(), "\"plugin\":\"static_position\""));
+    d.write("experiment_duplicate.json",
+            with_key_twice(experiment.dump(), "\"baseline\":\"classic\""));
+    d.write("scenario_duplicate.json", with_key_twice(scenario.dump(), "\"duration_s\":30"));
     // gzip records: whole, cut short, a byte of the data changed, no gzip header.
     d.write("record.txt", [] {
       std::string record;
@@ -542,7 +557,34 @@ INSTANTIATE_TEST_SUITE_P(
                       "run @/run.json --data @/truth_duplicated --out @/r",
                       2,
                       "truth.csv:203: time does not increase",
-                      {"@/r"}}),
+                      {"@/r"}},
+        // Duplicate JSON keys, with their pointer, in every config.
+        CatalogueCase{"duplicate_key_model",
+                      "simulate noise --model @/model_duplicate.json --duration 10 --rate 10 "
+                      "--seed 1 --out @/n.csv",
+                      2,
+                      "model_duplicate.json: duplicate key at /terms/0/N;",
+                      {"@/n.csv"}},
+        CatalogueCase{"duplicate_key_diagnose_model",
+                      "diagnose --input @/good.csv --model @/model_duplicate.json --out @/d",
+                      2,
+                      "model_duplicate.json: duplicate key at /terms/0/N;",
+                      {"@/d"}},
+        CatalogueCase{"duplicate_key_run",
+                      "run @/run_duplicate.json --out @/r",
+                      2,
+                      "run_duplicate.json: duplicate key at /aids/0/plugin;",
+                      {"@/r"}},
+        CatalogueCase{"duplicate_key_experiment",
+                      "compare @/experiment_duplicate.json --out @/c",
+                      2,
+                      "experiment_duplicate.json: duplicate key at /baseline;",
+                      {"@/c"}},
+        CatalogueCase{"duplicate_key_scenario",
+                      "simulate scenario @/scenario_duplicate.json --out @/s",
+                      2,
+                      "scenario_duplicate.json: duplicate key at /vibration_table/phases/0/duration_s;",
+                      {"@/s"}}),
     [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
 
 TEST_F(Catalogue, SubnormalScenarioIsWrittenWhole) {

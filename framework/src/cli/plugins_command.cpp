@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "standard_output.hpp"
 #include "stochnav/core/errors.hpp"
+#include "stochnav/io/json_document.hpp"
 #include "stochnav/plugin/noise_model_checks.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
 #include "stochnav/plugin/run_config.hpp"
@@ -67,13 +68,9 @@ void run_list(const PluginsArguments& arguments) {
   throw ConfigError(message);
 }
 
+// The one JSON reader's checks (syntax, range, duplicate keys), as for a config file.
 nlohmann::json parse_params_option(const std::string& text) {
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw ConfigError("--params: not valid JSON (" + std::string(error.what()) +
-                      "); give the params object, e.g. --params '{\"sigma\": 0.5}'");
-  }
+  return parse_json_document(text, "--params");
 }
 
 // Builds the model with the library's factory and runs the property checks. Every failure is
