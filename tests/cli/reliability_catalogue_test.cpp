@@ -636,5 +636,31 @@ TEST_F(Catalogue, OutputToAFifoIsStreamedInPlace) {
   fs::remove(fifo);
 }
 
+// Issue #26: temporary files a killed process left (NAME.tmpPID_N) are removed by the next run
+// into the folder; those of a live process are not.
+TEST_F(Catalogue, StaleTemporariesAreRemovedByTheNextRun) {
+  const TempDir& d = *dir_;
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);  // `child` is now a process id nobody has
+  const fs::path out = d.path() / "stale_run";
+  fs::create_directories(out);
+  const std::string dead = ".tmp" + std::to_string(child);
+  const std::string live = ".tmp" + std::to_string(::getpid());
+  d.write("stale_run/nav.csv" + dead + "_0", "half a file");
+  d.write("stale_run/metrics.json" + dead + "_7", "{");
+  d.write("stale_run/survey.csv" + live + "_0", "being written");
+  const CliResult result = testing::run_cli(
+      replace_at("run @/run.json --out @/stale_run --no-plot", d.path().string()),
+      d.path().string());
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_FALSE(fs::exists(out / ("nav.csv" + dead + "_0")));
+  EXPECT_FALSE(fs::exists(out / ("metrics.json" + dead + "_7")));
+  EXPECT_TRUE(fs::exists(out / ("survey.csv" + live + "_0")));
+  EXPECT_TRUE(fs::exists(out / "metrics.json"));
+  fs::remove(out / ("survey.csv" + live + "_0"));
+}
+
 }  // namespace
 }  // namespace stochnav

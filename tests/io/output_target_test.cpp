@@ -1,12 +1,15 @@
 // Issue #26: where an output goes (io/output_target.hpp). A regular file is replaced atomically;
 // a link is followed and stays; a FIFO or a character device is written in place; a folder or a
-// socket is refused.
+// socket is refused. And stale temporary files of dead processes are removed by the next writer.
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 #include <sys/un.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstring>
@@ -18,6 +21,7 @@
 #include "stochnav/core/errors.hpp"
 #include "stochnav/io/atomic_file.hpp"
 #include "stochnav/io/output_target.hpp"
+#include "stochnav/io/stale_temporaries.hpp"
 #include "temp_dir.hpp"
 
 namespace stochnav {
@@ -137,6 +141,51 @@ TEST(OutputTarget, FolderAndSocketAreRefused) {
   EXPECT_NE(message_of(socket_path).find("s.sock: is a socket;"), std::string::npos);
   EXPECT_EQ(fs::status(socket_path).type(), fs::file_type::socket);
   ::close(fd);
+}
+
+// A process id that is certainly not alive: a child that has exited and been reaped.
+pid_t dead_process_id() {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return child;
+}
+
+TEST(StaleTemporaries, NamesOfTemporaryFiles) {
+  EXPECT_EQ(temporary_file_owner("nav.csv.tmp1234_0"), 1234);
+  EXPECT_EQ(temporary_file_owner("a.tmp.csv.tmp77_12"), 77);
+  EXPECT_EQ(temporary_file_owner(".tmp12_0"), std::nullopt);
+  EXPECT_EQ(temporary_file_owner("nav.csv.tmp12_"), std::nullopt);
+  EXPECT_EQ(temporary_file_owner("nav.csv.tmp_3"), std::nullopt);
+  EXPECT_EQ(temporary_file_owner("nav.csv.tmp12_3x"), std::nullopt);
+  EXPECT_EQ(temporary_file_owner("nav.csv"), std::nullopt);
+  EXPECT_EQ(temporary_file_owner("notes.tmp"), std::nullopt);
+}
+
+TEST(StaleTemporaries, TheNextWriterRemovesThoseOfDeadProcessesOnly) {
+  TempDir dir;
+  const pid_t dead = dead_process_id();
+  const std::string dead_name = "nav.csv.tmp" + std::to_string(dead) + "_3";
+  const std::string live_name = "nav.csv.tmp" + std::to_string(::getppid()) + "_0";
+  const std::string locked_name = "errors.csv.tmp" + std::to_string(dead) + "_4";
+  dir.write(dead_name, "half a file");
+  dir.write(live_name, "being written");
+  dir.write(locked_name, "locked by a writer elsewhere");
+  dir.write("notes.tmp" + std::to_string(dead), "not ours");
+  fs::create_directories(dir.path() / ("folder.tmp" + std::to_string(dead) + "_1"));
+  const int lock = ::open(dir.file(locked_name).c_str(), O_RDONLY);
+  ASSERT_EQ(::flock(lock, LOCK_SH), 0);
+
+  write_file_atomically(dir.path() / "metrics.json", "{}\n");
+
+  EXPECT_FALSE(fs::exists(dir.path() / dead_name));
+  EXPECT_TRUE(fs::exists(dir.path() / live_name));
+  EXPECT_TRUE(fs::exists(dir.path() / locked_name));
+  EXPECT_TRUE(fs::exists(dir.path() / ("notes.tmp" + std::to_string(dead))));
+  EXPECT_TRUE(fs::exists(dir.path() / ("folder.tmp" + std::to_string(dead) + "_1")));
+  EXPECT_EQ(contents(dir.path() / "metrics.json"), "{}\n");
+  ::close(lock);
 }
 
 }  // namespace

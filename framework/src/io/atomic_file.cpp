@@ -10,6 +10,7 @@
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/temporary_files.hpp"
 #include "stochnav/io/output_target.hpp"
+#include "stochnav/io/stale_temporaries.hpp"
 
 namespace stochnav {
 namespace {
@@ -37,11 +38,13 @@ PendingFile::PendingFile(std::filesystem::path path) {
     temporary_ = final_;
     return;
   }
+  remove_stale_temporaries(final_.parent_path());
   temporary_ = temporary_beside(final_);
   registration_.emplace(temporary_);
   std::error_code error;
   create_file_before_cleanup(temporary_, error);
   if (error) throw_write_error(final_, error.value());
+  lock_fd_ = lock_temporary_file(temporary_);
 }
 
 // Opened before the signal cleanup or never (the thread then waits for the process to end),
@@ -80,6 +83,7 @@ std::FILE* PendingFile::open_file() const {
 }
 
 PendingFile::~PendingFile() {
+  if (lock_fd_ >= 0) ::close(lock_fd_);
   if (!committed_ && !in_place_) {
     std::error_code ignored;
     std::filesystem::remove(temporary_, ignored);

@@ -36,6 +36,10 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 /// a regular file replaced keeps its permission bits (commit() gives them to the new file). A FIFO or a character device is written in
 /// place: temporary_path() is final_path() itself, opened for writing (waiting for a FIFO's
 /// reader), commit() renames nothing and destruction removes nothing.
+///
+/// The first PendingFile of a process in a folder removes the temporary files there of
+/// processes that died (io/stale_temporaries.hpp); the temporary file is locked (flock) while
+/// this object lives, the mark of a live writer.
 class PendingFile final {
  public:
   explicit PendingFile(std::filesystem::path path);
@@ -61,6 +65,7 @@ class PendingFile final {
   bool in_place_ = false;
   std::filesystem::path temporary_;
   std::optional<TemporaryPath> registration_;  // empty in place: a device is never removed
+  int lock_fd_ = -1;                            // holds the temporary file's lock
   bool committed_ = false;
 };
 
