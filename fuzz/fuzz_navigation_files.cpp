@@ -1,6 +1,8 @@
 // The streaming readers of a navigation run's inputs: imu.csv (increments or rates, uniform
 // time steps), truth.csv, the generic CSV table under them, and the PSINS IMU text format.
 
+#include <limits>
+
 #include "fuzz_support.hpp"
 #include "stochnav/experiment/navigation_files.hpp"
 #include "stochnav/io/csv_table_reader.hpp"
@@ -19,7 +21,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fuzz::expect_typed_errors([&] {
     TruthFileReader truth(file.path());
     NavState state;
+    double previous_t_s = -std::numeric_limits<double>::infinity();
     while (truth.next(state)) {
+      if (!(state.t_s > previous_t_s)) std::abort();  // the reader's contract: time increases
+      previous_t_s = state.t_s;
     }
   });
   fuzz::expect_typed_errors([&] {

@@ -18,6 +18,7 @@
 #include <string_view>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/io/json_document.hpp"
 
 namespace stochnav::fuzz {
 
@@ -69,10 +70,14 @@ void must_not_throw(Body&& body) {
 
 /// The input as a JSON document, or nothing when it is not JSON (the parse itself is the
 /// parser's business; the targets fuzz what the library does with documents).
+/// The input through the one JSON reader the tool uses (io/json_document.hpp: syntax, range,
+/// duplicate keys); nothing when it refuses the input (InputError), as the tool would.
 inline std::optional<nlohmann::json> parse_json(const std::uint8_t* data, std::size_t size) {
-  nlohmann::json document = nlohmann::json::parse(data, data + size, nullptr, false);
-  if (document.is_discarded()) return std::nullopt;
-  return document;
+  try {
+    return parse_json_document(std::string(reinterpret_cast<const char*>(data), size), "input");
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
 }
 
 }  // namespace stochnav::fuzz

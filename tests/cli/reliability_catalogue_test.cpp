@@ -1,19 +1,27 @@
-// The catalogue of issue #17 (a fuzzing and sanitizer pass over every subcommand) as one table:
+// The catalogue of issues #17 (a fuzzing and sanitizer pass over every subcommand) and #26 (the
+// tool as a trusted Unix tool: write errors, special files, inputs checked whole) as tables:
 // each defect found, run through the command-line tool. Every bad input gives exit code 2 and
 // one printable line saying what and where, names no internal function, and leaves no output,
 // no temporary file and no folder behind; the inputs that were mishandled although valid (a
 // UTF-8 byte-order mark, a subnormal number) now work.
 
 #include <gtest/gtest.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "json_file.hpp"
@@ -102,12 +110,41 @@ void edited_imu(const fs::path& source, const fs::path& folder, Edit edit) {
   }
 }
 
+// Copies the recording folder `source` to `folder` with the data lines (after the header) of
+// `file` passed through `edit`.
+template <typename Edit>
+void edited_lines(const fs::path& source, const std::string& file, const fs::path& folder,
+                  Edit edit) {
+  fs::create_directories(folder);
+  for (const char* name : {"imu.csv", "aids.csv", "truth.csv", "scenario.json"}) {
+    if (name != file) fs::copy_file(source / name, folder / name);
+  }
+  std::ifstream in(source / file);
+  std::string header;
+  std::getline(in, header);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  edit(lines);
+  std::ofstream out(folder / file);
+  out << header << '\n';
+  for (const std::string& line : lines) out << line << '\n';
+}
+
+// `text` (a JSON object as nlohmann dumps it) with `"key":value` written a second time after
+// the first occurrence of `"key":value`.
+std::string with_key_twice(std::string text, const std::string& key_value) {
+  const std::size_t at = text.find(key_value);
+  if (at == std::string::npos) return "key not found: " + key_value;
+  return text.insert(at + key_value.size(), "," + key_value);
+}
+
 class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
  protected:
   static void SetUpTestSuite() {
     dir_ = new TempDir();
     const TempDir& d = *dir_;
     d.write("good.csv", csv(200));
+    d.write("long.csv", csv(2000));
     std::string alternating = "t,x\n";
     for (int i = 0; i < 200; ++i)
       alternating += std::to_string(i) + (i % 2 ? ",1e308\n" : ",-1e308\n");
@@ -185,6 +222,49 @@ class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
     d.write("experiment_1e6_seeds.json", many_seeds.dump());
     text = experiment.dump();
     d.write("experiment_1e400.json", text.replace(text.find("0.005"), 5, "1e400"));
+
+    // Issue #26.
+    edited_lines(d.path() / "table", "truth.csv", d.path() / "truth_swapped",
+                 [](std::vector<std::string>& lines) { std::swap(lines[150], lines[151]); });
+    edited_lines(d.path() / "table", "truth.csv", d.path() / "truth_duplicated",
+                 [](std::vector<std::string>& lines) {
+                   lines.insert(lines.begin() + 200, lines[200]);
+                 });
+    d.write("model_duplicate.json", R"({"units": "deg/h", "rate_hz": 10, "terms": [
+        {"type": "angle_random_walk", "N": 0.1, "N": 0.2}]})");
+    d.write("run_duplicate.json",
+            with_key_twice(run.dump(), "\"plugin\":\"static_position\""));
+    d.write("experiment_duplicate.json",
+            with_key_twice(experiment.dump(), "\"baseline\":\"classic\""));
+    d.write("scenario_duplicate.json", with_key_twice(scenario.dump(), "\"duration_s\":30"));
+    // gzip records: whole, cut short, a byte of the data changed, no gzip header.
+    d.write("record.txt", [] {
+      std::string record;
+      for (int i = 0; i < 2000; ++i) record += std::to_string((i * 37) % 101 - 50) + "\n";
+      return record;
+    }());
+    const std::string gzip = "gzip -n -c '" + d.file("record.txt") + "' > '" +
+                             d.file("record.txt.gz") + "'";
+    if (std::system(gzip.c_str()) != 0) setup_error_ = "gzip failed";
+    std::ifstream compressed(d.file("record.txt.gz"), std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(compressed), {}};
+    d.write("truncated.txt.gz", bytes.substr(0, bytes.size() / 3));
+    std::string corrupt = bytes;
+    corrupt[corrupt.size() - 6] = static_cast<char>(corrupt[corrupt.size() - 6] ^ 0x55);
+    d.write("corrupt.txt.gz", corrupt);
+    d.write("headerless.txt.gz", bytes.substr(3));
+    // A socket: no output may be written there.
+    const int socket_fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    const std::string socket_path = d.file("socket");
+    if (socket_path.size() < sizeof address.sun_path) {
+      std::memcpy(address.sun_path, socket_path.c_str(), socket_path.size() + 1);
+      if (::bind(socket_fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
+        setup_error_ = "cannot make a socket";
+      }
+    }
+    ::close(socket_fd);
   }
   static void TearDownTestSuite() {
     delete dir_;
@@ -223,7 +303,8 @@ std::vector<std::string> temporary_files(const fs::path& root) {
 TEST_P(Catalogue, HandledAsDocumented) {
   const CatalogueCase& c = GetParam();
   const std::string dir = dir_->path().string();
-  const CliResult result = run_in_shell(c.shell_prefix, replace_at(c.arguments, dir), dir);
+  const CliResult result =
+      run_in_shell(replace_at(c.shell_prefix, dir), replace_at(c.arguments, dir), dir);
   EXPECT_EQ(result.exit_code, c.exit_code) << result.err;
   if (c.exit_code == 0) {
     EXPECT_NE(result.out.find(c.fragment), std::string::npos) << result.out;
@@ -413,6 +494,99 @@ INSTANTIATE_TEST_SUITE_P(
                       {"@/d"}}),
     [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
 
+constexpr const char* kFull = "exec >/dev/full";
+constexpr const char* kStdoutFull = "standard output: cannot write (No space left on device); ";
+
+// Issue #26: write errors are never ignored (standard output included), outputs never replace
+// a special file, and inputs are checked whole (gzip to its end, truth in time order, JSON
+// without duplicate keys).
+INSTANTIATE_TEST_SUITE_P(
+    Issue26, Catalogue,
+    ::testing::Values(
+        // Every write and the final flush of standard output is checked.
+        CatalogueCase{"allan_stdout_full", "allan --input @/good.csv", 2, kStdoutFull, {}, kFull},
+        CatalogueCase{"allan_json_stdout_full", "allan --input @/good.csv --format json", 2,
+                      kStdoutFull, {}, kFull},
+        CatalogueCase{"davar_stdout_full", "davar --input @/good.csv --window 50 --step 25", 2,
+                      kStdoutFull, {}, kFull},
+        CatalogueCase{"fit_stdout_full", "fit --input @/good.csv --format json", 2, kStdoutFull,
+                      {}, kFull},
+        CatalogueCase{"plugins_list_stdout_full", "plugins list", 2, kStdoutFull, {}, kFull},
+        CatalogueCase{"run_stdout_full", "run @/run.json --out @/run_full --no-plot", 2,
+                      kStdoutFull, {}, kFull},
+        CatalogueCase{"help_stdout_full", "--help", 2, kStdoutFull, {}, kFull},
+        CatalogueCase{"allan_stdout_closed", "allan --input @/good.csv", 2,
+                      "standard output: cannot write (Bad file descriptor)", {}, "exec >&-"},
+        CatalogueCase{"run_stdout_closed", "run @/run.json --out @/run_closed --no-plot", 2,
+                      "standard output: cannot write (Bad file descriptor)", {}, "exec >&-"},
+        // (ulimit -f 8: a few KB, room for the one line on stderr, not for the output.)
+        CatalogueCase{"allan_stdout_file_too_large", "allan --input @/long.csv --taus all", 2,
+                      "standard output: cannot write (File too large)", {},
+                      "ulimit -f 8; trap '' XFSZ; exec >'@/stdout.txt'"},
+        CatalogueCase{"allan_output_file_too_large",
+                      "allan --input @/long.csv --taus all --output @/allan.csv", 2,
+                      "allan.csv: cannot write (File too large)", {"@/allan.csv"},
+                      "ulimit -f 8; trap '' XFSZ"},
+        CatalogueCase{"davar_output_file_too_large",
+                      "davar --input @/long.csv --window 50 --step 5 --output @/davar.csv", 2,
+                      "davar.csv: cannot write (File too large)", {"@/davar.csv"},
+                      "ulimit -f 8; trap '' XFSZ"},
+        CatalogueCase{"run_output_file_too_large", "run @/run.json --out @/run_big --no-plot", 2,
+                      "cannot write (File too large)", {"@/run_big"}, "ulimit -f 8; trap '' XFSZ"},
+        // A special file is not replaced.
+        CatalogueCase{"output_is_a_folder", "allan --input @/good.csv --output @/folder.json", 2,
+                      "folder.json: is a folder; an output must be a regular file"},
+        CatalogueCase{"output_is_a_socket", "allan --input @/good.csv --output @/socket", 2,
+                      "socket: is a socket; an output must be a regular file"},
+        // gzip checked to the end.
+        CatalogueCase{"gzip_whole", "allan --input @/record.txt.gz --rate 100 --format csv", 0,
+                      "m,tau,n"},
+        CatalogueCase{"gzip_truncated", "allan --input @/truncated.txt.gz --rate 100", 2,
+                      "truncated.txt.gz: truncated gzip file (unexpected end of file)"},
+        CatalogueCase{"gzip_corrupt", "allan --input @/corrupt.txt.gz --rate 100", 2,
+                      "corrupt.txt.gz: corrupt gzip data (incorrect data check)"},
+        CatalogueCase{"gzip_no_header", "allan --input @/headerless.txt.gz --rate 100", 2,
+                      "headerless.txt.gz: not a gzip file"},
+        // truth.csv in time order.
+        CatalogueCase{"run_truth_swapped",
+                      "run @/run.json --data @/truth_swapped --out @/r",
+                      2,
+                      "truth.csv:153: time does not increase",
+                      {"@/r"}},
+        CatalogueCase{"run_truth_duplicated",
+                      "run @/run.json --data @/truth_duplicated --out @/r",
+                      2,
+                      "truth.csv:203: time does not increase",
+                      {"@/r"}},
+        // Duplicate JSON keys, with their pointer, in every config.
+        CatalogueCase{"duplicate_key_model",
+                      "simulate noise --model @/model_duplicate.json --duration 10 --rate 10 "
+                      "--seed 1 --out @/n.csv",
+                      2,
+                      "model_duplicate.json: duplicate key at /terms/0/N;",
+                      {"@/n.csv"}},
+        CatalogueCase{"duplicate_key_diagnose_model",
+                      "diagnose --input @/good.csv --model @/model_duplicate.json --out @/d",
+                      2,
+                      "model_duplicate.json: duplicate key at /terms/0/N;",
+                      {"@/d"}},
+        CatalogueCase{"duplicate_key_run",
+                      "run @/run_duplicate.json --out @/r",
+                      2,
+                      "run_duplicate.json: duplicate key at /aids/0/plugin;",
+                      {"@/r"}},
+        CatalogueCase{"duplicate_key_experiment",
+                      "compare @/experiment_duplicate.json --out @/c",
+                      2,
+                      "experiment_duplicate.json: duplicate key at /baseline;",
+                      {"@/c"}},
+        CatalogueCase{"duplicate_key_scenario",
+                      "simulate scenario @/scenario_duplicate.json --out @/s",
+                      2,
+                      "scenario_duplicate.json: duplicate key at /vibration_table/phases/0/duration_s;",
+                      {"@/s"}}),
+    [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
+
 TEST_F(Catalogue, SubnormalScenarioIsWrittenWhole) {
   const std::string dir = dir_->path().string();
   const CliResult result = testing::run_cli(
@@ -420,6 +594,72 @@ TEST_F(Catalogue, SubnormalScenarioIsWrittenWhole) {
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const nlohmann::json written = read_json(dir_->path() / "subnormal" / "scenario.json");
   EXPECT_NE(written.dump().find("angle_random_walk"), std::string::npos);
+}
+
+// Issue #26: an output named through a symbolic link replaces the link's target; the link stays.
+TEST_F(Catalogue, OutputThroughASymlinkReplacesItsTarget) {
+  const TempDir& d = *dir_;
+  fs::create_directories(d.path() / "linked");
+  d.write("linked/allan.csv", "old\n");
+  fs::create_symlink("linked/allan.csv", d.path() / "allan_link.csv");
+  const CliResult result = testing::run_cli(
+      replace_at("allan --input @/good.csv --format csv --output @/allan_link.csv",
+                 d.path().string()),
+      d.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(fs::is_symlink(d.path() / "allan_link.csv"));
+  std::ifstream written(d.path() / "linked" / "allan.csv");
+  std::string header;
+  std::getline(written, header);
+  EXPECT_EQ(header.rfind("m,tau,n", 0), 0u) << header;
+  EXPECT_EQ(temporary_files(d.path()), std::vector<std::string>{});
+}
+
+// Issue #26: a FIFO named as the output is written into, not replaced by a regular file.
+TEST_F(Catalogue, OutputToAFifoIsStreamedInPlace) {
+  const TempDir& d = *dir_;
+  const fs::path fifo = d.path() / "allan.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string read;
+  std::thread reader([&] {
+    std::ifstream in(fifo);
+    read.assign(std::istreambuf_iterator<char>(in), {});
+  });
+  const CliResult result = testing::run_cli(
+      replace_at("allan --input @/good.csv --format csv --output @/allan.fifo",
+                 d.path().string()),
+      d.path().string());
+  reader.join();
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(read.rfind("m,tau,n", 0), 0u) << read;
+  EXPECT_EQ(fs::status(fifo).type(), fs::file_type::fifo);
+  fs::remove(fifo);
+}
+
+// Issue #26: temporary files a killed process left (NAME.tmpPID_N) are removed by the next run
+// into the folder; those of a live process are not.
+TEST_F(Catalogue, StaleTemporariesAreRemovedByTheNextRun) {
+  const TempDir& d = *dir_;
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);  // `child` is now a process id nobody has
+  const fs::path out = d.path() / "stale_run";
+  fs::create_directories(out);
+  const std::string dead = ".tmp" + std::to_string(child);
+  const std::string live = ".tmp" + std::to_string(::getpid());
+  d.write("stale_run/nav.csv" + dead + "_0", "half a file");
+  d.write("stale_run/metrics.json" + dead + "_7", "{");
+  d.write("stale_run/survey.csv" + live + "_0", "being written");
+  const CliResult result = testing::run_cli(
+      replace_at("run @/run.json --out @/stale_run --no-plot", d.path().string()),
+      d.path().string());
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_FALSE(fs::exists(out / ("nav.csv" + dead + "_0")));
+  EXPECT_FALSE(fs::exists(out / ("metrics.json" + dead + "_7")));
+  EXPECT_TRUE(fs::exists(out / ("survey.csv" + live + "_0")));
+  EXPECT_TRUE(fs::exists(out / "metrics.json"));
+  fs::remove(out / ("survey.csv" + live + "_0"));
 }
 
 }  // namespace

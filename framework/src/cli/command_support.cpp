@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <optional>
 #include <fstream>
-#include <iostream>
 
 #include "stochnav/core/errors.hpp"
+#include "standard_output.hpp"
 #include "stochnav/io/atomic_file.hpp"
 
 namespace stochnav::cli {
@@ -56,7 +56,7 @@ OutputFormat parse_format(const std::string& format) {
 
 void write_output(const std::string& path, const std::string& content) {
   if (path.empty() || path == "-") {
-    std::cout << content << std::flush;
+    write_standard_output(content);
     return;
   }
   write_file_atomically(path, content);

@@ -6,12 +6,12 @@
 
 #include <charconv>
 #include <cstdlib>
-#include <iostream>
 #include <memory>
 #include <optional>
 
 #include "command_support.hpp"
 #include "commands.hpp"
+#include "standard_output.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/experiment/comparison.hpp"
 #include "stochnav/experiment/shard_files.hpp"
@@ -62,25 +62,26 @@ void run_sharded(const CompareArguments& arguments, ExperimentConfig config) {
   options.progress = true;
   options.experiment_arguments = experiment_arguments(arguments);
   const ShardRunSummary summary = run_shard(config, arguments.out, options);
-  std::cout << fmt::format(
+  write_standard_output(fmt::format(
       "shard {}/{}: {} job(s) run, {} already complete, in {:.1f} s; wrote {}\n"
       "when every shard is done: stochnav compare merge {}\n",
       options.shard.index, options.shard.count, summary.jobs - summary.skipped, summary.skipped,
-      summary.wall_seconds, summary.folder.string(), shell_quoted(arguments.out));
+      summary.wall_seconds, summary.folder.string(), shell_quoted(arguments.out)));
 }
 
 void run_unsharded(const CompareArguments& arguments, const ExperimentConfig& config) {
   if (config.sweep) {
     const nlohmann::json sweep = run_sweep(config, arguments.out, true);
-    std::cout << "wrote " << arguments.out << "/sweep.json, sweep.png, sweep_pairs.png and "
-              << sweep["levels"].size() << " level folders (level_<i>/)\n";
+    write_standard_output(fmt::format(
+        "wrote {}/sweep.json, sweep.png, sweep_pairs.png and {} level folders (level_<i>/)\n",
+        arguments.out, sweep["levels"].size()));
     return;
   }
   const ComparisonResult result = run_comparison(config, arguments.out, true);
   write_comparison(result, config, arguments.out);
-  std::cout << comparison_table(result, config);
-  std::cout << "\nwrote " << arguments.out << "/results.json, table.md, metrics.png, "
-            << "errors_<variant>.png (" << result.wall_seconds << " s)\n";
+  write_standard_output(fmt::format(
+      "{}\nwrote {}/results.json, table.md, metrics.png, errors_<variant>.png ({} s)\n",
+      comparison_table(result, config), arguments.out, result.wall_seconds));
 }
 
 void add_merge_command(CLI::App& compare) {
@@ -90,11 +91,11 @@ void add_merge_command(CLI::App& compare) {
   merge->add_option("dir", *out, "The --out folder of the shards")->required();
   merge->callback([out] {
     const MergeSummary summary = merge_shards(*out);
-    if (!summary.sweep) std::cout << summary.table << '\n';
-    std::cout << fmt::format("merged {} shard(s), {} job(s): wrote {}\n", summary.shards,
-                             summary.jobs,
-                             summary.sweep ? *out + "/sweep.json, sweep.png and level_<i>/"
-                                           : *out + "/results.json, table.md and plots");
+    write_standard_output(
+        (summary.sweep ? std::string() : summary.table + '\n') +
+        fmt::format("merged {} shard(s), {} job(s): wrote {}\n", summary.shards, summary.jobs,
+                    summary.sweep ? *out + "/sweep.json, sweep.png and level_<i>/"
+                                  : *out + "/results.json, table.md and plots"));
   });
 }
 

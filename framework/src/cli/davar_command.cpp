@@ -10,6 +10,7 @@
 #include "command_support.hpp"
 #include "commands.hpp"
 #include "davar_plot.hpp"
+#include "standard_output.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/io/atomic_file.hpp"
 #include "stochnav/io/sample_reader.hpp"
@@ -142,7 +143,7 @@ void run_davar(const DavarArguments& arguments) {
                unit_name(read_options.unit), arguments.plot);
   }
   if (to_stdout) {
-    std::cout << buffer.str() << std::flush;
+    write_standard_output(buffer.str());
   } else {
     file.close();
     if (!file) throw_write_error(arguments.output, errno);

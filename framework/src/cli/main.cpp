@@ -1,5 +1,6 @@
 // stochnav: the command-line tool. Exit codes: 0 success, 2 bad input or configuration (one
-// line on stderr saying what, where and how to fix it), 1 internal failure.
+// line on stderr saying what, where and how to fix it) or an output that could not be written
+// (standard output included), 1 internal failure.
 
 #include <CLI/CLI.hpp>
 
@@ -8,13 +9,14 @@
 
 #include "commands.hpp"
 #include "message_text.hpp"
+#include "standard_output.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/temporary_files.hpp"
 #include "stochnav/version.hpp"
 
-int main(int argc, char** argv) {
-  // Before any thread starts: SIGINT/SIGTERM remove the temporary files of unfinished outputs.
-  stochnav::install_signal_cleanup();
+namespace {
+
+int run(int argc, char** argv) {
   using stochnav::cli::printable;
   CLI::App app{"stochnav: inertial-sensor noise modelling for Kalman filters"};
   app.set_version_flag("--version", std::string(stochnav::kVersion));
@@ -45,4 +47,26 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Before anything opens a file: a closed standard output must not become the first output
+  // file's descriptor.
+  stochnav::cli::reserve_standard_streams();
+  // Before any thread starts: SIGINT/SIGTERM remove the temporary files of unfinished outputs.
+  stochnav::install_signal_cleanup();
+  const int code = run(argc, argv);
+  // What the command (or --help) wrote must have reached standard output: a failed write is
+  // an error even after the command succeeded. One line on stderr: a command that already
+  // failed has said why.
+  try {
+    stochnav::cli::close_standard_output();
+  } catch (const stochnav::InputError& error) {
+    if (code != 0) return code;
+    std::cerr << "stochnav: error: " << stochnav::cli::printable(error.what()) << '\n';
+    return 2;
+  }
+  return code;
 }

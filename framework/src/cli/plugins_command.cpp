@@ -11,7 +11,9 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "standard_output.hpp"
 #include "stochnav/core/errors.hpp"
+#include "stochnav/io/json_document.hpp"
 #include "stochnav/plugin/noise_model_checks.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
 #include "stochnav/plugin/run_config.hpp"
@@ -49,12 +51,11 @@ void run_list(const PluginsArguments& arguments) {
   const plugin::PluginRegistry registry(path);
   std::string out = kHeader;
   for (const auto& descriptor : registry.plugins()) out += row(descriptor);
-  std::cout << out;
   std::string folders;
   for (const auto& folder : registry.search_path()) {
     folders += (folders.empty() ? "" : ":") + folder.string();
   }
-  std::cout << "search path: " << folders << '\n' << std::flush;
+  write_standard_output(out + "search path: " + folders + '\n');
   const auto& problems = registry.problems();
   if (problems.empty()) return;
   std::string message = problems.front().reason;
@@ -67,13 +68,9 @@ void run_list(const PluginsArguments& arguments) {
   throw ConfigError(message);
 }
 
+// The one JSON reader's checks (syntax, range, duplicate keys), as for a config file.
 nlohmann::json parse_params_option(const std::string& text) {
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw ConfigError("--params: not valid JSON (" + std::string(error.what()) +
-                      "); give the params object, e.g. --params '{\"sigma\": 0.5}'");
-  }
+  return parse_json_document(text, "--params");
 }
 
 // Builds the model with the library's factory and runs the property checks. Every failure is
@@ -106,15 +103,16 @@ void check_noise_model_properties(const PluginsArguments& arguments,
   std::string times;
   for (double t : arguments.checks.times_s)
     times += (times.empty() ? "" : ", ") + fmt::format("{}", t);
-  std::cout << "model: " << model->describe() << "\nproperties: covariances, zero step, "
-            << "composition, stationarity, params round trip hold at t = " << times << " s\n";
+  write_standard_output("model: " + model->describe() +
+                        "\nproperties: covariances, zero step, composition, stationarity, "
+                        "params round trip hold at t = " + times + " s\n");
 }
 
 void run_check(const PluginsArguments& arguments) {
   const auto descriptor = plugin::check_plugin_file(arguments.library);
-  std::cout << kHeader << row(descriptor) << "description: " << descriptor.description
-            << "\nbuilt against stochnav " << descriptor.framework_version << '\n'
-            << std::flush;
+  write_standard_output(std::string(kHeader) + row(descriptor) + "description: " +
+                        descriptor.description + "\nbuilt against stochnav " +
+                        std::string(descriptor.framework_version) + '\n');
   if (arguments.params.empty()) return;
   if (descriptor.kind != plugin::PluginKind::kNoiseModel) {
     throw ConfigError("--params: " + arguments.library +
@@ -138,7 +136,7 @@ void run_show(const PluginsArguments& arguments) {
   for (const auto& block : plugins.layout.blocks()) {
     out += fmt::format("  {:<36} offset {:>3}  size {}\n", block.name, block.offset, block.size);
   }
-  std::cout << out;
+  write_standard_output(out);
 }
 
 }  // namespace

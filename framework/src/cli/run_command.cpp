@@ -4,11 +4,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <iostream>
 #include <memory>
 #include <optional>
 
 #include "commands.hpp"
+#include "standard_output.hpp"
 #include "stochnav/experiment/navigation_run.hpp"
 #include "stochnav/plugin/run_config.hpp"
 
@@ -23,25 +23,25 @@ struct RunArguments {
 };
 
 void print_summary(const NavigationRunResult& result, const std::string& out) {
-  std::cout << fmt::format("{} epochs ({:.0f} s of data) in {:.2f} s; filter health: {}\n",
+  std::string text = fmt::format("{} epochs ({:.0f} s of data) in {:.2f} s; filter health: {}\n",
                            result.epochs, result.duration_s, result.wall_seconds,
                            result.health.ok() ? "ok" : "TROUBLE (see metrics.json)");
   if (result.has_truth) {
-    std::cout << fmt::format("{:<22} {:>14} {:>14}\n", "error", "max |error|", "rms");
+    text += fmt::format("{:<22} {:>14} {:>14}\n", "error", "max |error|", "rms");
     for (std::size_t i = 0; i < kErrorMetricCount; ++i) {
-      std::cout << fmt::format("{:<22} {:>14.6g} {:>14.6g}\n", kErrorMetricNames[i],
+      text += fmt::format("{:<22} {:>14.6g} {:>14.6g}\n", kErrorMetricNames[i],
                                result.statistics.max_abs(i), result.statistics.rms(i));
     }
   } else {
-    std::cout << "no truth: errors not scored; the aids' innovations judge the run\n";
+    text += "no truth: errors not scored; the aids' innovations judge the run\n";
   }
-  if (!result.consistency_line.empty()) std::cout << result.consistency_line << '\n';
-  for (const std::string& warning : result.warnings) std::cout << warning << '\n';
-  std::cout << fmt::format("{} survey station(s)\n", result.survey_stations);
-  std::cout << "wrote " << out << "/{nav,biases,"
-            << "covariance,innovations" << (result.has_truth ? ",errors" : "")
-            << ",survey}.csv, metrics.json" << (result.error_series.size() > 1 ? ", errors.png" : "")
-            << '\n';
+  if (!result.consistency_line.empty()) text += result.consistency_line + '\n';
+  for (const std::string& warning : result.warnings) text += warning + '\n';
+  text += fmt::format("{} survey station(s)\n", result.survey_stations);
+  text += "wrote " + out + "/{nav,biases,covariance,innovations" +
+          (result.has_truth ? ",errors" : "") + ",survey}.csv, metrics.json" +
+          (result.error_series.size() > 1 ? ", errors.png" : "") + '\n';
+  write_standard_output(text);
 }
 
 }  // namespace

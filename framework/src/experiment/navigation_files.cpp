@@ -87,6 +87,14 @@ TruthFileReader::TruthFileReader(const std::string& path) : table_(path, kTruthC
 bool TruthFileReader::next(NavState& truth) {
   std::array<double, 10> row{};
   if (!table_.next(row)) return false;
+  if (started_ && !(row[0] > last_t_s_)) {
+    throw InputError(fmt::format(
+        "{}:{}: time does not increase (t = {:.9g} s after {:.9g} s): truth rows swapped or "
+        "duplicated; sort the file by t and remove duplicate rows",
+        table_.path(), table_.line_number(), row[0], last_t_s_));
+  }
+  started_ = true;
+  last_t_s_ = row[0];
   truth = nav_state_from_truth_row(row);
   return true;
 }

@@ -9,6 +9,8 @@
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/temporary_files.hpp"
+#include "stochnav/io/output_target.hpp"
+#include "stochnav/io/stale_temporaries.hpp"
 
 namespace stochnav {
 namespace {
@@ -28,18 +30,34 @@ void throw_write_error(const std::filesystem::path& path, int errno_value) {
                    "); check the space and permissions of the output folder");
 }
 
-PendingFile::PendingFile(std::filesystem::path path)
-    : final_(std::move(path)), temporary_(temporary_beside(final_)), registration_(temporary_) {
+PendingFile::PendingFile(std::filesystem::path path) {
+  OutputTarget target = resolve_output_target(path);
+  final_ = std::move(target.path);
+  in_place_ = target.in_place;
+  if (in_place_) {
+    temporary_ = final_;
+    return;
+  }
+  remove_stale_temporaries(final_.parent_path());
+  temporary_ = temporary_beside(final_);
+  registration_.emplace(temporary_);
   std::error_code error;
   create_file_before_cleanup(temporary_, error);
   if (error) throw_write_error(final_, error.value());
+  lock_fd_ = lock_temporary_file(temporary_);
 }
 
 // Opened before the signal cleanup or never (the thread then waits for the process to end),
-// and without O_CREAT ("r+"): a temporary file the cleanup removed stays removed.
+// and without O_CREAT ("r+"): a temporary file the cleanup removed stays removed. In place:
+// opened for writing outside the cleanup's lock (a FIFO's open waits for its reader).
 std::ofstream PendingFile::open_stream() const {
   std::ofstream out;
   int open_errno = 0;
+  if (in_place_) {
+    out.open(final_, std::ios::out | std::ios::binary);
+    if (!out) throw_write_error(final_, errno);
+    return out;
+  }
   run_before_cleanup([&] {
     out.open(temporary_, std::ios::in | std::ios::out | std::ios::binary);
     open_errno = errno;
@@ -51,6 +69,11 @@ std::ofstream PendingFile::open_stream() const {
 std::FILE* PendingFile::open_file() const {
   std::FILE* out = nullptr;
   int open_errno = 0;
+  if (in_place_) {
+    out = std::fopen(final_.c_str(), "wb");
+    if (out == nullptr) throw_write_error(final_, errno);
+    return out;
+  }
   run_before_cleanup([&] {
     out = std::fopen(temporary_.c_str(), "r+b");
     open_errno = errno;
@@ -60,21 +83,32 @@ std::FILE* PendingFile::open_file() const {
 }
 
 PendingFile::~PendingFile() {
-  if (!committed_) {
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+  if (!committed_ && !in_place_) {
     std::error_code ignored;
     std::filesystem::remove(temporary_, ignored);
   }
 }
 
 void PendingFile::commit() {
+  if (in_place_) {
+    committed_ = true;
+    return;
+  }
   std::error_code error;
+  // A file replaced keeps its permission bits (as `sed -i` does; set now, as they may forbid
+  // the writing above); a new one has the umask's.
+  const std::filesystem::file_status existing = std::filesystem::status(final_, error);
+  if (!error && std::filesystem::is_regular_file(existing)) {
+    std::filesystem::permissions(temporary_, existing.permissions(), error);
+  }
   std::filesystem::rename(temporary_, final_, error);
   if (error) {
     throw InputError(final_.string() + ": cannot write (" + error.message() +
                      "); check that the folder exists and is writable");
   }
   committed_ = true;
-  registration_.release();
+  registration_->release();
 }
 
 void write_pending_file(const PendingFile& pending, std::string_view content) {

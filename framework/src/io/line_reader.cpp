@@ -12,6 +12,26 @@ namespace {
 
 constexpr std::size_t kChunkBytes = 1 << 20;
 
+// zlib's state after a read: a truncated or corrupt stream is an error naming the file and the
+// fault, never the end of the record (zlib hands out what it decompressed before the fault).
+void check_gzip_state(gzFile gz, const std::string& path) {
+  int code = Z_OK;
+  const char* message = gzerror(gz, &code);
+  if (code == Z_OK) return;
+  std::string detail = message != nullptr && *message != '\0' ? message : "zlib error";
+  // zlib's message starts with the path it was opened with; ours names the file once.
+  if (detail.starts_with(path + ": ")) detail.erase(0, path.size() + 2);
+  if (code == Z_BUF_ERROR) {
+    throw InputError(path + ": truncated gzip file (" + detail +
+                     "): the record is incomplete; copy or download it again");
+  }
+  if (code == Z_ERRNO) {
+    throw InputError(path + ": read error (" + std::strerror(errno) + "); check the file");
+  }
+  throw InputError(path + ": corrupt gzip data (" + detail +
+                   "); copy or download the record again, or re-create the .gz file");
+}
+
 }  // namespace
 
 LineReader::LineReader(const std::string& path) : path_(path), buffer_(kChunkBytes) {
@@ -24,6 +44,14 @@ LineReader::LineReader(const std::string& path) : path_(path), buffer_(kChunkByt
   if (gz_ == nullptr && file_ == nullptr) {
     throw InputError(path + ": cannot open file (" + std::strerror(errno) +
                      "); check the path given with --input");
+  }
+  // zlib reads a file without a gzip header as it is ("transparent" mode): a damaged header
+  // would otherwise be parsed as text. gzdirect() looks at the first bytes.
+  if (gz_ != nullptr && gzdirect(static_cast<gzFile>(gz_)) != 0) {
+    gzclose(static_cast<gzFile>(gz_));
+    gz_ = nullptr;
+    throw InputError(path + ": not a gzip file (no gzip header); decompress it with gzip, or "
+                     "rename it without .gz if it is plain text");
   }
 }
 
@@ -44,7 +72,8 @@ std::size_t LineReader::fill() {
   if (gz_ != nullptr) {
     const int n = gzread(static_cast<gzFile>(gz_), buffer_.data() + end_,
                          static_cast<unsigned>(room));
-    if (n < 0) throw InputError(path_ + ": corrupt gzip stream; re-create the .gz file");
+    check_gzip_state(static_cast<gzFile>(gz_), path_);
+    if (n < 0) throw InputError(path_ + ": corrupt gzip data; re-create the .gz file");
     got = static_cast<std::size_t>(n);
   } else {
     got = std::fread(buffer_.data() + end_, 1, room, file_);

@@ -89,7 +89,10 @@ void render_gnuplot(const std::string& script, PendingFile& picture) {
   }
   const int status = gnuplot.wait();
   std::error_code size_error;
-  const auto size = std::filesystem::file_size(picture.temporary_path(), size_error);
+  // A picture written in place (a FIFO) has no size to check.
+  const auto size = picture.in_place()
+                        ? std::uintmax_t{1}
+                        : std::filesystem::file_size(picture.temporary_path(), size_error);
   const bool drawn = WIFEXITED(status) && WEXITSTATUS(status) == 0 && !size_error && size > 0;
   if (!drawn) {
     const auto first_line = messages.substr(0, messages.find('\n', messages.find_first_not_of('\n')));

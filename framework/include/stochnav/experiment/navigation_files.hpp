@@ -64,11 +64,16 @@ class TruthFileReader final {
   /// Throws InputError naming the file (missing columns, empty).
   explicit TruthFileReader(const std::string& path);
 
-  /// The next truth row as a NavState. Returns false at the end.
+  /// The next truth row as a NavState. Returns false at the end. Throws InputError
+  /// "FILE:LINE: time does not increase ..." when a row's t is not after the previous row's (rows
+  /// swapped or duplicated), as ImuFileReader does: the run matches truth to the IMU epochs by
+  /// time, and would silently skip epochs of an unsorted file.
   bool next(NavState& truth);
 
  private:
   CsvTableReader table_;
+  double last_t_s_ = 0.0;
+  bool started_ = false;
 };
 
 }  // namespace stochnav

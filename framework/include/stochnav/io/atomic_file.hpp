@@ -1,10 +1,13 @@
 #pragma once
-// Output files that appear whole or not at all.
+// Output files that appear whole or not at all. Where an output path goes (a regular file
+// replaced atomically, a link followed, a FIFO or device written in place, a folder, socket or
+// block device refused) is io/output_target.hpp's rule; docs/reliability.md states it for users.
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -12,9 +15,10 @@
 
 namespace stochnav {
 
-/// Writes `content` to a temporary file beside `path` and renames it into place. Throws
+/// Writes `content` to a temporary file beside `path` and renames it into place (a FIFO or a
+/// character device: written in place; a link: its target replaced; output_target.hpp). Throws
 /// InputError naming the path and the system's reason (no space left, permission denied, no
-/// such folder) if it cannot be written.
+/// such folder) if it cannot be written, or if `path` is a folder, a socket or a block device.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
 
 /// Throws InputError "PATH: cannot write (REASON); ..." with REASON from `errno_value` (0: an
@@ -27,6 +31,15 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 /// cleanup's lock; write it through open_stream() or open_file(), which do not create it again
 /// once the cleanup has removed it. Throws InputError "PATH: cannot write (REASON); ..." when
 /// the temporary file cannot be created.
+///
+/// `path` is resolved first (resolve_output_target): final_path() is a link's final target, and
+/// a regular file replaced keeps its permission bits (commit() gives them to the new file). A FIFO or a character device is written in
+/// place: temporary_path() is final_path() itself, opened for writing (waiting for a FIFO's
+/// reader), commit() renames nothing and destruction removes nothing.
+///
+/// The first PendingFile of a process in a folder removes the temporary files there of
+/// processes that died (io/stale_temporaries.hpp); the temporary file is locked (flock) while
+/// this object lives, the mark of a live writer.
 class PendingFile final {
  public:
   explicit PendingFile(std::filesystem::path path);
@@ -36,18 +49,23 @@ class PendingFile final {
 
   const std::filesystem::path& final_path() const { return final_; }
   const std::filesystem::path& temporary_path() const { return temporary_; }
+  /// True when the output is written in place (a FIFO or a character device).
+  bool in_place() const { return in_place_; }
   /// The temporary file opened for writing (binary, at its start). Throws InputError if it
   /// cannot be opened.
   std::ofstream open_stream() const;
   /// The same as a C stream ("r+b"); the caller closes it. Throws InputError.
   std::FILE* open_file() const;
-  /// Renames the temporary file to the final path. Throws InputError on failure.
+  /// Renames the temporary file to the final path (in place: nothing to do). Throws InputError
+  /// on failure.
   void commit();
 
  private:
   std::filesystem::path final_;
+  bool in_place_ = false;
   std::filesystem::path temporary_;
-  TemporaryPath registration_;
+  std::optional<TemporaryPath> registration_;  // empty in place: a device is never removed
+  int lock_fd_ = -1;                            // holds the temporary file's lock
   bool committed_ = false;
 };
 

@@ -11,7 +11,9 @@ namespace stochnav {
 
 class LineReader final {
  public:
-  /// Opens `path`; throws InputError if it cannot be read.
+  /// Opens `path`; throws InputError if it cannot be read, or if a ".gz" file has no gzip
+  /// header. A ".gz" file is checked to its end: next() throws InputError naming the file when
+  /// the data are corrupt or the file ends early (truncated), instead of ending the lines.
   explicit LineReader(const std::string& path);
   ~LineReader();
   LineReader(const LineReader&) = delete;
