@@ -33,7 +33,8 @@ std::vector<double> gyro_like_record(std::size_t samples) {
 
 /// Seconds of `stochnav <arguments>` (best of `repeats`), output discarded.
 double cli_seconds(const std::string& arguments, int repeats = 3) {
-  const std::string command = std::string("'") + STOCHNAV_CLI_PATH + "' " + arguments + " > /dev/null";
+  const std::string command =
+      std::string("'") + STOCHNAV_CLI_PATH + "' " + arguments + " > /dev/null";
   return best_seconds(
       [&] {
         if (std::system(command.c_str()) != 0) fmt::print("failed: {}\n", command);
@@ -47,8 +48,9 @@ void compare(const std::string& what, const std::string& input) {
   const double robust = cli_seconds("wv " + input + " --robust --format csv", 1);
   fmt::print("{}\n", what);
   fmt::print("  anchor, stochnav allan (OADEV octave): {:.3f} s\n", allan);
-  fmt::print("  stochnav wv (classical, streamed):     {:.3f} s = {:.2f}x the anchor (goal: comparable)\n",
-             wv, wv / allan);
+  fmt::print(
+      "  stochnav wv (classical, streamed):     {:.3f} s = {:.2f}x the anchor (goal: comparable)\n",
+      wv, wv / allan);
   fmt::print("  stochnav wv --robust:                  {:.3f} s = {:.2f}x the anchor\n\n", robust,
              robust / allan);
 }

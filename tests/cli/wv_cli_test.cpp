@@ -5,10 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <string>
 
@@ -74,7 +73,8 @@ TEST(WvCli, PhaseInputGivesTheSameWaveletVarianceAsRateInput) {
     // The text file holds 6 decimals: the phase differences carry that rounding.
     EXPECT_NEAR(from_phase["wv"][i].get<double>(), from_rate["wv"][i].get<double>(),
                 1e-3 * from_rate["wv"][i].get<double>());
-    EXPECT_EQ(from_rate["scale_s"][i].get<double>(), std::ldexp(1.0, static_cast<int>(i) + 1) / 2.0);
+    EXPECT_EQ(from_rate["scale_s"][i].get<double>(),
+              std::ldexp(1.0, static_cast<int>(i) + 1) / 2.0);
   }
 }
 

@@ -2,6 +2,8 @@
 // with the classical estimate on Gaussian noise, resistance to outliers, and its intervals.
 // There is no published robust table to check against (../shared/data/gmwm holds classical ones).
 
+#include "stochnav/stats/robust_wavelet_variance.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 #include <random>
 #include <vector>
 
-#include "stochnav/stats/robust_wavelet_variance.hpp"
 #include "stochnav/stats/wavelet_variance.hpp"
 
 namespace stochnav {

@@ -3,6 +3,8 @@
 // identity with the overlapping Allan variance, block-size independence, the streaming memory
 // bound, white noise inside its interval.
 
+#include "stochnav/stats/wavelet_variance.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,14 +14,15 @@
 #include "stochnav/io/record.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/phase.hpp"
-#include "stochnav/stats/wavelet_variance.hpp"
 #include "temp_dir.hpp"
 #include "wv_reference.hpp"
 
 namespace stochnav {
 namespace {
 
-double wv_relative_difference(double value, double reference) { return std::abs(value / reference - 1.0); }
+double wv_relative_difference(double value, double reference) {
+  return std::abs(value / reference - 1.0);
+}
 
 std::vector<double> wv_white_noise(std::size_t n, double sigma, std::uint64_t seed) {
   std::mt19937_64 engine(seed);
@@ -45,8 +48,8 @@ TEST(WaveletVariance, MatchesTheWvPackageOnEveryAdisChannelAndScale) {
   double worst = 0.0;
   for (const auto& [channel, rows] : reference) {
     SCOPED_TRACE(channel);
-    const Record record =
-        read_record({.path = record_path, .column = testing::adis_wv_channel_columns().at(channel)});
+    const Record record = read_record(
+        {.path = record_path, .column = testing::adis_wv_channel_columns().at(channel)});
     ASSERT_EQ(record.values.size(), 1'000'000u);
     const auto points = haar_wavelet_variance(record.values, record.rate_hz);
     ASSERT_EQ(points.size(), rows.size());
@@ -56,7 +59,8 @@ TEST(WaveletVariance, MatchesTheWvPackageOnEveryAdisChannelAndScale) {
       EXPECT_LT(wv_relative_difference(points[i].scale_s, rows[i].scale_s), 1e-12);
       EXPECT_LT(wv_relative_difference(points[i].variance, rows[i].wv), 1e-8) << "level " << i + 1;
       EXPECT_LT(wv_relative_difference(points[i].lower, rows[i].ci_low), 1e-8) << "level " << i + 1;
-      EXPECT_LT(wv_relative_difference(points[i].upper, rows[i].ci_high), 1e-8) << "level " << i + 1;
+      EXPECT_LT(wv_relative_difference(points[i].upper, rows[i].ci_high), 1e-8)
+          << "level " << i + 1;
       worst = std::max({worst, wv_relative_difference(points[i].variance, rows[i].wv),
                         wv_relative_difference(points[i].lower, rows[i].ci_low),
                         wv_relative_difference(points[i].upper, rows[i].ci_high)});
@@ -82,7 +86,8 @@ TEST(WaveletVariance, DoesNotDependOnTheBlockSizes) {
   for (std::size_t block : {1u, 3u, 64u, 1000u, 4096u}) {
     HaarWaveletVarianceAccumulator accumulator(wavelet_variance_levels(y.size()));
     for (std::size_t first = 0; first < y.size(); first += block) {
-      accumulator.push(std::span<const double>(y).subspan(first, std::min(block, y.size() - first)));
+      accumulator.push(
+          std::span<const double>(y).subspan(first, std::min(block, y.size() - first)));
     }
     const auto blocks = accumulator.result(1.0);
     ASSERT_EQ(blocks.size(), whole.size());

@@ -3,10 +3,9 @@
 
 #include <fmt/format.h>
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "command_support.hpp"
 #include "commands.hpp"
@@ -49,7 +48,9 @@ Record wv_record_description(const ReadOptions& options, const SampleReader& rea
   return record;
 }
 
-std::string wv_record_label(const Record& record) { return record.source + " [" + record.column + "]"; }
+std::string wv_record_label(const Record& record) {
+  return record.source + " [" + record.column + "]";
+}
 
 /// Rate samples in a record: N for rate data, N - 1 (the differences) for phase data.
 void check_wv_record_length(const Record& record, std::size_t samples) {
@@ -144,8 +145,10 @@ WvResult robust_wv_in_memory(const ReadOptions& options, double efficiency) {
 }
 
 std::string wv_json(const std::vector<WaveletVariancePoint>& points) {
-  nlohmann::json out = {{"scale_s", nlohmann::json::array()}, {"wv", nlohmann::json::array()},
-                        {"wv_lo", nlohmann::json::array()},   {"wv_hi", nlohmann::json::array()},
+  nlohmann::json out = {{"scale_s", nlohmann::json::array()},
+                        {"wv", nlohmann::json::array()},
+                        {"wv_lo", nlohmann::json::array()},
+                        {"wv_hi", nlohmann::json::array()},
                         {"n", nlohmann::json::array()}};
   for (const auto& p : points) {
     out["scale_s"].push_back(p.scale_s);
@@ -172,8 +175,8 @@ std::string wv_table(const WvResult& result, bool robust, double efficiency) {
       "# Haar wavelet variance ({}) of {}, {} samples at {} Hz, unit ({})^2, 95 % interval\n",
       robust ? fmt::format("robust, efficiency {}", efficiency) : std::string("classical"),
       wv_record_label(record), result.samples, record.rate_hz, unit_name(record.unit));
-  out += fmt::format("{:>5} {:>9} {:>12} {:>9} {:>12} {:>12} {:>12}\n", "level", "scale",
-                     "scale_s", "n", "lower", "wv", "upper");
+  out += fmt::format("{:>5} {:>9} {:>12} {:>9} {:>12} {:>12} {:>12}\n", "level", "scale", "scale_s",
+                     "n", "lower", "wv", "upper");
   for (const auto& p : result.points) {
     out += fmt::format("{:>5} {:>9} {:>12.5e} {:>9} {:>12.5e} {:>12.5e} {:>12.5e}\n", p.level,
                        p.scale_samples, p.scale_s, p.coefficients, p.lower, p.variance, p.upper);
@@ -189,9 +192,15 @@ void run_wv(const WvArguments& arguments) {
                                            : classical_wv_streamed(options);
   std::string text;
   switch (format) {
-    case OutputFormat::kJson: text = wv_json(result.points); break;
-    case OutputFormat::kCsv: text = wv_csv(result.points); break;
-    case OutputFormat::kTable: text = wv_table(result, arguments.robust, arguments.efficiency); break;
+    case OutputFormat::kJson:
+      text = wv_json(result.points);
+      break;
+    case OutputFormat::kCsv:
+      text = wv_csv(result.points);
+      break;
+    case OutputFormat::kTable:
+      text = wv_table(result, arguments.robust, arguments.efficiency);
+      break;
   }
   if (!arguments.plot.empty()) {
     plot_wavelet_variance(result.points, result.record, arguments.robust, arguments.fit,
@@ -209,14 +218,17 @@ void add_wv_command(CLI::App& app) {
   add_input_options(*command, arguments->input);
   command->add_flag("--robust", arguments->robust,
                     "Robust estimate (Tukey biweight M-estimate of scale, as the R package wv)");
-  command->add_option("--efficiency", arguments->efficiency,
-                      "Efficiency of the robust estimate at the Gaussian, in (0, 0.99]")
+  command
+      ->add_option("--efficiency", arguments->efficiency,
+                   "Efficiency of the robust estimate at the Gaussian, in (0, 0.99]")
       ->capture_default_str()
       ->check(CLI::Range(0.01, 0.99));
   add_format_option(*command, arguments->format);
-  command->add_option("--plot", arguments->plot, "Draw the wavelet variance to FILE.png or FILE.svg");
-  command->add_option("--fit", arguments->fit,
-                      "Noise model JSON (stochnav fit --format json) drawn over the wavelet variance");
+  command->add_option("--plot", arguments->plot,
+                      "Draw the wavelet variance to FILE.png or FILE.svg");
+  command->add_option(
+      "--fit", arguments->fit,
+      "Noise model JSON (stochnav fit --format json) drawn over the wavelet variance");
   command->add_option("--output", arguments->output, "Write to FILE instead of standard output");
   command->callback([arguments] { run_wv(*arguments); });
 }

@@ -10,8 +10,7 @@
 namespace stochnav::cli {
 
 void plot_wavelet_variance(const std::vector<WaveletVariancePoint>& points, const Record& record,
-                           bool robust, const std::string& fit_path,
-                           const std::string& plot_path) {
+                           bool robust, const std::string& fit_path, const std::string& plot_path) {
   std::vector<double> scale, variance, lower, upper;
   for (const auto& p : points) {
     scale.push_back(p.scale_s);

@@ -23,7 +23,8 @@ std::optional<std::size_t> sample_count_bound(const ReadOptions& options) {
   if (ends_with(path, ".gz")) return std::nullopt;
   std::error_code error;
   const auto bytes = std::filesystem::file_size(path, error);
-  if (error) throw InputError(path + ": cannot read the file (" + error.message() + "); check the path");
+  if (error)
+    throw InputError(path + ": cannot read the file (" + error.message() + "); check the path");
   const std::size_t channels = static_cast<std::size_t>(std::max(options.binary_channels, 1));
   if (ends_with(path, ".f64")) return bytes / (sizeof(double) * channels);
   if (ends_with(path, ".f32")) return bytes / (sizeof(float) * channels);

@@ -48,7 +48,7 @@ double wv_biweight_efficiency(double c) {
   const double a = biweight_moment(mu, c, 0);
   const double m = biweight_moment(mu, c, 1) - a;
   // E[Z^4 (1 - Z^2/c^2)^8] by the binomial expansion, except the Z^18 term's sign (wv's).
-  constexpr std::array<double, 9> kCoefficients = {1.0,  -8.0, 28.0, -56.0, 70.0,
+  constexpr std::array<double, 9> kCoefficients = {1.0,   -8.0, 28.0, -56.0, 70.0,
                                                    -56.0, 28.0, 8.0,  1.0};
   const double inverse_c2 = 1.0 / (c * c);
   double fourth = 0.0;
@@ -127,8 +127,7 @@ double biweight_wavelet_scale(std::span<const double> coefficients, double c) {
 }
 
 std::vector<WaveletVariancePoint> robust_haar_wavelet_variance(std::span<const double> rate,
-                                                               double rate_hz,
-                                                               double efficiency) {
+                                                               double rate_hz, double efficiency) {
   const double c = biweight_tuning_constant(efficiency);
   const double widen = std::sqrt(1.0 / efficiency);
   const int levels = wavelet_variance_levels(rate.size());

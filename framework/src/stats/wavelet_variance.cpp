@@ -1,10 +1,9 @@
 #include "stochnav/stats/wavelet_variance.hpp"
 
-#include <boost/math/distributions/chi_squared.hpp>
-
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
 #include <limits>
 
@@ -65,7 +64,9 @@ class HaarWaveletVarianceAccumulator::Level {
   /// Coefficients W_{j,t} summed so far.
   std::size_t coefficients() const { return coefficients_; }
   /// sum of W_{j,t}^2: the four lanes added in a fixed order.
-  double sum_of_squares() const { return ((lanes_[0] + lanes_[1]) + (lanes_[2] + lanes_[3])) / 4.0; }
+  double sum_of_squares() const {
+    return ((lanes_[0] + lanes_[1]) + (lanes_[2] + lanes_[3])) / 4.0;
+  }
   std::size_t buffered() const { return line_.size(); }
 
  private:
@@ -80,7 +81,8 @@ class HaarWaveletVarianceAccumulator::Level {
         lanes_[lane] += difference * difference;
       }
       if (v != nullptr) {
-        for (std::size_t lane = 0; lane < 4; ++lane) v[k + lane] = 0.5 * (x[k + lane] + old[k + lane]);
+        for (std::size_t lane = 0; lane < 4; ++lane)
+          v[k + lane] = 0.5 * (x[k + lane] + old[k + lane]);
       }
       coefficients_ += 4;
     }
