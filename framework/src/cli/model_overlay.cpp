@@ -13,7 +13,7 @@
 namespace stochnav::cli {
 
 ModelOverlay model_overlay(const std::string& model_path, const Record& record, double tau_min_s,
-                           double tau_max_s) {
+                           double tau_max_s, ModelCurve curve) {
   NoiseModel model;
   try {
     model = noise_model_from_json(read_json_document(model_path, "--fit"));
@@ -30,10 +30,15 @@ ModelOverlay model_overlay(const std::string& model_path, const Record& record, 
   for (int i = 0; i < kPoints; ++i) {
     tau[i] = tau_min_s * std::pow(tau_max_s / tau_min_s, i / (kPoints - 1.0));
   }
+  // The Haar filter at scale tau is the Allan difference at tau / 2, halved (wavelet_variance.hpp).
   auto deviation_curve = [&](auto&& avar_at) {
-    std::vector<double> curve(kPoints);
-    for (int i = 0; i < kPoints; ++i) curve[i] = std::sqrt(avar_at(tau[i])) * record_per_natural;
-    return curve;
+    std::vector<double> values(kPoints);
+    for (int i = 0; i < kPoints; ++i) {
+      values[i] = curve == ModelCurve::kAllanDeviation
+                      ? std::sqrt(avar_at(tau[i])) * record_per_natural
+                      : avar_at(tau[i] / 2.0) / 2.0 * record_per_natural * record_per_natural;
+    }
+    return values;
   };
 
   ModelOverlay overlay;
@@ -44,9 +49,9 @@ ModelOverlay model_overlay(const std::string& model_path, const Record& record, 
   int index = 0;
   for (const NoiseTerm& term : model.terms) {
     if (term_type(term) == TermType::kNonstationary) continue;
-    const auto curve = deviation_curve([&](double t) { return allan_variance(term, t); });
+    const auto term_curve = deviation_curve([&](double t) { return allan_variance(term, t); });
     const std::string name = fmt::format("term{}", index++);
-    overlay.datablocks += gnuplot_datablock(name, {&tau, &curve});
+    overlay.datablocks += gnuplot_datablock(name, {&tau, &term_curve});
     overlay.plot_clauses += fmt::format(", ${} using 1:2 with lines dt 2 lw 1.5 title '{}' noenhanced", name,
                                         term_type_name(term_type(term)));
   }

@@ -1,0 +1,86 @@
+// Wavelet-variance benchmark. Prints, measured in one run on this machine, the whole process
+// `stochnav wv` (classical, streamed; and --robust) beside its anchor, `stochnav allan` (OADEV,
+// octave taus) on the same record: a raw float64 record of 1e7 samples and a CSV of 2e6 rows.
+// Usage: wv_bench [samples]   (default 10,000,000)
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "timing.hpp"
+
+namespace {
+
+using stochnav::bench::best_seconds;
+
+std::vector<double> gyro_like_record(std::size_t samples) {
+  std::mt19937_64 engine(42);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<double> values(samples);
+  double walk = 0.0;
+  for (double& y : values) {
+    walk += 1e-4 * normal(engine);
+    y = 0.4 + walk + 0.04 * normal(engine);
+  }
+  return values;
+}
+
+/// Seconds of `stochnav <arguments>` (best of `repeats`), output discarded.
+double cli_seconds(const std::string& arguments, int repeats = 3) {
+  const std::string command =
+      std::string("'") + STOCHNAV_CLI_PATH + "' " + arguments + " > /dev/null";
+  return best_seconds(
+      [&] {
+        if (std::system(command.c_str()) != 0) fmt::print("failed: {}\n", command);
+      },
+      repeats);
+}
+
+void compare(const std::string& what, const std::string& input) {
+  const double allan = cli_seconds("allan " + input + " --taus octave --format csv");
+  const double wv = cli_seconds("wv " + input + " --format csv");
+  const double robust = cli_seconds("wv " + input + " --robust --format csv", 1);
+  fmt::print("{}\n", what);
+  fmt::print("  anchor, stochnav allan (OADEV octave): {:.3f} s\n", allan);
+  fmt::print(
+      "  stochnav wv (classical, streamed):     {:.3f} s = {:.2f}x the anchor (goal: comparable)\n",
+      wv, wv / allan);
+  fmt::print("  stochnav wv --robust:                  {:.3f} s = {:.2f}x the anchor\n\n", robust,
+             robust / allan);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::size_t samples = argc > 1 ? std::stoul(argv[1]) : 10'000'000;
+  const double rate_hz = 100.0;
+  const auto dir = std::filesystem::temp_directory_path() / "stochnav_wv_bench";
+  std::filesystem::create_directories(dir);
+  const std::vector<double> values = gyro_like_record(samples);
+  const auto f64_path = (dir / "record.f64").string();
+  std::ofstream(f64_path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(values.data()),
+             static_cast<std::streamsize>(values.size() * sizeof(double)));
+  const std::size_t csv_rows = std::min<std::size_t>(samples, 2'000'000);
+  const auto csv_path = (dir / "record.csv").string();
+  {
+    std::ofstream csv(csv_path);
+    csv << "t,gyro_x\n";
+    for (std::size_t i = 0; i < csv_rows; ++i) {
+      csv << fmt::format("{:.2f},{:.17g}\n", static_cast<double>(i) / rate_hz, values[i]);
+    }
+  }
+  fmt::print("Haar wavelet variance, whole process, against stochnav allan on the same record\n\n");
+  compare(fmt::format("raw float64, {} samples at {} Hz", samples, rate_hz),
+          fmt::format("--input '{}' --rate {}", f64_path, rate_hz));
+  compare(fmt::format("CSV, {} rows (t, gyro_x)", csv_rows),
+          fmt::format("--input '{}' --column gyro_x", csv_path));
+  std::filesystem::remove_all(dir);
+  return 0;
+}
