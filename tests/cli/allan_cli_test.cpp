@@ -64,6 +64,30 @@ TEST(AllanCli, JsonOnPhaseDatMatchesStable32OctaveTable) {
   }
 }
 
+// Every --deviation keeps the JSON keys of the contract ("adev" holds the chosen deviation).
+TEST(AllanCli, TotdevOnPhaseDatMatchesStable32OctaveTable) {
+  STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
+  STOCHNAV_REQUIRE_SHARED_DATA(table, "allan/phasedat/phase_dat_totdev_octave.txt");
+  TempDir dir;
+  const auto result = run_cli("allan --input '" + phase_dat +
+                                  "' --data phase --rate 1 --taus octave --deviation totdev"
+                                  " --format json",
+                              dir.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto json = nlohmann::json::parse(result.out);
+  const auto reference = read_stable32_table(table);
+  ASSERT_EQ(json["tau"].size(), reference.size());
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    const auto& row = reference[i];
+    EXPECT_EQ(json["tau"][i].get<double>(), static_cast<double>(row.m));
+    EXPECT_EQ(json["n"][i].get<std::size_t>(), row.n);
+    EXPECT_EQ(json["alpha"][i].get<int>(), row.alpha);
+    EXPECT_NEAR(json["adev"][i].get<double>(), row.deviation, 1e-4 * row.deviation);
+    EXPECT_NEAR(json["adev_lo"][i].get<double>(), row.lower, 1e-3 * row.lower);
+    EXPECT_NEAR(json["adev_hi"][i].get<double>(), row.upper, 1e-3 * row.upper);
+  }
+}
+
 TEST(AllanCli, RateAndPhaseInputsAgree) {
   STOCHNAV_REQUIRE_SHARED_DATA(freq, "allan/nbs14/nbs14_1000_freq.txt");
   STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");

@@ -14,8 +14,9 @@
 namespace stochnav {
 namespace {
 
-constexpr Deviation kAllKinds[] = {Deviation::kAdev, Deviation::kOadev, Deviation::kMdev,
-                                   Deviation::kTdev, Deviation::kHdev,  Deviation::kOhdev};
+constexpr Deviation kAllKinds[] = {Deviation::kAdev,  Deviation::kOadev, Deviation::kMdev,
+                                   Deviation::kTdev,  Deviation::kHdev,  Deviation::kOhdev,
+                                   Deviation::kTotdev};
 
 TEST(DeviationNames, RoundTripAndRejectUnknown) {
   for (Deviation kind : kAllKinds) {
@@ -24,7 +25,8 @@ TEST(DeviationNames, RoundTripAndRejectUnknown) {
   }
   EXPECT_EQ(deviation_name(Deviation::kOhdev), "ohdev");
   EXPECT_FALSE(deviation_from_name("OADEV").has_value());
-  EXPECT_THROW(parse_deviation("totdev"), ConfigError);
+  EXPECT_EQ(deviation_name(Deviation::kTotdev), "totdev");
+  EXPECT_THROW(parse_deviation("totvar"), ConfigError);
 }
 
 TEST(TermCount, Stable32Counts) {
@@ -39,12 +41,21 @@ TEST(TermCount, Stable32Counts) {
   EXPECT_EQ(term_count(Deviation::kOadev, 500, n), 1u);
   EXPECT_EQ(term_count(Deviation::kOadev, 501, n), 0u);
   EXPECT_EQ(term_count(Deviation::kHdev, 400, n), 0u);
+  // TOTDEV: N - 2 at every m the reflected record covers.
+  EXPECT_EQ(term_count(Deviation::kTotdev, 1, n), 999u);
+  EXPECT_EQ(term_count(Deviation::kTotdev, 499, n), 999u);
+  EXPECT_EQ(term_count(Deviation::kTotdev, 999, n), 999u);
+  EXPECT_EQ(term_count(Deviation::kTotdev, 1000, n), 0u);
+  EXPECT_EQ(term_count(Deviation::kTotdev, 1, 2), 0u);
 }
 
 TEST(AveragingFactors, OctaveAndDecadeStopAtStable32sLimit) {
   // PHASE.DAT: ADEV stops at m = 197 (5m < N - 1), OADEV at 247 (4m < N - 1).
   EXPECT_EQ(max_averaging_factor(Deviation::kAdev, 1001), 199u);
   EXPECT_EQ(max_averaging_factor(Deviation::kOadev, 1001), 249u);
+  // TOTDEV stops at 499 (2m < N - 1).
+  EXPECT_EQ(max_averaging_factor(Deviation::kTotdev, 1001), 499u);
+  EXPECT_EQ(averaging_factors(Deviation::kTotdev, TauSpacing::kOctave, 1001).back(), 256u);
   EXPECT_EQ(averaging_factors(Deviation::kOadev, TauSpacing::kOctave, 1001),
             (std::vector<std::size_t>{1, 2, 4, 8, 16, 32, 64, 128}));
   EXPECT_EQ(averaging_factors(Deviation::kAdev, TauSpacing::kDecade, 241218),
@@ -177,11 +188,40 @@ TEST(Deviations, FastSumsEqualAPlainLoop) {
   }
 }
 
+// TOTDEV against its definition: the record extended by odd reflection to 3N - 4 points.
+TEST(Deviations, TotdevEqualsTheReflectedRecordsDefinition) {
+  const std::vector<double> phase = stats_test::power_law_phase(-1, 3001, 17);
+  const std::size_t n = phase.size();
+  std::vector<double> extended;  // x*[-(N-2)] .. x*[2N-3], x*[j] at extended[j + N - 2]
+  for (std::size_t j = n - 2; j >= 1; --j) extended.push_back(2 * phase[0] - phase[j]);
+  extended.insert(extended.end(), phase.begin(), phase.end());
+  for (std::size_t j = 1; j <= n - 2; ++j) extended.push_back(2 * phase[n - 1] - phase[n - 1 - j]);
+  ASSERT_EQ(extended.size(), 3 * n - 4);
+  const double tau0 = 0.25;
+  for (std::size_t m : {1u, 2u, 7u, 100u, 1499u, 1500u, 1501u, 2999u}) {
+    double sum = 0.0;
+    for (std::size_t i = 1; i <= n - 2; ++i) {
+      const std::size_t c = i + n - 2;
+      const double diff = extended[c - m] - 2 * extended[c] + extended[c + m];
+      sum += diff * diff;
+    }
+    const double tau = tau0 * static_cast<double>(m);
+    const double expected = std::sqrt(sum / (2 * tau * tau * static_cast<double>(n - 2)));
+    EXPECT_NEAR(deviation_value(Deviation::kTotdev, phase, tau0, m) / expected, 1.0, 1e-12)
+        << "m " << m;
+  }
+  // At m = 1 no point is reflected: TOTDEV is OADEV (both N - 2 terms).
+  EXPECT_NEAR(deviation_value(Deviation::kTotdev, phase, tau0, 1) /
+                  deviation_value(Deviation::kOadev, phase, tau0, 1),
+              1.0, 1e-14);
+}
+
 TEST(Deviations, RejectFactorsWithoutTerms) {
   const std::vector<double> phase(100, 1.0);
   EXPECT_THROW(deviation_value(Deviation::kOadev, phase, 1.0, 0), std::invalid_argument);
   EXPECT_THROW(deviation_value(Deviation::kOadev, phase, 1.0, 50), std::invalid_argument);
   EXPECT_THROW(deviation_value(Deviation::kHdev, phase, 1.0, 40), std::invalid_argument);
+  EXPECT_THROW(deviation_value(Deviation::kTotdev, phase, 1.0, 99), std::invalid_argument);
   const std::size_t m_values[] = {1, 60};
   EXPECT_THROW(compute_deviation(Deviation::kMdev, phase, 1.0, m_values), std::invalid_argument);
 }

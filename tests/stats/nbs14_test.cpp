@@ -43,8 +43,9 @@ std::vector<double> read_values(const std::string& file, DataKind kind) {
 }
 
 const std::map<std::string, Deviation> kNames = {
-    {"ADEV", Deviation::kAdev}, {"OADEV", Deviation::kOadev}, {"MDEV", Deviation::kMdev},
-    {"TDEV", Deviation::kTdev}, {"HDEV", Deviation::kHdev},   {"OHDEV", Deviation::kOhdev}};
+    {"ADEV", Deviation::kAdev},    {"OADEV", Deviation::kOadev}, {"MDEV", Deviation::kMdev},
+    {"TDEV", Deviation::kTdev},    {"HDEV", Deviation::kHdev},   {"OHDEV", Deviation::kOhdev},
+    {"TOTDEV", Deviation::kTotdev}};
 
 TEST(Nbs14, ThousandPointDeviationsAtTau1_10_100) {
   STOCHNAV_SKIP_WITHOUT_ALLAN_DATA();

@@ -1,6 +1,6 @@
 // compute_deviation against Stable32's own result tables (../shared/data/allan, SOURCES.md):
-// averaging factors, term counts and tau exactly, deviations to 1e-4, 68.3 % bounds to 1e-2,
-// and the identified noise type (alpha).
+// averaging factors, term counts and tau exactly, deviations to 1e-4, 68.3 % bounds to 1e-2
+// (1e-3 for the total deviations), and the identified noise type (alpha).
 
 #include <gtest/gtest.h>
 
@@ -27,6 +27,14 @@ struct TableCase {
   double deviation_tolerance = 1e-4;
   // Stable32 ended these runs early (see the cases below): its table is a prefix of our set.
   bool table_is_prefix = false;
+  double bound_tolerance = 1e-2;
+  // Stable32 was told the noise type (its "alpha0" runs): its Alpha column is not an
+  // identification to compare with.
+  bool alpha_given = false;
+  // From this averaging factor on Stable32 identified a noise type where stochnav keeps the
+  // previous one (3 to 7 averages; its rule for TOTDEV there is not known): the deviation is
+  // still checked, alpha and the bounds (which follow from alpha) are not. 0: every row.
+  std::size_t unmatched_alpha_from_m = 0;
 };
 
 /// Rows whose alpha agrees with Stable32's Alpha column.
@@ -88,6 +96,7 @@ TEST_P(Stable32Table, MatchesStable32) {
   const auto points = compute_deviation(c.kind, data.phase, data.tau0_s, table_m);
   ASSERT_EQ(points.size(), rows.size());
   std::size_t alpha_matches = 0;
+  std::size_t alpha_rows = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& row = rows[i];
     const auto& point = points[i];
@@ -95,22 +104,25 @@ TEST_P(Stable32Table, MatchesStable32) {
     EXPECT_EQ(point.terms, row.terms);
     EXPECT_EQ(tau_as_stable32_prints_it(point.tau_s), row.tau_text);
     EXPECT_NEAR(point.deviation / row.deviation, 1.0, c.deviation_tolerance);
+    if (c.unmatched_alpha_from_m != 0 && row.m >= c.unmatched_alpha_from_m) continue;
+    ++alpha_rows;
     if (point.alpha == row.alpha) ++alpha_matches;
     if (c.has_bounds) {
       // The bounds depend on alpha through the EDF, so it must agree exactly here.
       EXPECT_EQ(point.alpha, row.alpha);
-      EXPECT_NEAR(point.lower / row.lower, 1.0, 1e-2);
-      EXPECT_NEAR(point.upper / row.upper, 1.0, 1e-2);
+      EXPECT_NEAR(point.lower / row.lower, 1.0, c.bound_tolerance);
+      EXPECT_NEAR(point.upper / row.upper, 1.0, c.bound_tolerance);
     }
   }
+  if (c.alpha_given) return;
   AlphaTally& tally = c.has_bounds ? bounded_tables : all_tau_tables;
   tally.matches += alpha_matches;
-  tally.rows += rows.size();
-  const double agreement = static_cast<double>(alpha_matches) / static_cast<double>(rows.size());
+  tally.rows += alpha_rows;
+  const double agreement = static_cast<double>(alpha_matches) / static_cast<double>(alpha_rows);
   RecordProperty("alpha_agreement", std::to_string(agreement));
   // "All tau" runs also print alpha; a few rows right at a rounding boundary of the lag-1
   // estimate differ (Keysight ADEV 11 of 260, the worst).
-  EXPECT_GE(agreement, 0.95) << alpha_matches << " of " << rows.size();
+  EXPECT_GE(agreement, 0.95) << alpha_matches << " of " << alpha_rows;
 }
 
 std::string case_name(const ::testing::TestParamInfo<TableCase>& info) {
@@ -127,6 +139,7 @@ constexpr Deviation kMdev = Deviation::kMdev;
 constexpr Deviation kTdev = Deviation::kTdev;
 constexpr Deviation kHdev = Deviation::kHdev;
 constexpr Deviation kOhdev = Deviation::kOhdev;
+constexpr Deviation kTotdev = Deviation::kTotdev;
 
 /// An octave or decade run, which reports confidence bounds.
 TableCase bounded(const char* table, ReferenceRecord record, Deviation kind, TauSpacing spacing,
@@ -146,6 +159,23 @@ TableCase all_tau(const char* table, ReferenceRecord record, Deviation kind,
   return {table, record, kind, TauSpacing::kAll, false, 1e-4, table_is_prefix};
 }
 
+/// A total-deviation run with bounds, held to 1e-3 on them.
+TableCase total(const char* table, ReferenceRecord record, Deviation kind, TauSpacing spacing,
+                std::size_t unmatched_alpha_from_m = 0) {
+  TableCase c = bounded(table, record, kind, spacing);
+  c.bound_tolerance = 1e-3;
+  c.unmatched_alpha_from_m = unmatched_alpha_from_m;
+  return c;
+}
+
+/// Beyond m = 125 (fewer than 8 averages) Stable32's TOTDEV identifies anew, stochnav keeps
+/// the previous type (19 of the 60 rows there differ).
+TableCase phase_dat_totdev_all_tau() {
+  TableCase c = all_tau("phasedat/phase_dat_totdev.txt", ReferenceRecord::kPhaseDat, kTotdev);
+  c.unmatched_alpha_from_m = 126;
+  return c;
+}
+
 // PHASE.DAT (1001 phase points): octave runs with bounds, and "all tau" runs.
 constexpr ReferenceRecord kPhaseDat = ReferenceRecord::kPhaseDat;
 INSTANTIATE_TEST_SUITE_P(
@@ -161,7 +191,10 @@ INSTANTIATE_TEST_SUITE_P(
                       all_tau("phasedat/phase_dat_mdev.txt", kPhaseDat, kMdev),
                       all_tau("phasedat/phase_dat_tdev.txt", kPhaseDat, kTdev),
                       all_tau("phasedat/phase_dat_hdev.txt", kPhaseDat, kHdev),
-                      all_tau("phasedat/phase_dat_ohdev.txt", kPhaseDat, kOhdev)),
+                      all_tau("phasedat/phase_dat_ohdev.txt", kPhaseDat, kOhdev),
+                      total("phasedat/phase_dat_totdev_octave.txt", kPhaseDat, kTotdev,
+                            TauSpacing::kOctave),
+                      phase_dat_totdev_all_tau()),
     case_name);
 
 // Keysight 53230A time-interval-counter noise floor (55 688 phase points, white PM).
@@ -172,6 +205,8 @@ INSTANTIATE_TEST_SUITE_P(KeysightTic, Stable32Table,
                                            octave("keysight53230a_tic/tic_tdev.txt", kTic, kTdev),
                                            octave("keysight53230a_tic/tic_hdev.txt", kTic, kHdev),
                                            octave("keysight53230a_tic/tic_ohdev.txt", kTic, kOhdev),
+                                           total("keysight53230a_tic/tic_totdev.txt", kTic, kTotdev,
+                                                 TauSpacing::kOctave),
                                            all_tau("keysight53230a_tic/tic_adev.txt", kTic, kAdev)),
                          case_name);
 
@@ -179,7 +214,8 @@ INSTANTIATE_TEST_SUITE_P(KeysightTic, Stable32Table,
 // were computed on a slightly different copy of the file (its OADEV at m = 1 is 7.6143e-11,
 // its own ADEV at m = 1, the same estimator, 7.6106e-11 = ours): those rows agree to 2e-3 only,
 // the tolerance allantools uses for them too. ADEV and HDEV agree to 1e-4 except at m = 2048
-// (1.1e-4 and 1.5e-4, 8 and 7 terms): 2e-4 there, again as allantools.
+// (1.1e-4 and 1.5e-4, 8 and 7 terms): 2e-4 there, again as allantools. Its TOTDEV table, from
+// the other copy too, differs by up to 1.2e-2 and is left out (at m = 1 TOTDEV is OADEV).
 constexpr ReferenceRecord kOcxo = ReferenceRecord::kOcxo;
 INSTANTIATE_TEST_SUITE_P(
     Ocxo, Stable32Table,
@@ -196,6 +232,13 @@ INSTANTIATE_TEST_SUITE_P(
 // maximum-factor rule, which every other table follows, allows m = 2484: those tables are a
 // prefix of our set. The octave run with bounds used tau0 = 1 s.
 constexpr ReferenceRecord kPink = ReferenceRecord::kPinkFrequency;
+/// TOTDEV run with the noise type set to white FM (alpha = 0) in Stable32, ended at m = 2369
+/// like the runs above.
+TableCase pink_totdev() {
+  TableCase c = all_tau("pink_frequency/totdev_alpha0.txt", kPink, kTotdev, true);
+  c.alpha_given = true;
+  return c;
+}
 INSTANTIATE_TEST_SUITE_P(PinkFrequency, Stable32Table,
                          ::testing::Values(all_tau("pink_frequency/adev.txt", kPink, kAdev),
                                            all_tau("pink_frequency/hdev.txt", kPink, kHdev),
@@ -204,7 +247,8 @@ INSTANTIATE_TEST_SUITE_P(PinkFrequency, Stable32Table,
                                            all_tau("pink_frequency/tdev.txt", kPink, kTdev, true),
                                            all_tau("pink_frequency/ohdev.txt", kPink, kOhdev, true),
                                            octave("pink_frequency/s32_oadev_octave.txt",
-                                                  ReferenceRecord::kPinkFrequencyTau1, kOadev)),
+                                                  ReferenceRecord::kPinkFrequencyTau1, kOadev),
+                                           pink_totdev()),
                          case_name);
 
 // GPS 1PPS against an H-maser (241 218 phase points).
@@ -216,12 +260,22 @@ INSTANTIATE_TEST_SUITE_P(
                       octave("gps_1pps/stable32_MDEV_octave.txt", kGps, kMdev),
                       octave("gps_1pps/stable32_TDEV_octave.txt", kGps, kTdev),
                       octave("gps_1pps/stable32_HDEV_octave.txt", kGps, kHdev),
-                      octave("gps_1pps/stable32_OHDEV_octave.txt", kGps, kOhdev)),
+                      octave("gps_1pps/stable32_OHDEV_octave.txt", kGps, kOhdev),
+                      total("gps_1pps/stable32_TOTDEV_octave.txt", kGps, kTotdev,
+                            TauSpacing::kOctave, 32768)),
     case_name);
 
 // Cs 5071A against an H-maser (556 990 phase points): decade runs with bounds and ~310-row
 // "all tau" runs; about 1 s for the twelve tables in Release.
 constexpr ReferenceRecord kCs = ReferenceRecord::kCs5071a;
+/// Stable32 was told alpha = 0 for this run (every row 0, where its all-tau run of the same
+/// record identifies 2, 1 and 0): deviations only.
+TableCase cs_totdev_decade() {
+  TableCase c = bounded("cs5071a/totdev_decade.txt", kCs, kTotdev, TauSpacing::kDecade);
+  c.has_bounds = false;
+  c.alpha_given = true;
+  return c;
+}
 INSTANTIATE_TEST_SUITE_P(Cs5071a, Stable32Table,
                          ::testing::Values(decade("cs5071a/adev_decade.txt", kCs, kAdev),
                                            decade("cs5071a/oadev_decade.txt", kCs, kOadev),
@@ -234,7 +288,9 @@ INSTANTIATE_TEST_SUITE_P(Cs5071a, Stable32Table,
                                            all_tau("cs5071a/mdev_all.txt", kCs, kMdev),
                                            all_tau("cs5071a/tdev_all.txt", kCs, kTdev),
                                            all_tau("cs5071a/hdev_all.txt", kCs, kHdev),
-                                           all_tau("cs5071a/ohdev_all.txt", kCs, kOhdev)),
+                                           all_tau("cs5071a/ohdev_all.txt", kCs, kOhdev),
+                                           cs_totdev_decade(),
+                                           all_tau("cs5071a/totdev_all.txt", kCs, kTotdev)),
                          case_name);
 
 }  // namespace

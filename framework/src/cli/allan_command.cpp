@@ -111,7 +111,9 @@ void add_allan_command(CLI::App& app) {
   add_input_options(*command, arguments->input);
   command->add_option("--taus", arguments->taus, "octave, decade, dense or all")
       ->capture_default_str();
-  command->add_option("--deviation", arguments->deviation, "oadev, adev, mdev, tdev, hdev, ohdev")
+  command
+      ->add_option("--deviation", arguments->deviation,
+                   "oadev, adev, mdev, tdev, hdev, ohdev, totdev")
       ->capture_default_str();
   add_format_option(*command, arguments->format);
   command->add_option("--plot", arguments->plot, "Draw the deviation to FILE.png or FILE.svg");

@@ -36,12 +36,13 @@ std::vector<DeviationPoint> compute_deviation(Deviation kind, std::span<const do
     point.alpha = !points.empty() && keeps_previous_noise_type(kind, point.m, phase.size())
                       ? points.back().alpha
                       : identified[next_identified++].alpha;
-    point.edf = greenhall_edf({.alpha = point.alpha,
-                               .d = difference_order(kind),
-                               .m = point.m,
-                               .phase_count = phase.size(),
-                               .overlapping = is_overlapping(kind),
-                               .modified = is_modified(kind)});
+    point.edf = kind == Deviation::kTotdev ? total_variance_edf(point.alpha, point.m, phase.size())
+                                           : greenhall_edf({.alpha = point.alpha,
+                                                            .d = difference_order(kind),
+                                                            .m = point.m,
+                                                            .phase_count = phase.size(),
+                                                            .overlapping = is_overlapping(kind),
+                                                            .modified = is_modified(kind)});
     const DeviationInterval interval = chi_square_interval(point.deviation, point.edf, confidence);
     point.lower = interval.lower;
     point.upper = interval.upper;

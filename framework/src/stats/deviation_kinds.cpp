@@ -9,9 +9,9 @@
 namespace stochnav {
 namespace {
 
-constexpr std::array<Deviation, 6> kAllDeviations = {Deviation::kAdev, Deviation::kOadev,
-                                                     Deviation::kMdev, Deviation::kTdev,
-                                                     Deviation::kHdev, Deviation::kOhdev};
+constexpr std::array<Deviation, 7> kAllDeviations = {
+    Deviation::kAdev, Deviation::kOadev, Deviation::kMdev,  Deviation::kTdev,
+    Deviation::kHdev, Deviation::kOhdev, Deviation::kTotdev};
 
 }  // namespace
 
@@ -29,6 +29,8 @@ std::string_view deviation_name(Deviation kind) {
       return "hdev";
     case Deviation::kOhdev:
       return "ohdev";
+    case Deviation::kTotdev:
+      return "totdev";
   }
   return "unknown";
 }
@@ -43,7 +45,7 @@ std::optional<Deviation> deviation_from_name(std::string_view name) {
 Deviation parse_deviation(std::string_view name) {
   if (const auto kind = deviation_from_name(name)) return *kind;
   throw ConfigError("deviation '" + std::string(name) +
-                    "' is unknown: use adev, oadev, mdev, tdev, hdev or ohdev");
+                    "' is unknown: use adev, oadev, mdev, tdev, hdev, ohdev or totdev");
 }
 
 int difference_order(Deviation kind) {
@@ -70,12 +72,15 @@ std::size_t term_count(Deviation kind, std::size_t m, std::size_t phase_count) {
       return positive((n - 1) / m, 2);
     case Deviation::kOhdev:
       return positive(n, 3 * m);
+    case Deviation::kTotdev:
+      return n >= 3 && m <= n - 2 ? n - 2 : 0;
   }
   return 0;
 }
 
 std::size_t max_averaging_factor(Deviation kind, std::size_t phase_count) {
   if (phase_count < 3) return 0;
+  if (kind == Deviation::kTotdev) return (phase_count - 2) / 2;
   const std::size_t divisor = is_overlapping(kind) ? 4 : 5;
   return (phase_count - 2) / divisor;
 }

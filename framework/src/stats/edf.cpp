@@ -203,4 +203,28 @@ double greenhall_edf(const EdfQuery& query) {
   return static_cast<double>(1 / inverse_edf);
 }
 
+double total_variance_edf(int alpha, std::size_t m, std::size_t phase_count) {
+  if (alpha < -2 || alpha > 2 || m == 0 || phase_count < 3) return kNaN;
+  if (alpha == 1) {
+    // NIST SP 1065 Table 5, flicker PM (the "simple" approximation for the Allan variance).
+    const double n = static_cast<double>(phase_count);
+    const double md = static_cast<double>(m);
+    const double a = (n - 1.0) / (2.0 * md);
+    const double b = (2.0 * md + 1.0) * (n - 1.0) / 4.0;
+    return std::exp(std::sqrt(std::log(a) * std::log(b)));
+  }
+  if (alpha == 2) {
+    return greenhall_edf({.alpha = alpha,
+                          .d = 2,
+                          .m = m,
+                          .phase_count = phase_count,
+                          .overlapping = true,
+                          .modified = false});
+  }
+  // NIST SP 1065 Table 7, rows alpha = 0, -1, -2.
+  constexpr std::array<TableEntry, 3> kTotalTable = {{{1.50, 0.0}, {1.17, 0.22}, {0.93, 0.36}}};
+  const TableEntry e = kTotalTable[static_cast<std::size_t>(-alpha)];
+  return e.a0 * static_cast<double>(phase_count) / static_cast<double>(m) - e.a1;
+}
+
 }  // namespace stochnav

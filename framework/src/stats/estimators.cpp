@@ -16,6 +16,7 @@
 #include "fused_passes.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/parallel.hpp"
+#include "total_variances.hpp"
 #include "vector_clones.hpp"
 
 namespace stochnav {
@@ -327,6 +328,7 @@ double to_deviation(Deviation kind, double sum, double tau0_s, std::size_t m, st
   switch (kind) {
     case Deviation::kAdev:
     case Deviation::kOadev:
+    case Deviation::kTotdev:
       return std::sqrt(sum / (2.0 * tau * tau * n));
     case Deviation::kMdev: {
       const double md = static_cast<double>(m);
@@ -355,13 +357,17 @@ std::vector<double> deviation_values_with(Deviation kind, std::span<const double
     sums = overlapping_sums(difference_order(kind), phase, m_values, job);
   } else {
     if (job != nullptr) parallel_for(job->blocks, job->run);
-    // One task per factor: each sum is computed whole by one thread, as before.
+    // One task per factor: each sum is computed whole by one thread.
     sums.assign(m_values.size(), 0.0);
     parallel_for(m_values.size(), [&](std::size_t k) {
       const std::size_t m = m_values[k];
       const std::size_t terms = term_count(kind, m, n);
-      sums[k] = is_modified(kind) ? modified_sum(phase, m, terms)
-                                  : strided_sum(difference_order(kind), phase, m, terms);
+      if (kind == Deviation::kTotdev) {
+        sums[k] = total_variance_sum(phase, m);
+      } else {
+        sums[k] = is_modified(kind) ? modified_sum(phase, m, terms)
+                                    : strided_sum(difference_order(kind), phase, m, terms);
+      }
     });
   }
   std::vector<double> deviations(m_values.size());

@@ -18,6 +18,10 @@
 //   kHdev   Hadamard, non-overlapping: HVAR = sum over i = 0, m, 2m, ... of
 //           (x[i+3m] - 3 x[i+2m] + 3 x[i+m] - x[i])^2 / (6 tau^2 n),  n = floor((N-1)/m) - 2
 //   kOhdev  Hadamard, overlapping: same sum over every i, n = N - 3m terms
+//   kTotdev total (D. A. Howe): TOTVAR = sum_{i=1}^{N-2} (x*[i-m] - 2 x[i] + x*[i+m])^2
+//           / (2 tau^2 (N - 2)),  n = N - 2 terms at every m, where x* is the phase extended
+//           by odd reflection about both end points: x*[-j] = 2 x[0] - x[j] and
+//           x*[N-1+j] = 2 x[N-1] - x[N-1-j] (NIST SP 1065 Eq. 25)
 
 #include <cstddef>
 #include <optional>
@@ -29,7 +33,7 @@
 
 namespace stochnav {
 
-enum class Deviation { kAdev, kOadev, kMdev, kTdev, kHdev, kOhdev };
+enum class Deviation { kAdev, kOadev, kMdev, kTdev, kHdev, kOhdev, kTotdev };
 
 /// Which averaging factors to evaluate.
 enum class TauSpacing {
@@ -40,7 +44,7 @@ enum class TauSpacing {
             ///< spread over the decades of tau the result spans (see averaging_factors)
 };
 
-/// "adev", "oadev", "mdev", "tdev", "hdev", "ohdev".
+/// "adev", "oadev", "mdev", "tdev", "hdev", "ohdev", "totdev".
 std::string_view deviation_name(Deviation kind);
 /// The inverse of deviation_name; nullopt for anything else (case-sensitive).
 std::optional<Deviation> deviation_from_name(std::string_view name);
@@ -49,20 +53,22 @@ Deviation parse_deviation(std::string_view name);
 
 /// Order d of the phase difference the variance is built on: 2 (Allan family), 3 (Hadamard).
 int difference_order(Deviation kind);
-/// True for the estimators that use every start index (OADEV, MDEV, TDEV, OHDEV).
+/// True for the estimators that use every start index (OADEV, MDEV, TDEV, OHDEV, TOTDEV).
 bool is_overlapping(Deviation kind);
 /// True for MDEV and TDEV (the phase is averaged over m points before differencing).
 bool is_modified(Deviation kind);
 
 /// Number of terms (squared differences) of the estimator at averaging factor m on N phase
 /// points, as Stable32 reports it in its `#` column: OADEV N - 2m; ADEV floor((N-1)/m) - 1;
-/// MDEV and TDEV N - 3m + 1; HDEV floor((N-1)/m) - 2; OHDEV N - 3m. 0 when m == 0 or the record
-/// is too short for even one term.
+/// MDEV and TDEV N - 3m + 1; HDEV floor((N-1)/m) - 2; OHDEV N - 3m; TOTDEV N - 2 for every
+/// m <= N - 2 (the reflected record is long enough). 0 when m == 0 or the record is too short
+/// for even one term.
 std::size_t term_count(Deviation kind, std::size_t m, std::size_t phase_count);
 
 /// Largest averaging factor Stable32 evaluates on N phase points: the largest m with
-/// 5m < N - 1 (ADEV, HDEV) or 4m < N - 1 (the overlapping and modified estimators). Inferred
-/// from Stable32 tables: PHASE.DAT (N = 1001) stops ADEV at m = 197 < 200 and OADEV at 247.
+/// 5m < N - 1 (ADEV, HDEV), 4m < N - 1 (the other overlapping and modified estimators) or
+/// 2m < N - 1 (TOTDEV). Inferred from Stable32 tables: PHASE.DAT (N = 1001) stops ADEV at
+/// m = 197 < 200, OADEV at 247 and TOTDEV at 499.
 /// 0 when the record is too short.
 std::size_t max_averaging_factor(Deviation kind, std::size_t phase_count);
 
@@ -89,7 +95,7 @@ double deviation_value(Deviation kind, std::span<const double> phase, double tau
 /// long records (the 22 octave OADEV factors of 1e7 points: about 0.02 s of CPU here, four
 /// factors per sweep of a block). The work runs over the stats threads (parallel.hpp) in tasks
 /// fixed by the record length: bitwise the same result for every thread count. ADEV, HDEV, MDEV,
-/// TDEV: one task per factor.
+/// TDEV, TOTDEV: one task per factor (TOTDEV O(N) per factor, the reflections read in place).
 std::vector<double> deviation_values(Deviation kind, std::span<const double> phase, double tau0_s,
                                      std::span<const std::size_t> m_values);
 

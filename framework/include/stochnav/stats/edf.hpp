@@ -34,4 +34,15 @@ struct EdfQuery {
 /// outside [-4, 2], d outside [1, 3], alpha + 2d <= 1, m == 0, or N too short for one term.
 double greenhall_edf(const EdfQuery& query);
 
+/// EDF of the total variance (TOTDEV) as Stable32 reports it. For white, flicker and random-walk
+/// FM (alpha = 0, -1, -2) the empirical fit of D. A. Howe (NIST SP 1065, Sec. 5.2.11, Table 7):
+///   edf = b T / tau - c,  T / tau = N / m (N phase points, tau = m tau0),
+///   (b, c) = (1.50, 0), (1.17, 0.22), (0.93, 0.36);
+/// for flicker PM (alpha = 1) SP 1065's simple Allan-variance formula (Table 5)
+///   edf = exp(sqrt(ln((N-1) / (2m)) ln((2m+1)(N-1) / 4)));
+/// for white PM (alpha = 2) the Greenhall EDF of the overlapping Allan variance at the same m.
+/// These reproduce Stable32's TOTDEV bounds to 1e-3 (PHASE.DAT, Keysight TIC, GPS) wherever the
+/// noise type agrees. NaN for alpha outside [-2, 2], m == 0 or N < 3.
+double total_variance_edf(int alpha, std::size_t m, std::size_t phase_count);
+
 }  // namespace stochnav
