@@ -23,23 +23,13 @@
 #include "stochnav/stats/davar.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/phase.hpp"
+#include "gyro_like_record.hpp"
 #include "timing.hpp"
 
 namespace {
 
 using stochnav::bench::best_seconds;
-
-std::vector<double> gyro_like_record(std::size_t samples) {
-  std::mt19937_64 engine(42);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::vector<double> values(samples);
-  double walk = 0.0;
-  for (double& y : values) {
-    walk += 1e-4 * normal(engine);
-    y = 0.4 + walk + 0.04 * normal(engine);
-  }
-  return values;
-}
+using stochnav::bench::gyro_like_record;
 
 std::string run_command(const std::string& command) {
   std::FILE* pipe = ::popen(command.c_str(), "r");

@@ -13,23 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "gyro_like_record.hpp"
 #include "timing.hpp"
 
 namespace {
 
 using stochnav::bench::best_seconds;
-
-std::vector<double> gyro_like_record(std::size_t samples) {
-  std::mt19937_64 engine(42);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::vector<double> values(samples);
-  double walk = 0.0;
-  for (double& y : values) {
-    walk += 1e-4 * normal(engine);
-    y = 0.4 + walk + 0.04 * normal(engine);
-  }
-  return values;
-}
+using stochnav::bench::gyro_like_record;
 
 /// Seconds of `stochnav <arguments>` (best of `repeats`), output discarded.
 double cli_seconds(const std::string& arguments, int repeats = 3) {

@@ -37,17 +37,6 @@ struct WvResult {
   std::vector<WaveletVariancePoint> points;
 };
 
-Record wv_record_description(const ReadOptions& options, const SampleReader& reader) {
-  Record record;
-  record.rate_hz = reader.rate_hz();
-  record.start_time_s = reader.start_time_s();
-  record.kind = options.kind;
-  record.unit = options.unit;
-  record.source = options.path;
-  record.column = reader.column_name();
-  return record;
-}
-
 std::string wv_record_label(const Record& record) {
   return record.source + " [" + record.column + "]";
 }
@@ -99,7 +88,7 @@ WvResult classical_wv_streamed(const ReadOptions& options) {
   if (reader.samples_read() == 0) {
     throw InputError(options.path + ": no samples in the file; check the file and --column");
   }
-  result.record = wv_record_description(options, reader);
+  result.record = describe_record(options, reader);
   check_wv_record_length(result.record, result.samples);
   result.points = accumulator.result(result.record.rate_hz);
   if (options.kind == DataKind::kPhase) {

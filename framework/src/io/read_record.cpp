@@ -1,6 +1,7 @@
+#include "stochnav/io/record.hpp"
+
 #include <utility>
 
-#include "stochnav/io/record.hpp"
 #include "stochnav/io/line_reader.hpp"
 #include "stochnav/io/sample_reader.hpp"
 #include "stochnav/io/text_cells.hpp"
@@ -9,17 +10,23 @@ namespace stochnav {
 
 Record read_record(const ReadOptions& options) { return read_record(options, 0); }
 
-Record read_record(const ReadOptions& options, std::size_t leading_zeros) {
-  SampleReader reader(options);
+Record describe_record(const ReadOptions& options, const SampleReader& reader) {
   Record record;
-  record.values.assign(leading_zeros, 0.0);
-  reader.read_all(record.values);
   record.rate_hz = reader.rate_hz();
   record.start_time_s = reader.start_time_s();
   record.kind = options.kind;
   record.unit = options.unit;
   record.source = options.path;
   record.column = reader.column_name();
+  return record;
+}
+
+Record read_record(const ReadOptions& options, std::size_t leading_zeros) {
+  SampleReader reader(options);
+  std::vector<double> values(leading_zeros, 0.0);
+  reader.read_all(values);
+  Record record = describe_record(options, reader);
+  record.values = std::move(values);
   return record;
 }
 

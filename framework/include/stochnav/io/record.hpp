@@ -62,6 +62,12 @@ Record read_record(const ReadOptions& options);
 /// (stats/phase.hpp) without a second array. The checks (two samples at least) count samples.
 Record read_record(const ReadOptions& options, std::size_t leading_zeros);
 
+class SampleReader;
+
+/// A Record holding no samples yet: rate, start time, kind, unit, source and column of the
+/// channel `reader` reads with `options` (for estimators that stream the samples themselves).
+Record describe_record(const ReadOptions& options, const SampleReader& reader);
+
 /// Column names of a CSV file's header (or "0", "1", ... for headerless text), for messages.
 std::vector<std::string> list_columns(const std::string& path);
 
