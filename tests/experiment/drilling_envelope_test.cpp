@@ -102,7 +102,7 @@ StationsInside stations_inside(const stochnav::testing::CsvColumns& errors,
   return result;
 }
 
-const double kDuration_s = stochnav::testing::study_size(43200.0, 7200.0);
+const double kDuration_s = 43200.0;  // 12 h; the tests that use it skip in sanitized builds
 // Long enough for stations in the build (sliding) or several connections (east-west).
 const double kWrongModelDuration_s = stochnav::testing::study_size(14400.0, 5400.0);
 
@@ -122,8 +122,12 @@ void expect_every_station_inside(const std::string& out) {
 
 // Over seeds, not one lucky realisation (the seeds of docs/drilling-envelope.md, section 3).
 TEST(DrillingEnvelope, SlidingIsInsideItsThreeSigmaFromAFieldStart) {
+  if (!stochnav::testing::study_at_full_size()) {
+    GTEST_SKIP() << "12-h runs; the survey-QC tests below run the same navigator under the "
+                    "sanitizers";
+  }
   const stochnav::testing::TempDir scratch;
-  for (const int seed : stochnav::testing::study_size<std::vector<int>>({7, 2, 3}, {7})) {
+  for (const int seed : {7, 2, 3}) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const std::string out = simulate_and_run_from_field_start(
         scratch, "slide_" + std::to_string(seed),
@@ -131,9 +135,7 @@ TEST(DrillingEnvelope, SlidingIsInsideItsThreeSigmaFromAFieldStart) {
         [](nlohmann::json&) {}, seed);
     const auto errors = read_csv_columns(out + "/survey_errors.csv");
     const StationsInside azimuth = stations_inside(errors, "azimuth_deg", "azimuth_sigma_deg");
-    if (stochnav::testing::study_at_full_size()) {
-      EXPECT_GE(azimuth.counted, 8);
-    }
+    EXPECT_GE(azimuth.counted, 8);
     expect_every_station_inside(out);
     // The azimuth no aid observes is honestly uncertain: degrees, not the 1.8 deg claimed before.
     if (azimuth.counted > 0) {
