@@ -158,8 +158,10 @@ int run(int argc, char** argv) {
   namespace cs = sp::core_state;
   const stochnav::NavState& estimate = navigator.state();
   const Eigen::MatrixXd& p = navigator.covariance();
-  const Eigen::Quaterniond dq = estimate.q_nb * truth.q_nb.conjugate();
-  const Eigen::Vector3d attitude_error = 2.0 * dq.vec() * (dq.w() < 0 ? -1.0 : 1.0);  // ENU
+  // The filter's attitude error phi (ENU, rad): C_nb_est = (I - [phi x]) C_nb_true, so
+  // C_nb_true C_nb_est^T = I + [phi x], a rotation by +phi (filter/error_dynamics.hpp).
+  const Eigen::Quaterniond dq = truth.q_nb * estimate.q_nb.conjugate();
+  const Eigen::Vector3d attitude_error = 2.0 * dq.vec() * (dq.w() < 0 ? -1.0 : 1.0);
   const Eigen::Vector3d velocity_error = estimate.v_n - truth.v_n;
   double worst_ratio = 0.0;
   for (int i = 0; i < 3; ++i) {
