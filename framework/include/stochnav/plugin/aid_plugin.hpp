@@ -4,7 +4,11 @@
 //
 // Error-state convention (state_layout.hpp, core_state): dx = x_estimated - x_true, with the 15
 // core states [dr (ENU, m), dv_n (ENU, m/s), phi (attitude error in n, rad), b_a (b, m/s^2),
-// b_g (b, rad/s)]. An aid predicts its measurement y from the estimated state and returns
+// b_g (b, rad/s)]. The attitude error is defined by C_nb_est = (I - [phi x]) C_nb_true (ENU
+// n; C_nb maps body axes into n), so a body vector u_b predicted as C_nb_est u_b errs by
+// -phi x (C_nb u_b) = [(C_nb u_b) x] phi (H columns +[u_n x]), and a navigation vector v_n
+// predicted in the body as C_nb_est^T v_n errs by C_bn (phi x v_n) (H columns -C_bn [v_n x]).
+// An aid predicts its measurement y from the estimated state and returns
 //   z = h(x_estimated) - y_measured   (m, in the aid's units),
 //   H = dz/d(dx)                      (m x 15, core states only: the runtime pads zeros for
 //                                      the augmented states),

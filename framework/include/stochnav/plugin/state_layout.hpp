@@ -19,7 +19,8 @@ class NoiseModelPlugin;
 namespace core_state {
 inline constexpr int kPosition = 0;   ///< dr, ENU position error (m), 3
 inline constexpr int kVelocity = 3;   ///< dv_n, ENU velocity error (m/s), 3
-inline constexpr int kAttitude = 6;   ///< phi, attitude error in n (rad), 3
+/// phi, attitude error in n (rad), 3: C_nb_est = (I - [phi x]) C_nb_true
+inline constexpr int kAttitude = 6;
 inline constexpr int kAccelBias = 9;  ///< b_a, accelerometer bias in b (m/s^2), 3
 inline constexpr int kGyroBias = 12;  ///< b_g, gyro bias in b (rad/s), 3
 inline constexpr int kSize = 15;
