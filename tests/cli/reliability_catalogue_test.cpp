@@ -253,6 +253,21 @@ class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
     corrupt[corrupt.size() - 6] = static_cast<char>(corrupt[corrupt.size() - 6] ^ 0x55);
     d.write("corrupt.txt.gz", corrupt);
     d.write("headerless.txt.gz", bytes.substr(3));
+    // Absurd rates and magnitudes.
+    d.write("fast_time.csv", [] {
+      std::string record = "t,x\n";
+      for (int i = 0; i < 200; ++i) {
+        record += std::to_string(i) + "e-12," + std::to_string((i * 7) % 5) + "\n";
+      }
+      return record;
+    }());
+    d.write("tiny.csv", [] {
+      std::string record = "t,x\n";
+      for (int i = 0; i < 200; ++i) {
+        record += std::to_string(i) + "," + std::to_string((i * 7) % 5) + "e-170\n";
+      }
+      return record;
+    }());
     // A socket: no output may be written there.
     const int socket_fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
     sockaddr_un address{};
@@ -584,7 +599,21 @@ INSTANTIATE_TEST_SUITE_P(
                       "simulate scenario @/scenario_duplicate.json --out @/s",
                       2,
                       "scenario_duplicate.json: duplicate key at /vibration_table/phases/0/duration_s;",
-                      {"@/s"}}),
+                      {"@/s"}},
+        // Absurd rates and magnitudes, refused up front.
+        CatalogueCase{"allan_rate_1e_minus_320", "allan --input @/record.txt --rate 1e-320", 2,
+                      "--rate 9.99989e-321 Hz is outside [1e-09, 1e+09] Hz"},
+        CatalogueCase{"allan_rate_1e308", "allan --input @/record.txt --rate 1e308", 2,
+                      "--rate 1e+308 Hz is outside [1e-09, 1e+09] Hz"},
+        CatalogueCase{"davar_rate_1e308",
+                      "davar --input @/record.txt --rate 1e308 --window 100 --step 50", 2,
+                      "--rate 1e+308 Hz is outside"},
+        CatalogueCase{"fit_rate_1e_minus_320", "fit --input @/record.txt --rate 1e-320", 2,
+                      "Hz is outside [1e-09, 1e+09] Hz"},
+        CatalogueCase{"allan_time_column_1e12_hz", "allan --input @/fast_time.csv", 2,
+                      "fast_time.csv: the time column's rate 1e+12 Hz is outside"},
+        CatalogueCase{"allan_values_1e_minus_170", "allan --input @/tiny.csv", 2,
+                      "tiny.csv: the largest sample magnitude is 4e-170, below 1e-100"}),
     [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
 
 TEST_F(Catalogue, SubnormalScenarioIsWrittenWhole) {

@@ -1,5 +1,9 @@
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <utility>
 
+#include "stochnav/core/errors.hpp"
 #include "stochnav/io/record.hpp"
 #include "stochnav/io/line_reader.hpp"
 #include "stochnav/io/sample_reader.hpp"
@@ -14,6 +18,18 @@ Record read_record(const ReadOptions& options, std::size_t leading_zeros) {
   Record record;
   record.values.assign(leading_zeros, 0.0);
   reader.read_all(record.values);
+  // Samples all tiny: their squared differences underflow (1e-170 gave deviations of 0).
+  double peak = 0.0;
+  for (std::size_t i = leading_zeros; i < record.values.size(); ++i) {
+    peak = std::max(peak, std::abs(record.values[i]));
+  }
+  if (peak > 0.0 && peak < kMinRecordPeakMagnitude) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.6g", peak);
+    throw InputError(options.path + ": the largest sample magnitude is " + text +
+                     ", below 1e-100, where the Allan variance's squared differences "
+                     "underflow; rescale the record (another --unit, or multiply it)");
+  }
   record.rate_hz = reader.rate_hz();
   record.start_time_s = reader.start_time_s();
   record.kind = options.kind;
