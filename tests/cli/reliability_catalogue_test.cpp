@@ -13,12 +13,14 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <regex>
 #include <string>
 #include <thread>
@@ -253,6 +255,35 @@ class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
     corrupt[corrupt.size() - 6] = static_cast<char>(corrupt[corrupt.size() - 6] ^ 0x55);
     d.write("corrupt.txt.gz", corrupt);
     d.write("headerless.txt.gz", bytes.substr(3));
+    // Fits that fail, models flagged failed, absurd rates and magnitudes.
+    d.write("sinusoid.csv", [] {
+      // A noiseless sinusoid, A = 1 deg/h, f = 0.05 Hz, 2000 s at 10 Hz.
+      std::string record = "t,x\n";
+      for (int i = 0; i < 20000; ++i) {
+        const double t = i / 10.0;
+        char line[64];
+        std::snprintf(line, sizeof line, "%.1f,%.12g\n", t, std::sin(2.0 * std::numbers::pi * 0.05 * t));
+        record += line;
+      }
+      return record;
+    }());
+    d.write("failed_fit.json", R"({"units": "deg/h", "rate_hz": 10, "terms": [
+        {"type": "angle_random_walk", "N": 0.1, "N_sigma": 0.01}],
+        "diagnostics": {"failed": true, "failure": "chi-square 2671 for 10 dof"}})");
+    d.write("fast_time.csv", [] {
+      std::string record = "t,x\n";
+      for (int i = 0; i < 200; ++i) {
+        record += std::to_string(i) + "e-12," + std::to_string((i * 7) % 5) + "\n";
+      }
+      return record;
+    }());
+    d.write("tiny.csv", [] {
+      std::string record = "t,x\n";
+      for (int i = 0; i < 200; ++i) {
+        record += std::to_string(i) + "," + std::to_string((i * 7) % 5) + "e-170\n";
+      }
+      return record;
+    }());
     // A socket: no output may be written there.
     const int socket_fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
     sockaddr_un address{};
@@ -584,8 +615,68 @@ INSTANTIATE_TEST_SUITE_P(
                       "simulate scenario @/scenario_duplicate.json --out @/s",
                       2,
                       "scenario_duplicate.json: duplicate key at /vibration_table/phases/0/duration_s;",
-                      {"@/s"}}),
+                      {"@/s"}},
+        // A failed fit is exit 2 naming the term and why, unless --keep-failed (flagged).
+        CatalogueCase{"fit_failed",
+                      "fit --input @/sinusoid.csv --terms angle_random_walk --format json "
+                      "--output @/f.json",
+                      2,
+                      "sinusoid.csv: fit failed: chi-square",
+                      {"@/f.json"}},
+        CatalogueCase{"fit_failed_kept",
+                      "fit --input @/sinusoid.csv --terms angle_random_walk --format json "
+                      "--keep-failed",
+                      0, "\"failed\": true"},
+        CatalogueCase{"fit_terms_empty", "fit --input @/good.csv --terms ''", 2,
+                      "--terms: no term named"},
+        CatalogueCase{"fit_terms_twice",
+                      "fit --input @/good.csv --terms angle_random_walk,angle_random_walk", 2,
+                      "--terms: angle_random_walk is given twice"},
+        // simulate noise refuses a model flagged as a failed fit unless told.
+        CatalogueCase{"simulate_failed_fit",
+                      "simulate noise --model @/failed_fit.json --duration 10 --rate 10 --seed 1 "
+                      "--out @/n.csv",
+                      2,
+                      "failed_fit.json: /diagnostics/failed: the model is a failed fit "
+                      "(chi-square 2671 for 10 dof); refit the record, or give --accept-failed",
+                      {"@/n.csv"}},
+        CatalogueCase{"simulate_failed_fit_accepted",
+                      "simulate noise --model @/failed_fit.json --duration 10 --rate 10 --seed 1 "
+                      "--accept-failed --out @/accepted.csv",
+                      0, ""},
+        CatalogueCase{"simulate_column_t",
+                      "simulate noise --model @/model.json --duration 10 --rate 10 --seed 1 "
+                      "--column t --out @/n.csv",
+                      2, "--column t: the name of the time column", {"@/n.csv"}},
+        // Absurd rates and magnitudes, refused up front.
+        CatalogueCase{"allan_rate_1e_minus_320", "allan --input @/record.txt --rate 1e-320", 2,
+                      "--rate 9.99989e-321 Hz is outside [1e-09, 1e+09] Hz"},
+        CatalogueCase{"allan_rate_1e308", "allan --input @/record.txt --rate 1e308", 2,
+                      "--rate 1e+308 Hz is outside [1e-09, 1e+09] Hz"},
+        CatalogueCase{"davar_rate_1e308",
+                      "davar --input @/record.txt --rate 1e308 --window 100 --step 50", 2,
+                      "--rate 1e+308 Hz is outside"},
+        CatalogueCase{"fit_rate_1e_minus_320", "fit --input @/record.txt --rate 1e-320", 2,
+                      "Hz is outside [1e-09, 1e+09] Hz"},
+        CatalogueCase{"allan_time_column_1e12_hz", "allan --input @/fast_time.csv", 2,
+                      "fast_time.csv: the time column's rate 1e+12 Hz is outside"},
+        CatalogueCase{"allan_values_1e_minus_170", "allan --input @/tiny.csv", 2,
+                      "tiny.csv: the largest sample magnitude is 4e-170, below 1e-100"}),
     [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
+
+// Issue #26: the sinusoid fit finds a clean sinusoid (it returned A = 0.70, f = 0.0715 Hz).
+TEST_F(Catalogue, FitFindsACleanSinusoid) {
+  const std::string dir = dir_->path().string();
+  const CliResult result = testing::run_cli(
+      replace_at("fit --input @/sinusoid.csv --unit deg/h --terms sinusoid --format json", dir),
+      dir);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json fit = nlohmann::json::parse(result.out);
+  ASSERT_EQ(fit["terms"].size(), 1u) << result.out;
+  EXPECT_NEAR(fit["terms"][0]["amplitude"].get<double>(), 1.0, 0.01) << result.out;
+  EXPECT_NEAR(fit["terms"][0]["frequency_hz"].get<double>(), 0.05, 0.0005) << result.out;
+  EXPECT_FALSE(fit["diagnostics"]["failed"].get<bool>()) << result.out;
+}
 
 TEST_F(Catalogue, SubnormalScenarioIsWrittenWhole) {
   const std::string dir = dir_->path().string();

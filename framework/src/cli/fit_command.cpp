@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -32,6 +33,8 @@ struct FitArguments {
   std::size_t step = 0;
   std::string format = "table";
   std::string output;
+  bool terms_given = false;  ///< --terms was on the command line (even empty)
+  bool keep_failed = false;
 };
 
 std::vector<TermType> parse_terms(const std::string& list) {
@@ -46,14 +49,25 @@ std::vector<TermType> parse_terms(const std::string& list) {
       for (TermType t : all_term_types()) known += (known.empty() ? "" : ", ") + std::string(term_type_name(t));
       throw ConfigError("--terms: unknown term '" + item + "'; use a comma-separated list of " + known);
     }
+    // Two power-law terms of one type are one term with a degenerate split between them; two
+    // Gauss-Markov or sinusoid terms are two different processes.
+    const bool repeatable = *type == TermType::kGaussMarkov || *type == TermType::kSinusoid;
+    if (!repeatable && std::find(terms.begin(), terms.end(), *type) != terms.end()) {
+      throw ConfigError("--terms: " + item + " is given twice; name each power-law term once "
+                        "(only gauss_markov and sinusoid may repeat)");
+    }
     terms.push_back(*type);
+  }
+  if (terms.empty()) {
+    throw ConfigError("--terms: no term named; give a comma-separated list of terms, or leave "
+                      "out --terms to choose them automatically");
   }
   return terms;
 }
 
 FitOptions fit_options(const FitArguments& arguments) {
   FitOptions options;
-  options.terms = parse_terms(arguments.terms);
+  if (arguments.terms_given) options.terms = parse_terms(arguments.terms);
   // A given term the data leave on its search bound is dropped (and said so in the report).
   options.drop_terms_at_bound = true;
   if (arguments.loss == "huber") {
@@ -123,6 +137,13 @@ void run_fit(const FitArguments& arguments) {
   const FitResult whole = fit_noise_terms(
       fit_data_from_deviations(Deviation::kOadev, points, record.unit, record.rate_hz),
                                           options);
+  // A failed fit is no result a script may take for one: exit 2 naming the term and the reason,
+  // unless the user asked for it (flagged in the output).
+  if (whole.diagnostics.failed() && !arguments.keep_failed) {
+    throw InputError(fmt::format("{}: fit failed: {}; choose other --terms, or give "
+                                     "--keep-failed to write the failed fit (flagged)",
+                                     record.source, whole.diagnostics.failure()));
+  }
   if (!windowed) {
     write_output(arguments.output, format_fit(whole, record, format));
     return;
@@ -134,6 +155,9 @@ void run_fit(const FitArguments& arguments) {
     throw ConfigError(record.source + ": " + problem);
   }
   options.terms = whole.diagnostics.chosen_terms;
+  // Every window keeps every term, so each coefficient stays one series; a window that leaves
+  // a term on its bound is a failed window.
+  options.drop_terms_at_bound = false;
   const DavarResult davar = dynamic_allan_deviation(record, davar_options);
   std::vector<double> edf;
   for (std::size_t m : davar.m) {
@@ -150,6 +174,21 @@ void run_fit(const FitArguments& arguments) {
   parallel_for(fits.size(), [&](std::size_t k) {
     fits[k] = fit_window(davar.adev[k], davar, edf, record, options);
   });
+  std::size_t failed_windows = 0;
+  std::size_t first_failed = 0;
+  for (std::size_t k = fits.size(); k-- > 0;) {
+    if (fits[k].diagnostics.failed()) {
+      ++failed_windows;
+      first_failed = k;
+    }
+  }
+  if (failed_windows > 0 && !arguments.keep_failed) {
+    throw InputError(fmt::format(
+        "{}: fit failed in {} of {} windows, first at t = {:g} s: {}; use longer --window, "
+        "fewer --terms, or give --keep-failed to write them (flagged)",
+        record.source, failed_windows, fits.size(), davar.time_s[first_failed],
+        fits[first_failed].diagnostics.failure()));
+  }
   write_output(arguments.output, format_windowed_fit(davar.time_s, fits, record, davar_options,
                                                      format));
 }
@@ -162,6 +201,9 @@ void add_fit_command(CLI::App& app) {
   add_input_options(*command, arguments->input);
   command->add_option("--terms", arguments->terms,
                       "Comma-separated terms (default: chosen by the information criterion)");
+  command->add_flag("--keep-failed", arguments->keep_failed,
+                    "Write a failed fit (flagged \"failed\" in its JSON) and exit 0 instead of "
+                    "exit 2");
   command->add_option("--taus", arguments->taus, "octave, decade or dense")->capture_default_str();
   command->add_option("--loss", arguments->loss, "Robust loss: huber, cauchy or none")
       ->capture_default_str();
@@ -173,7 +215,10 @@ void add_fit_command(CLI::App& app) {
       ->check(positive_count());
   add_format_option(*command, arguments->format);
   command->add_option("--output", arguments->output, "Write to FILE instead of standard output");
-  command->callback([arguments] { run_fit(*arguments); });
+  command->callback([arguments, command] {
+    arguments->terms_given = command->count("--terms") > 0;
+    run_fit(*arguments);
+  });
 }
 
 }  // namespace stochnav::cli

@@ -124,6 +124,13 @@ std::string format_windowed_fit(const std::vector<double>& time_s,
                                                        : nlohmann::json());
       }
     }
+    // Added beside the series (issue #26): whether each window's fit failed, and why.
+    out["failed"] = nlohmann::json::array();
+    out["failure"] = nlohmann::json::array();
+    for (const auto& fit : fits) {
+      out["failed"].push_back(fit.diagnostics.failed());
+      out["failure"].push_back(fit.diagnostics.failure());
+    }
     return out.dump(1) + "\n";
   }
   const bool csv = format == OutputFormat::kCsv;
@@ -134,14 +141,22 @@ std::string format_windowed_fit(const std::vector<double>& time_s,
     out += csv ? fmt::format(",{},{}_sigma", c.name, c.name)
                : fmt::format(" {:>22} {:>10}", name, "sigma");
   }
-  out += '\n';
+  out += csv ? ",failed\n" : "\n";
   for (std::size_t k = 0; k < rows.size(); ++k) {
     out += csv ? fmt::format("{:.10g}", time_s[k]) : fmt::format("{:>12.6g}", time_s[k]);
     for (const auto& p : rows[k]) {
       out += csv ? fmt::format(",{:.6g},{:.3g}", p.value, p.sigma)
                  : fmt::format(" {:>22.5g} {:>10.3g}", p.value, p.sigma);
     }
-    out += '\n';
+    out += csv ? fmt::format(",{}\n", fits[k].diagnostics.failed() ? 1 : 0) : "\n";
+  }
+  if (!csv) {
+    for (std::size_t k = 0; k < fits.size(); ++k) {
+      if (fits[k].diagnostics.failed()) {
+        out += fmt::format("# FIT FAILED at t = {:g} s: {}\n", time_s[k],
+                           fits[k].diagnostics.failure());
+      }
+    }
   }
   return out;
 }

@@ -17,8 +17,10 @@ namespace stochnav::cli {
 std::string format_fit(const FitResult& fit, const Record& record, OutputFormat format);
 
 /// Coefficient time series of a windowed fit. JSON: {"units", "window", "step", "t": [...],
-/// "terms": [{"type": T, "<param>": [...], "<param>_sigma": [...]}, ...]}; CSV and table: one
-/// row per window, t then each parameter and its sigma.
+/// "terms": [{"type": T, "<param>": [...], "<param>_sigma": [...]}, ...], "failed": [bool, ...],
+/// "failure": ["why", ...]}; CSV: one row per window, t then each parameter and its sigma, then
+/// `failed` (0 or 1); table: the same rows, then a "# FIT FAILED at t = ..." line per failed
+/// window.
 std::string format_windowed_fit(const std::vector<double>& time_s,
                                 const std::vector<FitResult>& fits, const Record& record,
                                 const DavarOptions& davar, OutputFormat format);

@@ -33,6 +33,7 @@ struct NoiseArguments {
   std::uint64_t seed = 0;
   std::string out;
   std::vector<std::string> columns;
+  bool accept_failed = false;
 };
 
 struct Axis {
@@ -40,9 +41,37 @@ struct Axis {
   NoiseModel model;
 };
 
+// A model `stochnav fit` flagged as failed ("diagnostics": {"failed": true, "failure": why})
+// is refused unless --accept-failed: its terms are not what the record shows.
+void refuse_failed_fit(const nlohmann::json& model, const std::string& pointer,
+                       const NoiseArguments& arguments) {
+  if (arguments.accept_failed || !model.is_object() || !model.contains("diagnostics")) return;
+  const nlohmann::json& diagnostics = model["diagnostics"];
+  if (!diagnostics.is_object() || !diagnostics.contains("failed")) return;
+  if (!diagnostics["failed"].is_boolean()) {
+    throw ConfigError(arguments.model_path + ": " + pointer +
+                      "/diagnostics/failed: expected true or false");
+  }
+  if (!diagnostics["failed"].get<bool>()) return;
+  std::string why;
+  if (diagnostics.contains("failure") && diagnostics["failure"].is_string()) {
+    why = " (" + diagnostics["failure"].get<std::string>() + ")";
+  }
+  throw ConfigError(arguments.model_path + ": " + pointer + "/diagnostics/failed: the model is a "
+                    "failed fit" + why + "; refit the record, or give --accept-failed to "
+                    "simulate it anyway");
+}
+
 // A model file is one noise model (one column) or {"axes": {"name": model, ...}}.
 std::vector<Axis> read_axes(const NoiseArguments& arguments) {
   const nlohmann::json document = read_json_document(arguments.model_path, "--model");
+  if (document.is_object() && document.contains("axes") && document["axes"].is_object()) {
+    for (const auto& [name, model] : document["axes"].items()) {
+      refuse_failed_fit(model, "/axes/" + name, arguments);
+    }
+  } else {
+    refuse_failed_fit(document, "", arguments);
+  }
   std::vector<Axis> axes;
   try {
     if (document.is_object() && document.contains("axes")) {
@@ -65,6 +94,18 @@ std::vector<Axis> read_axes(const NoiseArguments& arguments) {
                                     arguments.columns.size(), axes.size(), arguments.model_path));
     }
     for (std::size_t i = 0; i < axes.size(); ++i) axes[i].column = arguments.columns[i];
+  }
+  // The record must read back: no second time column, no name the CSV would split or break.
+  for (const Axis& axis : axes) {
+    const std::string& name = axis.column;
+    if (name == "t" || name == "t_s" || name == "time" || name == "time_s") {
+      throw ConfigError("--column " + name + ": the name of the time column; choose another "
+                        "column name");
+    }
+    if (name.empty() || name.find_first_of(",\"\r\n") != std::string::npos) {
+      throw ConfigError("--column '" + name + "': a column name must be non-empty without "
+                        "commas, quotes or line breaks; choose another name");
+    }
   }
   return axes;
 }
@@ -209,6 +250,8 @@ void add_simulate_command(CLI::App& app) {
   noise_command->add_option("--out", noise->out, "Output CSV: t,<column>...")->required();
   noise_command->add_option("--column", noise->columns,
                             "Column name(s), one per axis (default: value, or the axis names)");
+  noise_command->add_flag("--accept-failed", noise->accept_failed,
+                          "Simulate a model `stochnav fit` flagged as a failed fit");
   noise_command->callback([noise] { run_simulate_noise(*noise); });
 
   auto scenario = std::make_shared<ScenarioArguments>();

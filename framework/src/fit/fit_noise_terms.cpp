@@ -56,6 +56,16 @@ std::vector<TermType> types_of(const std::vector<TermParameters>& terms) {
   return types;
 }
 
+// A parameter left on the edge of its search range: the data do not determine it.
+bool any_at_bound(const LogAvarFit& fit, const Solution& solution) {
+  for (const auto& term : solution.terms) {
+    for (std::size_t k = 0; k < term.log_values.size(); ++k) {
+      if (fit.at_bound(term, k)) return true;
+    }
+  }
+  return false;
+}
+
 [[noreturn]] void fail(const std::string& problem) {
   throw ConfigError("noise-term fit: " + problem);
 }
@@ -93,7 +103,9 @@ Solution fit_automatic(const LogAvarFit& fit, const FitOptions& options,
       for (const auto& term : current) parameters += term.log_values.size();
       if (parameters >= points) continue;
       Solution solution = best_with(fit, current, candidate);
-      if (!solution.usable) continue;
+      // A term the data leave on its search bound (a rate ramp of e^-14 times its read-off on
+      // white noise) is not a better description, only a failed one: never select it.
+      if (!solution.usable || any_at_bound(fit, solution)) continue;
       const double criterion = criterion_of(solution, points, options.criterion);
       auto terms = types_of(canonical_order(solution.terms));
       history.push_back({std::move(terms), criterion, false});
@@ -110,7 +122,7 @@ Solution fit_automatic(const LogAvarFit& fit, const FitOptions& options,
     current_criterion = best_criterion;
     current_solution = std::move(best);
   }
-  // Backward pass: drop a term whenever that lowers the criterion.
+  // Backward pass: drop a term whenever keeping it is not worth the margin a term needs.
   bool dropped = true;
   while (dropped && current.size() > 1) {
     dropped = false;
@@ -118,9 +130,9 @@ Solution fit_automatic(const LogAvarFit& fit, const FitOptions& options,
       auto reduced = current;
       reduced.erase(reduced.begin() + static_cast<std::ptrdiff_t>(j));
       Solution solution = fit.solve(reduced);
-      if (!solution.usable) continue;
+      if (!solution.usable || any_at_bound(fit, solution)) continue;
       const double criterion = criterion_of(solution, points, options.criterion);
-      if (criterion < current_criterion - options.min_criterion_improvement) {
+      if (criterion < current_criterion + options.min_criterion_improvement) {
         history.push_back({types_of(canonical_order(solution.terms)), criterion, true});
         current = solution.terms;
         current_criterion = criterion;
@@ -309,7 +321,12 @@ FitResult fit_noise_terms_once(const FitData& data, const FitOptions& options) {
       const double natural = std::exp(term.log_values[k]);
       const double log_variance = result.log_covariance(offset, offset);
       set_parameter_value(value, k, natural);
-      set_parameter_value(sigma, k, natural * std::sqrt(log_variance));
+      const double sigma_natural = natural * std::sqrt(log_variance);
+      set_parameter_value(sigma, k, sigma_natural);
+      if (!fit->at_bound(term, k) && !std::isfinite(sigma_natural)) {
+        diagnostics.undetermined.push_back(
+            fmt::format("{}.{}", term_type_name(term.type), specs[k].name));
+      }
       if (fit->at_bound(term, k)) {
         diagnostics.at_bound.push_back(
             fmt::format("{}.{}", term_type_name(term.type), specs[k].name));
@@ -366,6 +383,10 @@ std::string FitDiagnostics::failure() const {
   std::string reason;
   for (const auto& name : at_bound) {
     reason += (reason.empty() ? "" : "; ") + name + " on its search bound";
+  }
+  for (const auto& name : undetermined) {
+    reason += (reason.empty() ? "" : "; ") + name +
+              " has no uncertainty (NaN: the fit's covariance is singular there)";
   }
   const double p = chi_square_p_value();
   if (std::isfinite(p) && p < kFailedFitPValue) {

@@ -74,6 +74,7 @@ json fit_result_to_json(const FitResult& result) {
       {"failure", d.failure()},
       {"dropped_terms", d.dropped_terms},
       {"at_bound", d.at_bound},
+      {"undetermined", d.undetermined},
   };
   return document;
 }

@@ -213,7 +213,9 @@ std::vector<std::vector<double>> LogAvarFit::starts(TermType type) const {
       }
       break;
     case TermType::kSinusoid:
-      // Peak of the sinusoid AVAR: 0.525 A^2 at tau = 0.371 / f.
+      // The frequencies whose nulls (tau = k / f) and peaks best match the curve first, then
+      // the peak of the sinusoid AVAR, 0.525 A^2 at tau = 0.371 / f, at every measured tau.
+      result = sinusoid_frequency_scan();
       for (std::size_t i = 0; i < tau_.size(); ++i) {
         result.push_back({std::log(0.5 * std::sqrt(avar_[i] / 0.525)), std::log(0.371 / tau_[i])});
       }
@@ -224,6 +226,62 @@ std::vector<std::vector<double>> LogAvarFit::starts(TermType type) const {
       break;
   }
   return result;
+}
+
+std::vector<std::vector<double>> LogAvarFit::sinusoid_frequency_scan() const {
+  // The sinusoid's AVAR, A^2 sin^4(pi f tau) / (pi f tau)^2, dips towards zero at tau = k / f:
+  // an octave tau set samples it too sparsely for a start at its peak to find the right one of
+  // the many local optima in f (a clean 0.05 Hz sinusoid converged to 0.0715 Hz). On a grid of
+  // frequencies over the fitted range (16 per octave), the best amplitude is closed-form in the
+  // log domain (the weighted mean of target_i - log shape_i(f)), and so is the misfit; the three
+  // best local minima of the misfit over the grid are the starts. Points where the shape
+  // vanishes (log -> -inf) make a frequency's misfit infinite, never a start.
+  const double log_f_low = lower_bound(TermType::kSinusoid, 1);
+  const double log_f_high = upper_bound(TermType::kSinusoid, 1);
+  constexpr double kStepsPerOctave = 16.0;
+  const double step = std::log(2.0) / kStepsPerOctave;
+  struct GridPoint {
+    double log_f;
+    double log_amplitude;
+    double misfit;
+  };
+  std::vector<GridPoint> grid;
+  for (double log_f = log_f_low + 0.5 * step; log_f < log_f_high; log_f += step) {
+    const double f = std::exp(log_f);
+    double weight_sum = 0.0;
+    double weighted = 0.0;
+    std::vector<double> log_shape(tau_.size());
+    bool finite = true;
+    for (std::size_t i = 0; i < tau_.size(); ++i) {
+      log_shape[i] = std::log(closed_form::sinusoid_avar(1.0, f, tau_[i]));
+      if (!std::isfinite(log_shape[i])) finite = false;
+      const double w = inv_sigma_[i] * inv_sigma_[i];
+      weight_sum += w;
+      weighted += w * (target_[i] - log_shape[i]);
+    }
+    if (!finite || !(weight_sum > 0.0)) continue;
+    const double log_amplitude_squared = weighted / weight_sum;
+    double misfit = 0.0;
+    for (std::size_t i = 0; i < tau_.size(); ++i) {
+      const double r = (log_amplitude_squared + log_shape[i] - target_[i]) * inv_sigma_[i];
+      misfit += r * r;
+    }
+    grid.push_back({log_f, 0.5 * log_amplitude_squared, misfit});
+  }
+  std::vector<GridPoint> minima;
+  for (std::size_t j = 0; j < grid.size(); ++j) {
+    const bool below_left = j == 0 || grid[j].misfit <= grid[j - 1].misfit;
+    const bool below_right = j + 1 == grid.size() || grid[j].misfit <= grid[j + 1].misfit;
+    if (below_left && below_right && std::isfinite(grid[j].misfit)) minima.push_back(grid[j]);
+  }
+  std::sort(minima.begin(), minima.end(),
+            [](const GridPoint& a, const GridPoint& b) { return a.misfit < b.misfit; });
+  constexpr std::size_t kScanStarts = 3;
+  std::vector<std::vector<double>> starts;
+  for (std::size_t j = 0; j < minima.size() && j < kScanStarts; ++j) {
+    starts.push_back({minima[j].log_amplitude, minima[j].log_f});
+  }
+  return starts;
 }
 
 namespace {

@@ -59,6 +59,8 @@ class LogAvarFit {
   const SlopeReadoffs& readoffs() const { return readoffs_; }
 
  private:
+  /// Sinusoid starts {log A, log f} from a scan of the log misfit over frequency.
+  std::vector<std::vector<double>> sinusoid_frequency_scan() const;
   double lower_bound(TermType type, std::size_t k) const;
   double upper_bound(TermType type, std::size_t k) const;
 

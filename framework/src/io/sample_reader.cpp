@@ -42,6 +42,15 @@ std::string magnitude_problem(double value) {
          "differences overflow; rescale the record (another --unit, or divide it)";
 }
 
+std::string rate_bounds_problem(const std::string& what, double rate_hz) {
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "%s %.6g Hz is outside [%g, %g] Hz, the sampling rates the statistics can "
+                "represent; give the rate in Hz (docs/reliability.md, Inputs)",
+                what.c_str(), rate_hz, kMinRecordRateHz, kMaxRecordRateHz);
+  return text;
+}
+
 bool is_time_column(std::string_view name) {
   return name == "t" || name == "t_s" || name == "time" || name == "time_s";
 }
@@ -164,6 +173,10 @@ class SampleReader::Impl {
     if (options.rate_hz && !(*options.rate_hz > 0.0 && std::isfinite(*options.rate_hz))) {
       throw ConfigError("--rate must be a positive number of Hz (got " +
                         std::to_string(*options.rate_hz) + ")");
+    }
+    if (options.rate_hz && !(*options.rate_hz >= kMinRecordRateHz &&
+                             *options.rate_hz <= kMaxRecordRateHz)) {
+      throw ConfigError(rate_bounds_problem("--rate", *options.rate_hz));
     }
     if (format_ == FileFormat::kFloat64 || format_ == FileFormat::kFloat32) {
       open_binary();
@@ -551,6 +564,11 @@ class SampleReader::Impl {
     }
     if (samples_ < 2) {
       throw InputError(options_.path + ": only one sample; an Allan variance needs at least two");
+    }
+    if (time_column_ && time_.has_rate() &&
+        !(time_.rate_hz() >= kMinRecordRateHz && time_.rate_hz() <= kMaxRecordRateHz)) {
+      throw InputError(options_.path + ": " + rate_bounds_problem("the time column's rate",
+                                                                  time_.rate_hz()));
     }
     if (time_column_ && options_.rate_hz &&
         std::abs(time_.rate_hz() - *options_.rate_hz) > 1e-4 * *options_.rate_hz) {

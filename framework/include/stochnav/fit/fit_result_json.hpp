@@ -12,7 +12,13 @@
 //      "slope_readoffs": {"Q": {"value": 0.21, "unit": "arcsec", "tau_s": 0.01}, "N": {...},
 //                         "B": {...}, "K": {...}, "R": {...}},
 //      "selection": [{"terms": ["angle_random_walk"], "criterion": 130.2, "accepted": true}, ...],
-//      "warnings": []}}
+//      "warnings": [], "failed": false, "failure": "", "dropped_terms": [], "at_bound": [],
+//      "undetermined": []}}
+//
+// "failed" flags a failed fit (FitDiagnostics::failed: a parameter on its search bound, one
+// without an uncertainty, or a chi-square the terms cannot explain) and "failure" says why;
+// `stochnav fit` writes such a result only with --keep-failed, and `simulate noise` refuses a
+// model flagged so unless given --accept-failed.
 //
 // An uncertainty that could not be determined is null. noise_model_from_json reads this document
 // back as a plain noise model.

@@ -19,6 +19,17 @@
 
 namespace stochnav {
 
+/// Sampling rates a record may have (Hz), from --rate or its time column; outside them the
+/// statistics leave the range of a double (tau0 = 1e320 s, or a phase of rate x 1e-308 that
+/// underflows), so a rate beyond them is refused (ConfigError for --rate, InputError for a time
+/// column). 1e-9 Hz is one sample in 32 years; 1e9 Hz one a nanosecond.
+inline constexpr double kMinRecordRateHz = 1e-9;
+inline constexpr double kMaxRecordRateHz = 1e9;
+/// A record whose largest sample magnitude is positive but below this is refused (InputError):
+/// the squared differences of the Allan variance would underflow to 0 (values near 1e-170 gave
+/// deviations of exactly 0). The mirror of the +/-1e100 bound on each sample.
+inline constexpr double kMinRecordPeakMagnitude = 1e-100;
+
 /// What the samples are: a rate (gyro rate, fractional frequency) or its integral (angle, clock
 /// phase in s). Allan-variance estimators work on phase; rate records are integrated first.
 enum class DataKind { kRate, kPhase };
@@ -51,10 +62,13 @@ struct ReadOptions {
 };
 
 /// Reads one channel of a file. Throws InputError on malformed content (non-numeric cell, NaN or
-/// infinity, a sample beyond +/-1e100 (its squares would overflow the statistics), missing or
+/// infinity, a sample beyond +/-1e100 (its squares would overflow the statistics), a record
+/// whose largest magnitude is below kMinRecordPeakMagnitude (but not 0), a time column whose
+/// rate is outside [kMinRecordRateHz, kMaxRecordRateHz], missing or
 /// out-of-range column, ragged row, fewer than 2 samples, non-uniform or decreasing time, CR-only
 /// line endings; a UTF-8 byte-order mark is skipped)
-/// and ConfigError on inconsistent options (no rate and no time column, rate <= 0).
+/// and ConfigError on inconsistent options (no rate and no time column, a rate outside
+/// [kMinRecordRateHz, kMaxRecordRateHz]).
 Record read_record(const ReadOptions& options);
 
 /// read_record with `leading_zeros` zeros before the samples in values (values.size() ==
