@@ -32,9 +32,11 @@ mtig="$data/mtig_cont_imu1_gyrox_100hz.csv"
 
 if [[ -f "$adis" ]]; then
   echo "== ADIS16405 gyro z =="
+  # The usual power-law terms do not describe this record: the fit is flagged failed
+  # (--keep-failed writes it), and diagnose names what it misses.
   "$stochnav" fit --input "$adis" --column gyro_z_dps --unit deg/s --taus octave \
     --terms quantization,angle_random_walk,bias_instability,rate_random_walk \
-    --format json --output "$out/adis_gyro_z_old_fit.json"
+    --format json --output "$out/adis_gyro_z_old_fit.json" --keep-failed
   "$stochnav" diagnose --input "$adis" --column gyro_z_dps --unit deg/s \
     --model "$out/adis_gyro_z_old_fit.json" --out "$out/adis_gyro_z"
 else
@@ -45,7 +47,7 @@ if [[ -f "$mtig" ]]; then
   echo "== MTi-G gyro x (outliers) =="
   "$stochnav" fit --input "$mtig" --column gyro_x --unit rad/s --taus octave \
     --terms angle_random_walk,bias_instability,rate_random_walk \
-    --format json --output "$out/mtig_gyro_x_old_fit.json"
+    --format json --output "$out/mtig_gyro_x_old_fit.json" --keep-failed
   "$stochnav" diagnose --input "$mtig" --column gyro_x --unit rad/s \
     --model "$out/mtig_gyro_x_old_fit.json" --out "$out/mtig_gyro_x"
 else

@@ -206,7 +206,7 @@ INSTANTIATE_TEST_SUITE_P(KeysightTic, Stable32Table,
                                            octave("keysight53230a_tic/tic_hdev.txt", kTic, kHdev),
                                            octave("keysight53230a_tic/tic_ohdev.txt", kTic, kOhdev),
                                            total("keysight53230a_tic/tic_totdev.txt", kTic, kTotdev,
-                                                 TauSpacing::kOctave),
+                                                 TauSpacing::kOctave, 8192),
                                            all_tau("keysight53230a_tic/tic_adev.txt", kTic, kAdev)),
                          case_name);
 

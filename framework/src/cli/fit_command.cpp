@@ -137,20 +137,22 @@ void run_fit(const FitArguments& arguments) {
   const FitResult whole = fit_noise_terms(
       fit_data_from_deviations(Deviation::kOadev, points, record.unit, record.rate_hz),
                                           options);
-  // A failed fit is no result a script may take for one: exit 2 naming the term and the reason,
-  // unless the user asked for it (flagged in the output).
-  if (whole.diagnostics.failed() && !arguments.keep_failed) {
-    throw InputError(fmt::format("{}: fit failed: {}; choose other --terms, or give "
-                                     "--keep-failed to write the failed fit (flagged)",
-                                     record.source, whole.diagnostics.failure()));
-  }
   if (!windowed) {
+    // A failed fit is no result a script may take for one: exit 2 naming the term and the
+    // reason, unless the user asked for it (flagged in the output).
+    if (whole.diagnostics.failed() && !arguments.keep_failed) {
+      throw InputError(fmt::format("{}: fit failed: {}; choose other --terms, or give "
+                                   "--keep-failed to write the failed fit (flagged)",
+                                   record.source, whole.diagnostics.failure()));
+    }
     write_output(arguments.output, format_fit(whole, record, format));
     return;
   }
 
   // Every window is fitted with the terms chosen on the whole record, so that each coefficient
-  // is one continuous time series.
+  // is one continuous time series. The whole record's fit only chooses them: a record that
+  // needs windows is one no constant model describes (its chi-square fails), and each window's
+  // own fit is checked below.
   if (const auto problem = davar_options.validate(record.values.size()); !problem.empty()) {
     throw ConfigError(record.source + ": " + problem);
   }
