@@ -64,13 +64,13 @@ double wv_biweight_efficiency(double c) {
 /// sum over the coefficients of psi_c(w k)^2, in fixed chunks over the stats threads (the same
 /// sum for every thread count).
 double biweight_sum(std::span<const double> w, double k, double c) {
-  constexpr std::size_t kChunk = std::size_t{1} << 15;
-  const std::size_t chunks = (w.size() + kChunk - 1) / kChunk;
+  constexpr std::size_t kBiweightChunk = std::size_t{1} << 15;
+  const std::size_t chunks = (w.size() + kBiweightChunk - 1) / kBiweightChunk;
   std::vector<double> partial(chunks);
   const double c2 = c * c;
   parallel_for(chunks, [&](std::size_t chunk) {
-    const std::size_t first = chunk * kChunk;
-    const std::size_t last = std::min(w.size(), first + kChunk);
+    const std::size_t first = chunk * kBiweightChunk;
+    const std::size_t last = std::min(w.size(), first + kBiweightChunk);
     double sum = 0.0;
     for (std::size_t i = first; i < last; ++i) {
       const double r = w[i] * k;
