@@ -55,6 +55,13 @@ TEST(SecondOrderAttitude, MatchesMonteCarloForCorrelatedErrors) {
   mean /= samples;
   const Eigen::Matrix3d sampled = second / samples - mean * mean.transpose();
   const Eigen::Matrix3d c = second_order_attitude_rate_covariance(p, omega);
+  // The mean's standard error is sqrt(c_ii / samples): 0.2 % of sigma; 1 % catches any slip.
+  const Eigen::Vector3d expected_mean = second_order_attitude_rate_mean(p, omega);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(mean(i), expected_mean(i), 0.01 * std::sqrt(c(i, i)) + 1e-3 * std::abs(mean(i)))
+        << "mean " << i;
+  }
+  EXPECT_GT(expected_mean(1), 0.0) << "a heading error of either sign tilts the frame north";
   // The sample covariance of these heavy-tailed products has a relative standard error of
   // about sqrt(kurtosis / samples), ~1 %: 5 % is far outside it yet catches a factor of 2.
   for (int i = 0; i < 3; ++i) {

@@ -4,6 +4,12 @@
 
 namespace stochnav {
 
+Eigen::Vector3d second_order_attitude_rate_mean(const Eigen::Matrix3d& p_attitude,
+                                                const Eigen::Vector3d& omega_in_n) {
+  // E[phi phi^T] = P, E[|phi|^2] = tr(P).
+  return -0.5 * (p_attitude * omega_in_n - p_attitude.trace() * omega_in_n);
+}
+
 Eigen::Matrix3d second_order_attitude_rate_covariance(const Eigen::Matrix3d& p_attitude,
                                                       const Eigen::Vector3d& omega_in_n) {
   // [phi x]^2 w = phi (phi . w) - |phi|^2 w, so m_i = -1/2 (phi_i (phi . w) - |phi|^2 w_i)

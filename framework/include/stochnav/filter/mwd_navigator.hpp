@@ -120,7 +120,10 @@ class MwdNavigator final {
                         Eigen::Matrix3d& sum);
   void propagate_covariance();
   void propagate_core_states(const CoreMatrix& f_t, double interval);
+  Eigen::Vector3d navigation_frame_rate_n() const;
   Eigen::Matrix3d second_order_noise(double interval) const;
+  Eigen::Vector3d second_order_drift(double interval) const;
+  void feed_back_second_order_drift(const Eigen::Vector3d& drift);
   void close_interval(double interval);
   void update_augmented_transition(AugmentedGroup& group, double interval_s);
   void apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b, const Eigen::Vector3d& f_ib_b);
