@@ -252,5 +252,30 @@ TEST(PluginsCommand, ShowFindsPluginsInTheConfigFolderAndReportsFactoryErrors) {
       << bad.err;
 }
 
+TEST(PluginsCommand, ShowPrintsTheNavigatorsLayoutAndTakesARecordingFolder) {
+  testing::TempDir scratch;
+  fs::create_directories(scratch.path() / "recording");
+  scratch.write("recording/imu.csv",
+                "t,gyro_x,gyro_y,gyro_z,accel_x,accel_y,accel_z\n0,0,0,0,0,0,0\n");
+  // No "data" section: --data gives the recording, as for run.
+  scratch.write("scaled.json", R"({
+    "noise": {"gyro": {"plugin": "gauss_markov", "params": {"sigma": 1, "tau_c": 10}},
+              "accel": {"plugin": "white", "params": {"N": 0.02}}},
+    "filter": {"scale_factor_sigma_ppm": {"gyro": 100, "accel": 0}}})");
+  const auto shown = testing::run_cli("plugins show '" + scratch.file("scaled.json") +
+                                          "' --data '" + scratch.file("recording") + "'",
+                                      scratch.path().string());
+  ASSERT_EQ(shown.exit_code, 0) << shown.err;
+  // 15 core + 3 gyro scale factors + 3 Gauss-Markov states: what MwdNavigator lays out.
+  EXPECT_NE(shown.out.find("error state: 21 states"), std::string::npos) << shown.out;
+  EXPECT_NE(shown.out.find("gyro_scale_factor"), std::string::npos) << shown.out;
+  EXPECT_EQ(shown.out.find("accel_scale_factor"), std::string::npos) << shown.out;
+  const auto without_data =
+      testing::run_cli("plugins show '" + scratch.file("scaled.json") + "'",
+                       scratch.path().string());
+  EXPECT_EQ(without_data.exit_code, 2);
+  EXPECT_NE(without_data.err.find("/data"), std::string::npos) << without_data.err;
+}
+
 }  // namespace
 }  // namespace stochnav::plugin

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
 #include "standard_output.hpp"
@@ -24,6 +25,7 @@ namespace {
 
 struct PluginsArguments {
   std::string config;                // a config file: its folder leads the search path
+  std::string data;                  // show: a recording folder replacing the config's data
   std::vector<std::string> folders;  // extra folders, searched first
   std::string library;               // check: the library file
   std::string params;                // check: params of the factory (JSON text), "" for none
@@ -122,7 +124,9 @@ void run_check(const PluginsArguments& arguments) {
 }
 
 void run_show(const PluginsArguments& arguments) {
-  const plugin::RunConfig config = plugin::read_run_config(arguments.config);
+  std::optional<plugin::DataConfig> data;
+  if (!arguments.data.empty()) data = plugin::data_from_folder(arguments.data);
+  const plugin::RunConfig config = plugin::read_run_config(arguments.config, data);
   const plugin::PluginRegistry registry(plugin::default_search_path(config.config_dir));
   const plugin::AidData aids =
       config.data.aids ? plugin::read_aid_data(*config.data.aids) : plugin::AidData();
@@ -174,8 +178,11 @@ void add_plugins_command(CLI::App& app) {
       ->capture_default_str();
   check->callback([arguments] { run_check(*arguments); });
   CLI::App* show = command->add_subcommand(
-      "show", "Validate a run config, build its plugins and print them and the state layout");
+      "show", "Validate a run config, build its plugins and print them and the state layout the "
+              "navigator will use");
   show->add_option("config", arguments->config, "Run config (JSON)")->required();
+  show->add_option("--data", arguments->data,
+                   "Recording folder replacing the config's \"data\" (as for run)");
   show->callback([arguments] { run_show(*arguments); });
 }
 

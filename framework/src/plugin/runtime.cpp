@@ -116,7 +116,12 @@ RunPlugins build_run_plugins(const RunConfig& config, const PluginRegistry& regi
     plugins.aids.push_back(
         registry.create_aid(aid.type, aid.params, aid_context, aid.type_pointer()));
   }
-  plugins.layout = assign_state_layout(*plugins.gyro, *plugins.accel);
+  // The layout the navigator will use: with the scale-factor blocks the filter options ask for.
+  const FilterOptions& options = config.filter.options;
+  plugins.layout = assign_state_layout(
+      *plugins.gyro, *plugins.accel,
+      {.gyro_scale_factor = options.estimates_gyro_scale_factor(),
+       .accel_scale_factor = options.estimates_accel_scale_factor()});
   return plugins;
 }
 

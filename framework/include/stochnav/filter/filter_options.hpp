@@ -67,10 +67,15 @@ struct FilterOptions {
   // connection: without these states the filter attributes it to the bias.
   Eigen::Vector3d gyro_scale_factor_sigma{0.0, 0.0, 0.0};   ///< body axes (dimensionless)
   Eigen::Vector3d accel_scale_factor_sigma{0.0, 0.0, 0.0};  ///< body axes (dimensionless)
+  bool estimates_gyro_scale_factor() const { return (gyro_scale_factor_sigma.array() > 0.0).any(); }
+  bool estimates_accel_scale_factor() const {
+    return (accel_scale_factor_sigma.array() > 0.0).any();
+  }
 
   /// Correlation time (s) of the attitude error's second-order rate, -1/2 [phi x]^2 omega_in
   /// (filter/second_order_attitude.hpp), added as process noise while the heading is uncertain
-  /// by degrees; 0 leaves it out (the first-order filter). Without it, an east-west hole drilled
+  /// by degrees, its mean fed back every covariance interval; 0 leaves the term out (the
+  /// first-order filter). Without it, an east-west hole drilled
   /// from a field start at 46-80 deg latitude ended 4-7 sigma off in azimuth and north: the
   /// filter read an unmodelled tilt drift as heading information. The term is a random
   /// constant for as long as the heading error stays put; 900 s is the horizon of the

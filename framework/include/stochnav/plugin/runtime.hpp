@@ -33,7 +33,9 @@ struct RunPlugins {
   std::shared_ptr<NoiseModelPlugin> gyro;
   std::shared_ptr<NoiseModelPlugin> accel;
   std::vector<std::shared_ptr<AidPlugin>> aids;  ///< in config order
-  StateLayout layout;  ///< core 15 + gyro block + accel block; models already placed
+  /// core 15, the scale-factor blocks the run's filter options ask for, gyro block, accel
+  /// block: the navigator's layout; models already placed
+  StateLayout layout;
 };
 
 /// Builds every plugin of a run. `aid_data` is the run's aid data (empty AidData when none).
