@@ -661,6 +661,12 @@ INSTANTIATE_TEST_SUITE_P(
         CatalogueCase{"allan_time_column_1e12_hz", "allan --input @/fast_time.csv", 2,
                       "fast_time.csv: the time column's rate 1e+12 Hz is outside"},
         CatalogueCase{"allan_values_1e_minus_170", "allan --input @/tiny.csv", 2,
+                      "tiny.csv: the largest sample magnitude is 4e-170, below 1e-100"},
+        // The streaming readers (wv, the causal DAVAR) check it too (SampleReader).
+        CatalogueCase{"wv_values_1e_minus_170", "wv --input @/tiny.csv", 2,
+                      "tiny.csv: the largest sample magnitude is 4e-170, below 1e-100"},
+        CatalogueCase{"causal_davar_values_1e_minus_170",
+                      "davar --input @/tiny.csv --window 20 --step 10 --causal", 2,
                       "tiny.csv: the largest sample magnitude is 4e-170, below 1e-100"}),
     [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
 

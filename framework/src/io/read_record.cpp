@@ -29,18 +29,6 @@ Record read_record(const ReadOptions& options, std::size_t leading_zeros) {
   SampleReader reader(options);
   std::vector<double> values(leading_zeros, 0.0);
   reader.read_all(values);
-  // Samples all tiny: their squared differences underflow (1e-170 gave deviations of 0).
-  double peak = 0.0;
-  for (std::size_t i = leading_zeros; i < values.size(); ++i) {
-    peak = std::max(peak, std::abs(values[i]));
-  }
-  if (peak > 0.0 && peak < kMinRecordPeakMagnitude) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%.6g", peak);
-    throw InputError(options.path + ": the largest sample magnitude is " + text +
-                     ", below 1e-100, where the Allan variance's squared differences "
-                     "underflow; rescale the record (another --unit, or multiply it)");
-  }
   Record record = describe_record(options, reader);
   record.values = std::move(values);
   return record;

@@ -192,6 +192,7 @@ class SampleReader::Impl {
   std::size_t read_block(std::vector<double>& out, std::size_t max_samples) {
     const std::size_t got = binary_ ? read_binary(out, max_samples) : read_text(out, max_samples);
     samples_ += got;
+    note_peak(out, got);
     if (got == 0 && !finished_) finish();
     return got;
   }
@@ -205,6 +206,7 @@ class SampleReader::Impl {
       const std::size_t rest = read_text_in_parallel(out);
       samples_ += rest;
       got += rest;
+      note_peak(out, got);
     }
     while (const std::size_t block = read_block(out, std::size_t{1} << 22)) got += block;
     return got;
@@ -556,6 +558,13 @@ class SampleReader::Impl {
     return epochs;
   }
 
+  // The largest |sample| of the last `count` samples appended to `out`.
+  void note_peak(const std::vector<double>& out, std::size_t count) {
+    for (std::size_t i = out.size() - count; i < out.size(); ++i) {
+      peak_ = std::max(peak_, std::abs(out[i]));
+    }
+  }
+
   void finish() {
     finished_ = true;
     if (samples_ == 0) {
@@ -564,6 +573,14 @@ class SampleReader::Impl {
     }
     if (samples_ < 2) {
       throw InputError(options_.path + ": only one sample; an Allan variance needs at least two");
+    }
+    // Samples all tiny: their squared differences underflow (1e-170 gave deviations of 0).
+    if (peak_ > 0.0 && peak_ < kMinRecordPeakMagnitude) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%.6g", peak_);
+      throw InputError(options_.path + ": the largest sample magnitude is " + text +
+                       ", below 1e-100, where the Allan variance's squared differences "
+                       "underflow; rescale the record (another --unit, or multiply it)");
     }
     if (time_column_ && time_.has_rate() &&
         !(time_.rate_hz() >= kMinRecordRateHz && time_.rate_hz() <= kMaxRecordRateHz)) {
@@ -596,6 +613,7 @@ class SampleReader::Impl {
   std::string column_name_;
   TimeAxis time_;
   std::size_t samples_ = 0;
+  double peak_ = 0.0;  // the largest |sample| so far
   bool finished_ = false;
   bool text_exhausted_ = false;  // read_text_in_parallel took the rest of the file
 };
