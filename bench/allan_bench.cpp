@@ -30,6 +30,8 @@ namespace {
 
 using stochnav::bench::best_seconds;
 using stochnav::bench::gyro_like_record;
+using stochnav::bench::write_csv_record;
+using stochnav::bench::write_float64_record;
 
 std::string run_command(const std::string& command) {
   std::FILE* pipe = ::popen(command.c_str(), "r");
@@ -64,9 +66,7 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(dir);
   const auto f64_path = (dir / "record.f64").string();
   const std::vector<double> values = gyro_like_record(samples);
-  std::ofstream(f64_path, std::ios::binary)
-      .write(reinterpret_cast<const char*>(values.data()),
-             static_cast<std::streamsize>(values.size() * sizeof(double)));
+  write_float64_record(f64_path, values);
 
   fmt::print("Allan-variance engine, {} samples at {} Hz\n\n", samples, rate_hz);
 
@@ -137,13 +137,7 @@ int main(int argc, char** argv) {
   // 3. CSV parsing throughput (t and one value column).
   const std::size_t csv_rows = std::min<std::size_t>(samples, 2'000'000);
   const auto csv_path = (dir / "record.csv").string();
-  {
-    std::ofstream csv(csv_path);
-    csv << "t,gyro_x\n";
-    for (std::size_t i = 0; i < csv_rows; ++i) {
-      csv << fmt::format("{:.2f},{:.17g}\n", static_cast<double>(i) / rate_hz, values[i]);
-    }
-  }
+  write_csv_record(csv_path, values, csv_rows, rate_hz);
   const double csv_bytes = static_cast<double>(std::filesystem::file_size(csv_path));
   const double csv_seconds =
       best_seconds([&] { (void)stochnav::read_record({.path = csv_path, .column = "gyro_x"}); });

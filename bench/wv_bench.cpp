@@ -20,6 +20,8 @@ namespace {
 
 using stochnav::bench::best_seconds;
 using stochnav::bench::gyro_like_record;
+using stochnav::bench::write_csv_record;
+using stochnav::bench::write_float64_record;
 
 /// Seconds of `stochnav <arguments>` (best of `repeats`), output discarded.
 double cli_seconds(const std::string& arguments, int repeats = 3) {
@@ -54,18 +56,10 @@ int main(int argc, char** argv) {
   std::filesystem::create_directories(dir);
   const std::vector<double> values = gyro_like_record(samples);
   const auto f64_path = (dir / "record.f64").string();
-  std::ofstream(f64_path, std::ios::binary)
-      .write(reinterpret_cast<const char*>(values.data()),
-             static_cast<std::streamsize>(values.size() * sizeof(double)));
+  write_float64_record(f64_path, values);
   const std::size_t csv_rows = std::min<std::size_t>(samples, 2'000'000);
   const auto csv_path = (dir / "record.csv").string();
-  {
-    std::ofstream csv(csv_path);
-    csv << "t,gyro_x\n";
-    for (std::size_t i = 0; i < csv_rows; ++i) {
-      csv << fmt::format("{:.2f},{:.17g}\n", static_cast<double>(i) / rate_hz, values[i]);
-    }
-  }
+  write_csv_record(csv_path, values, csv_rows, rate_hz);
   fmt::print("Haar wavelet variance, whole process, against stochnav allan on the same record\n\n");
   compare(fmt::format("raw float64, {} samples at {} Hz", samples, rate_hz),
           fmt::format("--input '{}' --rate {}", f64_path, rate_hz));
