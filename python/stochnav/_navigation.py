@@ -78,8 +78,9 @@ class RunResult:
                  f"{'; files in ' + self.out if self.out else ''}>"]
         metrics = self.metrics.get("metrics") or {}
         for name, values in metrics.items():
-            lines.append(f"  {name:<22} max |error| {values['max_abs']:<12.6g} "
-                         f"rms {values['rms']:.6g}")
+            if values.get("max_abs") is not None:
+                lines.append(f"  {name:<22} max |error| {values['max_abs']:<12.6g} "
+                             f"rms {values['rms']:.6g}")
         return "\n".join(lines)
 
 
