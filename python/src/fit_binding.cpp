@@ -13,6 +13,7 @@
 #include "stochnav/fit/fit_noise_terms.hpp"
 #include "stochnav/fit/fit_option_names.hpp"
 #include "stochnav/fit/fit_result_json.hpp"
+#include "stochnav/model/reporting_units.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/phase.hpp"
 #include "stochnav/stats/tau_spacing_names.hpp"
@@ -88,9 +89,25 @@ PythonNoiseModel fit(const py::object& x, double rate, const py::object& terms,
   return model;
 }
 
+// One line per term of the vocabulary: its parameters in a gyro's reporting units (deg/h).
+std::string term_vocabulary() {
+  std::string text;
+  for (TermType type : all_term_types()) {
+    std::string parameters;
+    for (const ParameterSpec& spec : parameter_specs(type)) {
+      parameters += fmt::format("{}{} ({}){}", parameters.empty() ? "" : ", ", spec.name,
+                                reported_unit_name(Quantity::kAngularRate, spec.dimension),
+                                spec.optional ? " optional" : "");
+    }
+    const bool fittable = type != TermType::kNonstationary && type != TermType::kBiasStep &&
+                          type != TermType::kAuxSensitivity;
+    text += fmt::format("\n        {:<18} {}", term_type_name(type),
+                        fittable ? parameters : "(time domain: found by stochnav.diagnose)");
+  }
+  return text;
+}
+
 std::string fit_doc() {
-  std::string known;
-  for (TermType t : all_term_types()) known += "\n        " + std::string(term_type_name(t));
   return R"(Fit the IEEE 952 noise terms to the record's overlapping Allan variance (Ceres).
 
 The library calls of `stochnav fit` on an array: OADEV at the taus, then a robust least-squares
@@ -107,12 +124,9 @@ terms : list of str, str or None
     The terms to fit (a list, or a comma-separated string); None chooses them automatically
     among quantization, angle_random_walk, bias_instability, rate_random_walk, rate_ramp and
     gauss_markov. Power-law terms at most once; gauss_markov and sinusoid may repeat.
-    The vocabulary:)" +
-         known + R"(
-    Parameters and units (gyro in deg/h): quantization Q (arcsec), angle_random_walk N
-    (deg/sqrt(h)), bias_instability B (deg/h), rate_random_walk K (deg/h/sqrt(h)),
-    rate_ramp R (deg/h^2), gauss_markov sigma (deg/h) and tau_c (s), sinusoid amplitude
-    (deg/h) and frequency_hz. Accelerometers: m/s for deg; plain data: the signal's units.
+    The vocabulary, with each parameter in the reporting units of a gyro in deg/h
+    (accelerometers: m/s in place of deg; plain data: the signal's own units):)" +
+         term_vocabulary() + R"(
 method : str
     "avar" (the only method built in).
 data : str

@@ -273,7 +273,8 @@ t0_s : float
     Time of the initial state (s): the start of the first increment.
 
 Feed increments with step() (one epoch) or steps() (arrays, the GIL released); read state(),
-covariance(), innovations(), health(), layout().
+covariance(), innovations(), health(), layout(). One Navigator is not for several threads at
+once (steps() releases the GIL): give each thread its own.
 )";
 
 }  // namespace

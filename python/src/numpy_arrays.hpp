@@ -11,6 +11,7 @@
 #include "pybind.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
