@@ -85,7 +85,7 @@ py::object allan_deviation_of(const PythonNoiseModel& self, const py::object& ta
 }
 
 // wavelet_variance.hpp: the Haar wavelet variance at scale tau_j is AVAR(tau_j / 2) / 2.
-py::object wavelet_variance_of(const PythonNoiseModel& self, const py::object& scale_s) {
+py::object implied_wavelet_variance(const PythonNoiseModel& self, const py::object& scale_s) {
   auto argument = real_argument(scale_s, "scale_s");
   return real_result(implied_allan_variance(self.model, argument.values, 0.5, 0.5),
                      argument.scalar);
@@ -103,7 +103,7 @@ std::string model_repr(const PythonNoiseModel& self) {
   return text;
 }
 
-PythonNoiseModel from_json(const py::object& json) {
+PythonNoiseModel model_from_json(const py::object& json) {
   if (py::isinstance<py::str>(json) || py::isinstance<py::bytes>(json)) {
     return noise_model_from_document(
         parse_json_document(py::str(json).cast<std::string>(), "NoiseModel.from_json"), "");
@@ -135,7 +135,7 @@ own units (Q in signal*s, N in signal*sqrt(s), B in signal, ...).
 
 void bind_noise_model(py::module_& module) {
   py::class_<PythonNoiseModel>(module, "NoiseModel", kNoiseModelDoc)
-      .def_static("from_json", &from_json, py::arg("json"),
+      .def_static("from_json", &model_from_json, py::arg("json"),
                   "A model from JSON text or a dict: the noise-model JSON of DESIGN.md, or the "
                   "output of `stochnav fit --format json` / NoiseModel.to_json() (sigmas and "
                   "diagnostics kept). Raises ConfigError naming the JSON pointer at fault.")
@@ -188,7 +188,7 @@ void bind_noise_model(py::module_& module) {
            "unit squared (closed forms of DESIGN.md).")
       .def("allan_deviation", &allan_deviation_of, py::arg("tau"),
            "sqrt(allan_variance(tau)), in the model's unit.")
-      .def("wavelet_variance", &wavelet_variance_of, py::arg("scale_s"),
+      .def("wavelet_variance", &implied_wavelet_variance, py::arg("scale_s"),
            "Haar wavelet variance the model implies at scale_s (s), in the model's unit squared: "
            "AVAR(scale_s / 2) / 2, comparable with stochnav.wv.")
       .def(
