@@ -74,10 +74,9 @@ that window alone (Zhang et al. 2017, Eq. 3-5).
 
 Parameters
 ----------
-x : 1-D array of float
-    Rate samples (unit U) or, data="phase", their integral (U*s); converted as for allan.
-rate : float
-    Sampling rate (Hz).
+x, rate : 1-D array of float, float
+    As for allan: rate samples (unit U) or, data="phase", their integral (U*s); the sampling
+    rate in Hz.
 window : int
     Samples per window (>= 4, at most len(x)).
 step : int

@@ -117,10 +117,9 @@ samples; in expectation half the Allan variance at half the scale.
 
 Parameters
 ----------
-x : 1-D array of float
-    Rate samples (unit U) or, data="phase", their integral (U*s); converted as for allan.
-rate : float
-    Sampling rate (Hz).
+x, rate : 1-D array of float, float
+    As for allan: rate samples (unit U) or, data="phase", their integral (U*s); the sampling
+    rate in Hz.
 robust : bool
     Tukey-biweight M-estimate of each level's scale, as wv(robust = TRUE); resists outliers.
 efficiency : float
