@@ -11,6 +11,7 @@
 #include "stochnav/report/gnuplot.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/phase.hpp"
+#include "stochnav/stats/tau_spacing_names.hpp"
 
 namespace stochnav::cli {
 namespace {
@@ -24,14 +25,6 @@ struct AllanArguments {
   std::string fit;
   std::string output;
 };
-
-TauSpacing parse_spacing(const std::string& text) {
-  if (text == "octave") return TauSpacing::kOctave;
-  if (text == "decade") return TauSpacing::kDecade;
-  if (text == "dense") return TauSpacing::kDense;
-  if (text == "all") return TauSpacing::kAll;
-  throw ConfigError("--taus '" + text + "': use octave, decade, dense or all");
-}
 
 std::string as_json(const std::vector<DeviationPoint>& points) {
   nlohmann::json out = {{"tau", nlohmann::json::array()},   {"adev", nlohmann::json::array()},
@@ -75,7 +68,7 @@ std::string as_table(const std::vector<DeviationPoint>& points, const Record& re
 
 void run_allan(const AllanArguments& arguments) {
   const OutputFormat format = parse_format(arguments.format);
-  const TauSpacing spacing = parse_spacing(arguments.taus);
+  const TauSpacing spacing = parse_tau_spacing(arguments.taus, "--taus");
   const Deviation kind = parse_deviation(arguments.deviation);
   if (!arguments.plot.empty()) check_plot_request(arguments.plot);
 

@@ -5,13 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "command_support.hpp"
 #include "commands.hpp"
 #include "fit_report.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/fit/fit_data.hpp"
+#include "stochnav/fit/fit_option_names.hpp"
 #include "stochnav/fit/fit_noise_terms.hpp"
 #include "stochnav/model/noise_term.hpp"
 #include "stochnav/stats/davar.hpp"
@@ -19,6 +19,7 @@
 #include "stochnav/stats/edf.hpp"
 #include "stochnav/stats/parallel.hpp"
 #include "stochnav/stats/phase.hpp"
+#include "stochnav/stats/tau_spacing_names.hpp"
 
 namespace stochnav::cli {
 namespace {
@@ -37,64 +38,17 @@ struct FitArguments {
   bool keep_failed = false;
 };
 
-std::vector<TermType> parse_terms(const std::string& list) {
-  std::vector<TermType> terms;
-  std::stringstream items(list);
-  std::string item;
-  while (std::getline(items, item, ',')) {
-    if (item.empty()) continue;
-    const auto type = parse_term_type(item);
-    if (!type) {
-      std::string known;
-      for (TermType t : all_term_types()) known += (known.empty() ? "" : ", ") + std::string(term_type_name(t));
-      throw ConfigError("--terms: unknown term '" + item + "'; use a comma-separated list of " + known);
-    }
-    // Two power-law terms of one type are one term with a degenerate split between them; two
-    // Gauss-Markov or sinusoid terms are two different processes.
-    const bool repeatable = *type == TermType::kGaussMarkov || *type == TermType::kSinusoid;
-    if (!repeatable && std::find(terms.begin(), terms.end(), *type) != terms.end()) {
-      throw ConfigError("--terms: " + item + " is given twice; name each power-law term once "
-                        "(only gauss_markov and sinusoid may repeat)");
-    }
-    terms.push_back(*type);
-  }
-  if (terms.empty()) {
-    throw ConfigError("--terms: no term named; give a comma-separated list of terms, or leave "
-                      "out --terms to choose them automatically");
-  }
-  return terms;
-}
-
 FitOptions fit_options(const FitArguments& arguments) {
   FitOptions options;
-  if (arguments.terms_given) options.terms = parse_terms(arguments.terms);
+  if (arguments.terms_given) {
+    options.terms = parse_fit_terms(split_comma_list(arguments.terms), "--terms");
+  }
   // A given term the data leave on its search bound is dropped (and said so in the report).
   options.drop_terms_at_bound = true;
-  if (arguments.loss == "huber") {
-    options.loss = RobustLoss::kHuber;
-  } else if (arguments.loss == "cauchy") {
-    options.loss = RobustLoss::kCauchy;
-  } else if (arguments.loss == "none") {
-    options.loss = RobustLoss::kNone;
-  } else {
-    throw ConfigError("--loss '" + arguments.loss + "': use huber, cauchy or none");
-  }
-  if (arguments.criterion == "bic") {
-    options.criterion = InformationCriterion::kBic;
-  } else if (arguments.criterion == "aic") {
-    options.criterion = InformationCriterion::kAic;
-  } else {
-    throw ConfigError("--criterion '" + arguments.criterion + "': use bic or aic");
-  }
+  options.loss = parse_robust_loss(arguments.loss, "--loss");
+  options.criterion = parse_information_criterion(arguments.criterion, "--criterion");
   if (const auto problem = options.validate(); !problem.empty()) throw ConfigError(problem);
   return options;
-}
-
-TauSpacing parse_fit_spacing(const std::string& text) {
-  if (text == "octave") return TauSpacing::kOctave;
-  if (text == "decade") return TauSpacing::kDecade;
-  if (text == "dense") return TauSpacing::kDense;
-  throw ConfigError("--taus '" + text + "': use octave, decade or dense for a fit");
 }
 
 /// The fit of one window: the window's Allan deviations with the EDF its length and the
@@ -127,7 +81,8 @@ void run_fit(const FitArguments& arguments) {
   const std::vector<double> phase = record.kind == DataKind::kPhase
                                         ? record.values
                                         : phase_from_rate(record.values, record.tau0());
-  const auto m_values = averaging_factors(Deviation::kOadev, parse_fit_spacing(arguments.taus),
+  const TauSpacing spacing = parse_tau_spacing(arguments.taus, "--taus", false);
+  const auto m_values = averaging_factors(Deviation::kOadev, spacing,
                                           phase.size(), record.tau0());
   if (m_values.size() < 2) {
     throw InputError(record.source + ": too short for a fit (" +

@@ -299,9 +299,10 @@ void validate_variants(const ExperimentConfig& config) {
     const std::string context =
         fmt::format("{}: variant '{}' (/variants/{})", config.file.string(), variant.name, v);
     try {
-      const plugin::RunConfig run = plugin::parse_run_config(
-          variant_run_document(variant, {{"imu", fs::absolute(config.file).string()}}),
-          config.config_dir);
+      // The data section aside, as experiment_config_from_json checks the variants.
+      const plugin::RunConfig run =
+          plugin::parse_run_config(variant_run_document(variant, nullptr), config.config_dir,
+                                   plugin::DataConfig{.imu = fs::absolute(config.file)});
       for (const auto* noise : {&run.noise.gyro, &run.noise.accel}) {
         const auto group =
             noise == &run.noise.gyro ? plugin::SensorGroup::kGyro : plugin::SensorGroup::kAccel;

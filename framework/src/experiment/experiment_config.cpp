@@ -181,11 +181,13 @@ ExperimentConfig parse_experiment(const nlohmann::json& document, const fs::path
         v.run_config[key] = document[key];
       }
     }
-    // Validate as the run config it becomes; the experiment file stands in for the data.
+    // Validate as the run config it becomes, the data section aside (the seeds' folders do not
+    // exist yet): the experiment file's name stands in for the data, which is not opened here,
+    // so a document that never was a file (the Python module's dicts) validates too.
     try {
-      const auto run =
-          plugin::parse_run_config(variant_run_document(v, {{"imu", fs::absolute(file).string()}}),
-                                   config.config_dir);
+      const auto run = plugin::parse_run_config(variant_run_document(v, nullptr),
+                                                config.config_dir,
+                                                plugin::DataConfig{.imu = fs::absolute(file)});
       v.gyro_plugin = run.noise.gyro.type;
     } catch (const ConfigError& error) {
       throw ConfigError(variant_pointer(error.what(), i, variant));

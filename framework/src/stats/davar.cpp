@@ -306,23 +306,30 @@ std::vector<std::size_t> DavarAccumulator::term_counts() const { return impl_->t
 std::size_t DavarAccumulator::buffered_points() const { return impl_->buffered_points(); }
 
 DavarResult dynamic_allan_deviation(const Record& record, const DavarOptions& options) {
-  if (const std::string problem = options.validate(record.values.size()); !problem.empty()) {
-    throw ConfigError(record.source + ": " + problem);
+  return dynamic_allan_deviation(record.values, record.kind, record.rate_hz, record.start_time_s,
+                                 options, record.source);
+}
+
+DavarResult dynamic_allan_deviation(std::span<const double> values, DataKind kind, double rate_hz,
+                                    double start_time_s, const DavarOptions& options,
+                                    const std::string& source) {
+  if (const std::string problem = options.validate(values.size()); !problem.empty()) {
+    throw ConfigError(source + ": " + problem);
   }
   DavarResult result;
-  DavarAccumulator accumulator(options, record.kind, record.rate_hz, record.start_time_s,
+  DavarAccumulator accumulator(options, kind, rate_hz, start_time_s,
                                [&result](const DavarRow& row) {
                                  result.time_s.push_back(row.time_s);
                                  result.adev.push_back(row.deviation);
                                });
   constexpr std::size_t kBlock = 1 << 18;
-  const std::span<const double> all(record.values);
-  for (std::size_t begin = 0; begin < all.size(); begin += kBlock) {
-    accumulator.push(all.subspan(begin, std::min(kBlock, all.size() - begin)));
+  for (std::size_t begin = 0; begin < values.size(); begin += kBlock) {
+    accumulator.push(values.subspan(begin, std::min(kBlock, values.size() - begin)));
   }
   result.m = accumulator.m_values();
   result.terms = accumulator.term_counts();
-  for (std::size_t m : result.m) result.tau_s.push_back(static_cast<double>(m) * record.tau0());
+  const double tau0_s = 1.0 / rate_hz;  // as Record::tau0()
+  for (std::size_t m : result.m) result.tau_s.push_back(static_cast<double>(m) * tau0_s);
   return result;
 }
 

@@ -320,6 +320,14 @@ std::shared_ptr<double[]> huge_page_array(std::size_t n) {
   return std::shared_ptr<double[]>(static_cast<double*>(memory), [](double* p) { std::free(p); });
 }
 
+std::shared_ptr<double[]> phase_array_from_rate(std::span<const double> rate, double tau0_s) {
+  if (rate.empty()) return nullptr;
+  std::shared_ptr<double[]> phase = huge_page_array(rate.size() + 1);
+  phase[0] = 0.0;
+  if (!integrate(rate.data(), phase.get() + 1, rate.size(), tau0_s, {})) return nullptr;
+  return phase;
+}
+
 PhaseRecord read_phase_record(const ReadOptions& options) {
   PhaseRecord result;
   if (options.kind == DataKind::kRate && is_single_float64_channel(options)) {

@@ -22,6 +22,7 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "stochnav/io/record.hpp"
@@ -84,6 +85,12 @@ struct DavarResult {
 
 /// DAVAR of a whole record in memory. Throws ConfigError if the options are invalid for it.
 DavarResult dynamic_allan_deviation(const Record& record, const DavarOptions& options);
+
+/// The same for samples held elsewhere (a numpy array): `values` as Record::values, the first
+/// at start_time_s (s); `source` names the data in messages.
+DavarResult dynamic_allan_deviation(std::span<const double> values, DataKind kind, double rate_hz,
+                                    double start_time_s, const DavarOptions& options,
+                                    const std::string& source);
 
 /// Averaging factors DAVAR uses by default: octave m with 2m <= (phase points - 1) / 2 as for
 /// Stable32's OADEV octave set on a record of one window.

@@ -32,6 +32,13 @@ std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s)
 /// alone. A NaN or infinite rate (or a sum that overflows) makes every point but the first NaN.
 void phase_from_rate_in_place(std::span<double> buffer, double tau0_s);
 
+/// phase_from_rate_in_place's integration from `rate` (N samples, left unchanged) into a new
+/// array of N + 1 phase points, advised into transparent huge pages (core/huge_page_buffer.hpp):
+/// the points of phase_from_rate_in_place on a copy of `rate`, bitwise, without the copy. For
+/// records already in memory (the Python module's numpy arrays). Returns nullptr when a sample
+/// is NaN or infinite (or the sum overflows), and for an empty `rate`.
+std::shared_ptr<double[]> phase_array_from_rate(std::span<const double> rate, double tau0_s);
+
 /// A record file read straight into its phase: one array of the data in memory.
 class PhaseRecord {
  public:

@@ -1,0 +1,164 @@
+// stochnav.fit: the IEEE 952 noise terms of a numpy record fitted to its overlapping Allan
+// variance (Ceres), with 1-sigma uncertainties; the library calls of `stochnav fit`
+// (cli/fit_command.cpp, without --window) on an array.
+
+#include <fmt/format.h>
+
+#include "arguments.hpp"
+#include "bindings.hpp"
+#include "noise_model_object.hpp"
+#include "numpy_arrays.hpp"
+#include "stochnav/core/errors.hpp"
+#include "stochnav/fit/fit_data.hpp"
+#include "stochnav/fit/fit_noise_terms.hpp"
+#include "stochnav/fit/fit_option_names.hpp"
+#include "stochnav/fit/fit_result_json.hpp"
+#include "stochnav/model/reporting_units.hpp"
+#include "stochnav/stats/deviation.hpp"
+#include "stochnav/stats/phase.hpp"
+#include "stochnav/stats/tau_spacing_names.hpp"
+
+namespace stochnav::python {
+namespace {
+
+/// `terms`: None (chosen automatically), a list of names or a comma-separated string.
+std::vector<TermType> terms_argument(const py::object& terms) {
+  std::vector<std::string> names;
+  if (py::isinstance<py::str>(terms)) {
+    names = split_comma_list(terms.cast<std::string>());
+  } else {
+    try {
+      for (const auto& item : terms) names.push_back(py::str(item).cast<std::string>());
+    } catch (const py::error_already_set&) {
+      throw ConfigError("terms: expected a list of term names (or None), e.g. "
+                        "[\"angle_random_walk\", \"rate_random_walk\"]");
+    }
+  }
+  return parse_fit_terms(names, "terms");
+}
+
+PythonNoiseModel fit(const py::object& x, double rate, const py::object& terms,
+                     const std::string& method, const std::string& data, const std::string& unit,
+                     const std::string& taus, const std::string& loss,
+                     const std::string& criterion, bool keep_failed) {
+  if (method != "avar") {
+    throw ConfigError("method '" + method + "': this stochnav fits the Allan variance only; use "
+                      "method=\"avar\" (GMWM estimation is not built in yet)");
+  }
+  FitOptions options;
+  if (!terms.is_none()) options.terms = terms_argument(terms);
+  // As the CLI: a given term the data leave on its search bound is dropped (and reported).
+  options.drop_terms_at_bound = true;
+  options.loss = parse_robust_loss(loss, "loss");
+  options.criterion = parse_information_criterion(criterion, "criterion");
+  if (const auto problem = options.validate(); !problem.empty()) throw ConfigError(problem);
+  const DataKind kind = data_kind_argument(data);
+  const double rate_hz = rate_argument(rate);
+  const Unit signal_unit = unit_argument(unit);
+  const TauSpacing spacing = parse_tau_spacing(taus, "taus", false);
+  const SampleArray samples(x, "x");
+  FitResult result;
+  {
+    py::gil_scoped_release release;
+    samples.check_finite();
+    const double tau0_s = 1.0 / rate_hz;
+    // The CLI's fit integrates with the serial reference sum (phase_from_rate): bitwise the same
+    // fit as `stochnav fit` on the same numbers.
+    const std::vector<double> phase =
+        kind == DataKind::kPhase
+            ? std::vector<double>(samples.values().begin(), samples.values().end())
+            : phase_from_rate(samples.values(), tau0_s);
+    const auto m_values = averaging_factors(Deviation::kOadev, spacing, phase.size(), tau0_s);
+    if (m_values.size() < 2) {
+      throw InputError(fmt::format("x: too short for a fit ({} samples); use a longer record",
+                                   samples.values().size()));
+    }
+    const auto points = compute_deviation(Deviation::kOadev, phase, tau0_s, m_values);
+    result = fit_noise_terms(
+        fit_data_from_deviations(Deviation::kOadev, points, signal_unit, rate_hz), options);
+  }
+  if (result.diagnostics.failed() && !keep_failed) {
+    throw InputError(fmt::format("x: fit failed: {}; choose other terms, or pass "
+                                 "keep_failed=True to get the failed fit (flagged: .failed)",
+                                 result.diagnostics.failure()));
+  }
+  PythonNoiseModel model;
+  model.document = fit_result_to_json(result);
+  model.model = std::move(result.model);
+  model.sigma = std::move(result.sigma);
+  return model;
+}
+
+// One line per term of the vocabulary: its parameters in a gyro's reporting units (deg/h).
+std::string term_vocabulary() {
+  std::string text;
+  for (TermType type : all_term_types()) {
+    std::string parameters;
+    for (const ParameterSpec& spec : parameter_specs(type)) {
+      parameters += fmt::format("{}{} ({}){}", parameters.empty() ? "" : ", ", spec.name,
+                                reported_unit_name(Quantity::kAngularRate, spec.dimension),
+                                spec.optional ? " optional" : "");
+    }
+    const bool fittable = type != TermType::kNonstationary && type != TermType::kBiasStep &&
+                          type != TermType::kAuxSensitivity;
+    text += fmt::format("\n        {:<18} {}", term_type_name(type),
+                        fittable ? parameters : "(time domain: found by stochnav.diagnose)");
+  }
+  return text;
+}
+
+std::string fit_doc() {
+  return R"(Fit the IEEE 952 noise terms to the record's overlapping Allan variance (Ceres).
+
+The library calls of `stochnav fit` on an array: OADEV at the taus, then a robust least-squares
+fit in the log domain weighted by the estimator's covariance, terms chosen by an information
+criterion unless given; each parameter with its 1-sigma uncertainty.
+
+Parameters
+----------
+x : 1-D array of float
+    Rate samples in `unit` (or, data="phase", their integral); converted as for allan.
+rate : float
+    Sampling rate (Hz).
+terms : list of str, str or None
+    The terms to fit (a list, or a comma-separated string); None chooses them automatically
+    among quantization, angle_random_walk, bias_instability, rate_random_walk, rate_ramp and
+    gauss_markov. Power-law terms at most once; gauss_markov and sinusoid may repeat.
+    The vocabulary, with each parameter in the reporting units of a gyro in deg/h
+    (accelerometers: m/s in place of deg; plain data: the signal's own units):)" +
+         term_vocabulary() + R"(
+method : str
+    "avar" (the only method built in).
+data : str
+    "rate" or "phase".
+unit : str
+    Unit of x: "deg/h", "deg/s", "rad/s", "m/s^2", "g" or "plain"; fixes the reporting units.
+taus : str
+    "octave", "decade" or "dense" averaging factors.
+loss : str
+    Robust loss: "huber" (default), "cauchy" or "none".
+criterion : str
+    Term selection: "bic" (default) or "aic".
+keep_failed : bool
+    Return a failed fit (a term on its search bound, an undetermined parameter, or a
+    chi-square the terms cannot explain) flagged by .failed instead of raising InputError.
+
+Returns
+-------
+NoiseModel
+    .terms with each parameter and its sigma (reporting units), .diagnostics, .to_json() as
+    `stochnav fit --format json`, .allan_variance(tau), .wavelet_variance(scale_s).
+)";
+}
+
+}  // namespace
+
+void bind_fit(py::module_& module) {
+  static const std::string doc = fit_doc();
+  module.def("fit", &fit, py::arg("x"), py::arg("rate"), py::arg("terms") = py::none(),
+             py::arg("method") = "avar", py::arg("data") = "rate", py::arg("unit") = "plain",
+             py::arg("taus") = "octave", py::arg("loss") = "huber",
+             py::arg("criterion") = "bic", py::arg("keep_failed") = false, doc.c_str());
+}
+
+}  // namespace stochnav::python
