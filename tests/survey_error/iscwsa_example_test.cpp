@@ -57,10 +57,12 @@ struct SourceAgreement {
   int failures = 0;
 };
 
-void check_model_against_reference(const std::string& model_name, const IscwsaReference& reference) {
+void check_model_against_reference(const std::string& model_name,
+                                   const IscwsaReference& reference) {
   const SurveyErrorModel& model = survey_error_model(model_name);
   const ExampleWell example = example_well(reference);
-  const SurveyCovariance covariance = propagate_survey_errors(model, example.stations, example.well);
+  const SurveyCovariance covariance =
+      propagate_survey_errors(model, example.stations, example.well);
 
   std::map<std::string, const std::vector<Eigen::Matrix3d>*> by_source;
   for (const auto& source : covariance.sources) by_source[source.code] = &source.nev_m2;
@@ -88,8 +90,8 @@ void check_model_against_reference(const std::string& model_name, const IscwsaRe
       }
       if (!reference.passes(computed[i], expected[i])) {
         ++a.failures;
-        ADD_FAILURE() << model_name << " " << row.source << " at MD " << row.md_m << " "
-                      << names[i] << ": computed " << computed[i] << ", expected " << expected[i];
+        ADD_FAILURE() << model_name << " " << row.source << " at MD " << row.md_m << " " << names[i]
+                      << ": computed " << computed[i] << ", expected " << expected[i];
       }
     }
   }

@@ -50,7 +50,8 @@ std::vector<ListingStation> vertical_well(int stations, double spacing_m) {
   return listing;
 }
 
-const std::vector<Matrix3d>& covariance_of(const SurveyCovariance& result, const std::string& code) {
+const std::vector<Matrix3d>& covariance_of(const SurveyCovariance& result,
+                                           const std::string& code) {
   for (const auto& source : result.sources) {
     if (source.code == code) return source.nev_m2;
   }
@@ -161,8 +162,8 @@ TEST(NearVertical, TheNearVerticalFormsJoinTheGeneralForms) {
     const SurveyCovariance near = propagate_survey_errors(model, below, well);
     const SurveyCovariance off = propagate_survey_errors(model, above, well);
     // The sources with near-vertical forms (1/sin I azimuth weights): the two inclinations
-    // differ by O(I tan(dip)), 1e-5 relative. (Sources with sin I weights vanish at vertical and are
-    // not compared: tiny either way.)
+    // differ by O(I tan(dip)), 1e-5 relative. (Sources with sin I weights vanish at vertical and
+    // are not compared: tiny either way.)
     const double scale = off.total_nev_m2.back().cwiseAbs().maxCoeff();
     for (std::size_t i = 0; i < model.sources.size(); ++i) {
       if (!has_near_vertical_form(model.sources[i].weighting)) continue;
@@ -221,7 +222,8 @@ TEST(Listing, RejectsWhatTheModelCannotUse) {
   const WellParameters well = north_sea_well();
   const std::vector<ListingStation> one = {{0.0, 0.0, 0.0}};
   EXPECT_THROW(propagate_survey_errors(model, one, well), std::invalid_argument);
-  const std::vector<ListingStation> backwards = {{0.0, 0.0, 0.0}, {30.0, 0.1, 0.0}, {20.0, 0.1, 0.0}};
+  const std::vector<ListingStation> backwards = {
+      {0.0, 0.0, 0.0}, {30.0, 0.1, 0.0}, {20.0, 0.1, 0.0}};
   EXPECT_THROW(propagate_survey_errors(model, backwards, well), std::invalid_argument);
   const std::vector<ListingStation> below_surface = {{500.0, 0.0, 0.0}, {530.0, 0.1, 0.0}};
   EXPECT_THROW(propagate_survey_errors(model, below_surface, well), std::invalid_argument);

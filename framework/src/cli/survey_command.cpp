@@ -62,8 +62,9 @@ void add_survey_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "survey", "ISCWSA MWD error model: position covariance of a survey listing per source");
   command
-      ->add_option("--listing", arguments->listing,
-                   "Survey listing CSV with columns md_m,inclination_deg,azimuth_deg (tie-on first)")
+      ->add_option(
+          "--listing", arguments->listing,
+          "Survey listing CSV with columns md_m,inclination_deg,azimuth_deg (tie-on first)")
       ->required();
   command
       ->add_option("--well", arguments->well,
@@ -71,8 +72,7 @@ void add_survey_command(CLI::App& app) {
       ->required();
   command->add_option("--model", arguments->model, "mwd_rev5 (ISCWSA MWD Rev5.11) or mwd_rev4")
       ->required();
-  command->add_option("--out", arguments->out, "Output folder (iscwsa_covariance.csv)")
-      ->required();
+  command->add_option("--out", arguments->out, "Output folder (iscwsa_covariance.csv)")->required();
   command->callback([arguments] { run_survey(*arguments); });
 }
 

@@ -83,8 +83,7 @@ struct StationEffect {
 };
 
 /// The source's effect at every station; zero at the tie-on (station 0).
-std::vector<StationEffect> station_effects(const SurveyErrorModel& model,
-                                           const ErrorSource& source,
+std::vector<StationEffect> station_effects(const SurveyErrorModel& model, const ErrorSource& source,
                                            const std::vector<StationGeometry>& geometry,
                                            const WellParameters& well) {
   const std::size_t n = geometry.size();
@@ -135,10 +134,10 @@ std::vector<StationEffect> station_effects(const SurveyErrorModel& model,
 }
 
 /// The covariance of one source at every station from its effects (error_propagation.hpp).
-std::vector<Matrix3d> propagate_source(const std::vector<StationEffect>& effects,
-                                       double magnitude, PropagationMode mode) {
+std::vector<Matrix3d> propagate_source(const std::vector<StationEffect>& effects, double magnitude,
+                                       PropagationMode mode) {
   std::vector<Matrix3d> covariance(effects.size(), Matrix3d::Zero());
-  Matrix3d random_sum = Matrix3d::Zero();    // sum over k < K of e_k e_k^T
+  Matrix3d random_sum = Matrix3d::Zero();      // sum over k < K of e_k e_k^T
   Vector3d correlated_sum = Vector3d::Zero();  // sum over k < K of e_k
   for (std::size_t k = 0; k < effects.size(); ++k) {
     const Vector3d at_station = magnitude * effects[k].before;

@@ -50,8 +50,7 @@ double number_within(ParamReader& reader, std::string_view key, Interval interva
 }  // namespace
 
 std::vector<ListingStation> read_survey_listing(const std::string& path) {
-  constexpr std::array<std::string_view, 3> kColumns = {"md_m", "inclination_deg",
-                                                        "azimuth_deg"};
+  constexpr std::array<std::string_view, 3> kColumns = {"md_m", "inclination_deg", "azimuth_deg"};
   CsvTableReader reader(path, kColumns);
   std::vector<ListingStation> stations;
   std::array<double, 3> row{};
@@ -59,9 +58,10 @@ std::vector<ListingStation> read_survey_listing(const std::string& path) {
     const auto where = [&] { return path + ":" + std::to_string(reader.line_number()) + ": "; };
     const auto [md_m, inclination_deg, azimuth_deg] = row;
     if (!stations.empty() && !(md_m > stations.back().md_m)) {
-      throw InputError(where() + fmt::format("md_m {:g} does not increase (previous station {:g} m); "
-                                             "list the stations once each, in order of depth",
-                                             md_m, stations.back().md_m));
+      throw InputError(where() +
+                       fmt::format("md_m {:g} does not increase (previous station {:g} m); "
+                                   "list the stations once each, in order of depth",
+                                   md_m, stations.back().md_m));
     }
     if (!kInclinationDeg.contains(inclination_deg)) {
       throw InputError(where() + fmt::format("inclination_deg {:g} is outside {}; give the "
@@ -100,8 +100,7 @@ WellParameters well_parameters_from_json(const nlohmann::json& json) {
   well.vertical_section_azimuth_rad =
       number_within(reader, "vertical_section_azimuth_deg", kAzimuthDeg, "deg") * kRadPerDeg;
   well.vertical_inc_limit_rad =
-      number_within(reader, "vertical_inc_limit_deg", {0.0, 90.0, false, true}, "deg") *
-      kRadPerDeg;
+      number_within(reader, "vertical_inc_limit_deg", {0.0, 90.0, false, true}, "deg") * kRadPerDeg;
   const std::string references = "\"true\" or \"grid\"";
   const nlohmann::json& reference = reader.required("azimuth_reference", references);
   if (reference == "true") {
@@ -112,7 +111,8 @@ WellParameters well_parameters_from_json(const nlohmann::json& json) {
     throw ConfigError(reader.pointer("azimuth_reference") + ": found " + reference.dump() +
                       "; expected " + references);
   }
-  if (reader.has("tie_on_tvd_m")) well.tie_on_tvd_m = reader.number("tie_on_tvd_m", Bound::kAny, "m");
+  if (reader.has("tie_on_tvd_m"))
+    well.tie_on_tvd_m = reader.number("tie_on_tvd_m", Bound::kAny, "m");
   reader.finish();
   return well;
 }

@@ -99,8 +99,7 @@ ErrorWeights error_weights(WeightingFunction function, const StationGeometry& st
     case WeightingFunction::kAmil:
       return {0.0, 0.0, -sin_i * sin_i * sin_am / b_horizontal};
     case WeightingFunction::kMsxyTi1:
-      return {0.0, 0.0,
-              sin_i * sin_i * sin_am * (tan_dip * cos_i + sin_i * cos_am) / root2};
+      return {0.0, 0.0, sin_i * sin_i * sin_am * (tan_dip * cos_i + sin_i * cos_am) / root2};
     case WeightingFunction::kMsxyTi2:
       return {0.0, 0.0,
               sin_i * sin_am * (tan_dip * sin_i * cos_i - cos_i * cos_i * cos_am - cos_am) / 2.0};

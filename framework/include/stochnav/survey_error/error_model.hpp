@@ -29,47 +29,47 @@ std::string_view propagation_mode_letter(PropagationMode mode);
 /// inclination and azimuth of a station (survey_error/weighting_functions.hpp gives each one).
 /// Names follow the ISCWSA function names (ABXY-TI1 -> kAbxyTi1).
 enum class WeightingFunction {
-  kDref,      ///< depth reference: MD + 1
-  kDsf,       ///< depth scale factor: MD + MD
-  kDst,       ///< depth stretch: MD + MD * TVD
-  kAbxyTi1,   ///< accelerometer bias, x-y, tool-face independent term 1
-  kAbxyTi2,   ///< accelerometer bias, x-y, term 2 (cot I: has a near-vertical form)
-  kAbz,       ///< accelerometer bias, z
-  kAsxyTi1,   ///< accelerometer scale factor, x-y, terms 1-3
+  kDref,     ///< depth reference: MD + 1
+  kDsf,      ///< depth scale factor: MD + MD
+  kDst,      ///< depth stretch: MD + MD * TVD
+  kAbxyTi1,  ///< accelerometer bias, x-y, tool-face independent term 1
+  kAbxyTi2,  ///< accelerometer bias, x-y, term 2 (cot I: has a near-vertical form)
+  kAbz,      ///< accelerometer bias, z
+  kAsxyTi1,  ///< accelerometer scale factor, x-y, terms 1-3
   kAsxyTi2,
   kAsxyTi3,
-  kAsz,       ///< accelerometer scale factor, z
-  kMbxyTi1,   ///< magnetometer bias, x-y, terms 1-2
+  kAsz,      ///< accelerometer scale factor, z
+  kMbxyTi1,  ///< magnetometer bias, x-y, terms 1-2
   kMbxyTi2,
-  kMbz,       ///< magnetometer bias, z
-  kMsxyTi1,   ///< magnetometer scale factor, x-y, terms 1-3
+  kMbz,      ///< magnetometer bias, z
+  kMsxyTi1,  ///< magnetometer scale factor, x-y, terms 1-3
   kMsxyTi2,
   kMsxyTi3,
-  kMsz,       ///< magnetometer scale factor, z
-  kAzimuth,   ///< an azimuth error (declination terms): A + 1
-  kDbh,       ///< an error of the horizontal field (B cos dip) times declination: A + 1 / (B cos dip)
-  kAmil,      ///< axial magnetic interference
-  kSag,       ///< BHA sag (Rev4): I + sin I
-  kSage,      ///< BHA sag, enhanced (Rev5): I + sin(I)^(1/4)
-  kXym1,      ///< x-y misalignment terms 1-4 (3 and 4 have near-vertical forms)
+  kMsz,      ///< magnetometer scale factor, z
+  kAzimuth,  ///< an azimuth error (declination terms): A + 1
+  kDbh,   ///< an error of the horizontal field (B cos dip) times declination: A + 1 / (B cos dip)
+  kAmil,  ///< axial magnetic interference
+  kSag,   ///< BHA sag (Rev4): I + sin I
+  kSage,  ///< BHA sag, enhanced (Rev5): I + sin(I)^(1/4)
+  kXym1,  ///< x-y misalignment terms 1-4 (3 and 4 have near-vertical forms)
   kXym2,
   kXym3,
   kXym4,
-  kXym3e,     ///< XYM3 and XYM4 as random terms scaled for short survey intervals (Rev5)
+  kXym3e,  ///< XYM3 and XYM4 as random terms scaled for short survey intervals (Rev5)
   kXym4e,
-  kXcla,      ///< tortuosity between stations, azimuthal (whole leg before the station)
-  kXclh,      ///< tortuosity between stations, high-side (whole leg before the station)
+  kXcla,  ///< tortuosity between stations, azimuthal (whole leg before the station)
+  kXclh,  ///< tortuosity between stations, high-side (whole leg before the station)
 };
 
 /// The unit an ISCWSA table gives a magnitude in.
 enum class MagnitudeUnit {
-  kMetre,              ///< m
-  kPerMetre,           ///< 1/m
-  kMetrePerSecond2,    ///< m/s^2
-  kNanotesla,          ///< nT
-  kDimensionless,      ///< -
-  kDegree,             ///< deg (rad internally)
-  kDegreeNanotesla,    ///< deg.nT (rad.nT internally)
+  kMetre,            ///< m
+  kPerMetre,         ///< 1/m
+  kMetrePerSecond2,  ///< m/s^2
+  kNanotesla,        ///< nT
+  kDimensionless,    ///< -
+  kDegree,           ///< deg (rad internally)
+  kDegreeNanotesla,  ///< deg.nT (rad.nT internally)
 };
 
 /// "m", "1/m", "m/s2", "nT", "-", "deg", "deg.nT".
@@ -77,9 +77,9 @@ std::string_view magnitude_unit_name(MagnitudeUnit unit);
 
 /// One error source of a model.
 struct ErrorSource {
-  std::string code;                ///< the ISCWSA code ("ABXY-TI1S", "DEC-U", ...)
+  std::string code;  ///< the ISCWSA code ("ABXY-TI1S", "DEC-U", ...)
   WeightingFunction weighting;
-  double magnitude = 0.0;          ///< 1-sigma, in `unit`
+  double magnitude = 0.0;  ///< 1-sigma, in `unit`
   MagnitudeUnit unit = MagnitudeUnit::kDimensionless;
   PropagationMode mode = PropagationMode::kSystematic;
 
@@ -90,8 +90,8 @@ struct ErrorSource {
 /// An error model: its sources in the ISCWSA example workbook's order, and the conventions of
 /// the revision.
 struct SurveyErrorModel {
-  std::string name;                 ///< "mwd_rev5", "mwd_rev4"
-  std::string title;                ///< "ISCWSA MWD Rev5.11", ...
+  std::string name;   ///< "mwd_rev5", "mwd_rev4"
+  std::string title;  ///< "ISCWSA MWD Rev5.11", ...
   std::vector<ErrorSource> sources;
   /// XCLA / XCLH: the tortuosity assumed between stations when the survey shows less
   /// (rad/m; the ISCWSA default 1 deg / 100 ft).

@@ -51,8 +51,8 @@ struct SourceCovariance {
 };
 
 struct SurveyCovariance {
-  std::vector<double> md_m;               ///< the stations' measured depths (m)
-  std::vector<SourceCovariance> sources;  ///< in the model's order
+  std::vector<double> md_m;                   ///< the stations' measured depths (m)
+  std::vector<SourceCovariance> sources;      ///< in the model's order
   std::vector<Eigen::Matrix3d> total_nev_m2;  ///< the sum over the sources, per station
 };
 

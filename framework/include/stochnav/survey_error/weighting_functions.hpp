@@ -23,11 +23,11 @@ namespace stochnav::survey_error {
 
 /// One station as the weighting functions see it (SI units).
 struct StationGeometry {
-  double md_m = 0.0;                 ///< measured depth (m)
-  double tvd_m = 0.0;                ///< true vertical depth (m), for DSTG
-  double inclination_rad = 0.0;      ///< I
-  double true_azimuth_rad = 0.0;     ///< AzT
-  double magnetic_azimuth_rad = 0.0; ///< AzM = AzT - declination
+  double md_m = 0.0;                  ///< measured depth (m)
+  double tvd_m = 0.0;                 ///< true vertical depth (m), for DSTG
+  double inclination_rad = 0.0;       ///< I
+  double true_azimuth_rad = 0.0;      ///< AzT
+  double magnetic_azimuth_rad = 0.0;  ///< AzM = AzT - declination
   /// The previous station (XYM3E/XYM4E scale with the interval, XCLA/XCLH with the change over
   /// it). At the first station, the same values as this one.
   double previous_md_m = 0.0;

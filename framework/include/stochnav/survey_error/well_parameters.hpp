@@ -17,13 +17,13 @@ enum class AzimuthReference {
 };
 
 struct WellParameters {
-  double latitude_rad = 0.0;             ///< geodetic latitude (rad); gyro models only
-  double b_total_nT = 50000.0;           ///< total geomagnetic field intensity (nT), > 0
-  double dip_rad = 0.0;                  ///< magnetic dip, positive down (rad), |dip| < pi/2
-  double declination_rad = 0.0;          ///< magnetic declination: true = magnetic + declination (rad)
-  double convergence_rad = 0.0;          ///< grid convergence: true = grid + convergence (rad)
-  double gravity_m_s2 = 9.80665;         ///< gravity field strength (m/s^2), > 0
-  double earth_rate_rad_s = 7.292115e-5; ///< Earth rotation rate (rad/s); gyro models only
+  double latitude_rad = 0.0;      ///< geodetic latitude (rad); gyro models only
+  double b_total_nT = 50000.0;    ///< total geomagnetic field intensity (nT), > 0
+  double dip_rad = 0.0;           ///< magnetic dip, positive down (rad), |dip| < pi/2
+  double declination_rad = 0.0;   ///< magnetic declination: true = magnetic + declination (rad)
+  double convergence_rad = 0.0;   ///< grid convergence: true = grid + convergence (rad)
+  double gravity_m_s2 = 9.80665;  ///< gravity field strength (m/s^2), > 0
+  double earth_rate_rad_s = 7.292115e-5;      ///< Earth rotation rate (rad/s); gyro models only
   double vertical_section_azimuth_rad = 0.0;  ///< listing convention; not used by the MWD models
   /// Stations with inclination below this (rad) are near vertical: the weighting functions with
   /// a 1/sin(I) azimuth term take their near-vertical (singular) forms there.
