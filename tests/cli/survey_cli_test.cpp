@@ -191,7 +191,7 @@ INSTANTIATE_TEST_SUITE_P(
         SurveyBadInputCase{"missing_key", kSurveyGoodListing, well_without("gravity_m_s2"),
                            "mwd_rev5", "well.json: /gravity_m_s2: missing; expected a number > 0"},
         SurveyBadInputCase{"dip_out_of_range", kSurveyGoodListing, well_with("dip_deg", 90.0),
-                           "mwd_rev5", "/dip_deg: found 90; expected a number in (-90, 90)"},
+                           "mwd_rev5", "/dip_deg: found 90.0; expected a number in (-90, 90) (deg)"},
         SurveyBadInputCase{"unknown_reference", kSurveyGoodListing,
                            well_with("azimuth_reference", "magnetic"), "mwd_rev5",
                            "/azimuth_reference: found \"magnetic\"; expected \"true\" or \"grid\""},
