@@ -217,6 +217,28 @@ TEST(PropagationModes, SystematicPerWellAndGlobalAgreeWithinOneWellAndRandomDiff
   EXPECT_GT(last[0].trace(), 5.0 * last[3].trace());
 }
 
+TEST(PropagationModes, TheGeneralCorrelatedPropagationReproducesRandomAndSystematic) {
+  // Two implementations of the same equations: an azimuth source (DECR random, DEC-OS global)
+  // through the model, and the same errors as loadings (a diagonal, a single column).
+  const SurveyErrorModel& model = survey_error_model("mwd_rev5");
+  const auto stations = three_dimensional_well();
+  const WellParameters well = north_sea_well();
+  const SurveyCovariance by_model = propagate_survey_errors(model, stations, well);
+  const auto n = static_cast<Eigen::Index>(stations.size());
+  const Eigen::MatrixXd random_loadings =
+      Eigen::MatrixXd::Identity(n, n) * 0.1 * kRadPerDeg;  // DECR
+  const Eigen::MatrixXd global_loadings = Eigen::MatrixXd::Constant(n, 1, 0.24 * kRadPerDeg);
+  const auto random = correlated_azimuth_error_covariance(stations, well, random_loadings);
+  const auto global = correlated_azimuth_error_covariance(stations, well, global_loadings);
+  for (std::size_t k = 0; k < stations.size(); ++k) {
+    const Matrix3d& decr = covariance_of(by_model, "DECR")[k];
+    const Matrix3d& dec_os = covariance_of(by_model, "DEC-OS")[k];
+    EXPECT_LE((random[k] - decr).cwiseAbs().maxCoeff(), 1e-12 * (1.0 + decr.cwiseAbs().maxCoeff()));
+    EXPECT_LE((global[k] - dec_os).cwiseAbs().maxCoeff(),
+              1e-12 * (1.0 + dec_os.cwiseAbs().maxCoeff()));
+  }
+}
+
 TEST(Listing, RejectsWhatTheModelCannotUse) {
   const SurveyErrorModel& model = survey_error_model("mwd_rev5");
   const WellParameters well = north_sea_well();

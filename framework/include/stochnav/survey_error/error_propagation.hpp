@@ -64,4 +64,16 @@ SurveyCovariance propagate_survey_errors(const SurveyErrorModel& model,
                                          std::span<const ListingStation> stations,
                                          const WellParameters& well);
 
+/// The NEV covariance (m^2) at every station of azimuth errors correlated in any way between
+/// stations: the azimuth error of station k (rad, in the listing's reference) is the sum over m
+/// of loadings_rad(k, m) z_m, with independent standard normal z_m (n x M loadings, n the number
+/// of stations; the tie-on's row is ignored: it carries no error). Each error moves the path as
+/// an ISCWSA station error does (half legs around the station). Random errors are a diagonal
+/// of loadings, systematic ones a single column, a random walk a lower triangle. Throws
+/// std::invalid_argument as propagate_survey_errors, and for loadings with n rows not matching
+/// the listing.
+std::vector<Eigen::Matrix3d> correlated_azimuth_error_covariance(
+    std::span<const ListingStation> stations, const WellParameters& well,
+    const Eigen::MatrixXd& loadings_rad);
+
 }  // namespace stochnav::survey_error
