@@ -15,5 +15,6 @@ void add_run_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_plugins_command(CLI::App& app);
 void add_wv_command(CLI::App& app);
+void add_survey_command(CLI::App& app);
 
 }  // namespace stochnav::cli

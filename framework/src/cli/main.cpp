@@ -30,6 +30,7 @@ int run(int argc, char** argv) {
   stochnav::cli::add_compare_command(app);
   stochnav::cli::add_plugins_command(app);
   stochnav::cli::add_wv_command(app);
+  stochnav::cli::add_survey_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& success) {

@@ -1,0 +1,71 @@
+#include "stochnav/survey_error/error_model.hpp"
+
+#include <array>
+
+#include "mwd_models.hpp"
+#include "stochnav/core/angles.hpp"
+#include "stochnav/core/errors.hpp"
+#include "stochnav/core/nearest_name.hpp"
+
+namespace stochnav::survey_error {
+
+std::string_view propagation_mode_letter(PropagationMode mode) {
+  switch (mode) {
+    case PropagationMode::kRandom:
+      return "R";
+    case PropagationMode::kSystematic:
+      return "S";
+    case PropagationMode::kPerWell:
+      return "W";
+    case PropagationMode::kGlobal:
+      return "G";
+  }
+  return "?";
+}
+
+std::string_view magnitude_unit_name(MagnitudeUnit unit) {
+  switch (unit) {
+    case MagnitudeUnit::kMetre:
+      return "m";
+    case MagnitudeUnit::kPerMetre:
+      return "1/m";
+    case MagnitudeUnit::kMetrePerSecond2:
+      return "m/s2";
+    case MagnitudeUnit::kNanotesla:
+      return "nT";
+    case MagnitudeUnit::kDimensionless:
+      return "-";
+    case MagnitudeUnit::kDegree:
+      return "deg";
+    case MagnitudeUnit::kDegreeNanotesla:
+      return "deg.nT";
+  }
+  return "?";
+}
+
+double ErrorSource::magnitude_si() const {
+  const bool in_degrees = unit == MagnitudeUnit::kDegree || unit == MagnitudeUnit::kDegreeNanotesla;
+  return in_degrees ? magnitude * kRadPerDeg : magnitude;
+}
+
+std::span<const std::string> survey_error_model_names() {
+  static const std::array<std::string, 2> names = {"mwd_rev5", "mwd_rev4"};
+  return names;
+}
+
+const SurveyErrorModel& survey_error_model(std::string_view name) {
+  static const SurveyErrorModel rev5 = make_mwd_rev5_model();
+  static const SurveyErrorModel rev4 = make_mwd_rev4_model();
+  if (name == rev5.name) return rev5;
+  if (name == rev4.name) return rev4;
+  const auto names = survey_error_model_names();
+  std::string message = "--model '" + std::string(name) + "': unknown survey error model; ";
+  if (const auto nearest = nearest_name(name, names)) {
+    message += "did you mean '" + *nearest + "'?";
+  } else {
+    message += "use mwd_rev5 (ISCWSA MWD Rev5.11) or mwd_rev4 (ISCWSA MWD Rev4)";
+  }
+  throw ConfigError(message);
+}
+
+}  // namespace stochnav::survey_error
