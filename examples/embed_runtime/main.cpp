@@ -106,7 +106,7 @@ int run(int argc, char** argv) {
     const sp::PluginRegistry registry(sp::default_search_path());
     plugins = demo_plugins(registry);
   } else {
-    config = sp::read_run_config(config_path);
+    config = sp::read_embedded_run_config(config_path);  // the host feeds the IMU: no "data"
     const sp::PluginRegistry registry(sp::default_search_path(config->config_dir));
     plugins = sp::build_run_plugins(*config, registry, sp::AidData(), stochnav::NavState(), 100.0);
   }

@@ -162,6 +162,22 @@ TEST_F(RunConfigTest, DataFolderReplacesTheDataSection) {
   }
 }
 
+TEST_F(RunConfigTest, AnEmbeddersConfigNeedsNoDataSection) {
+  nlohmann::json document = minimal();
+  document.erase("data");
+  const std::filesystem::path file = dir_.path() / "embedded.json";
+  std::ofstream(file) << document.dump();
+  EXPECT_THROW(read_run_config(file), ConfigError) << "a run needs its data";
+  const RunConfig config = read_embedded_run_config(file);
+  EXPECT_TRUE(config.data.imu.empty());
+  EXPECT_EQ(config.noise.gyro.type, "white");
+  ASSERT_TRUE(config.initial_state);
+  // Everything else is still checked.
+  document["filter"] = {{"covariance_interval_s", -1}};
+  std::ofstream(file) << document.dump();
+  EXPECT_THROW(read_embedded_run_config(file), ConfigError);
+}
+
 TEST_F(RunConfigTest, FullConfigIsRead) {
   nlohmann::json document = minimal();
   document["data"]["aids"] = "aids.csv";

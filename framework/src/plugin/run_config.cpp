@@ -426,4 +426,8 @@ RunConfig read_run_config(const fs::path& file, const std::optional<DataConfig>&
   return parse_run_config(document, fs::absolute(file).parent_path(), data);
 }
 
+RunConfig read_embedded_run_config(const fs::path& file) {
+  return read_run_config(file, DataConfig{});
+}
+
 }  // namespace stochnav::plugin

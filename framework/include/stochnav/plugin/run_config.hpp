@@ -202,6 +202,12 @@ RunConfig parse_run_config(const nlohmann::json& document, const std::filesystem
 RunConfig read_run_config(const std::filesystem::path& file,
                           const std::optional<DataConfig>& data = std::nullopt);
 
+/// The run config of a host that feeds the IMU itself (an embedder driving MwdNavigator from
+/// its own loop, as examples/embed_runtime and the Python Navigator do): the "data" section may
+/// be absent and is ignored (the result's `data` is empty); everything else is validated as
+/// read_run_config does.
+RunConfig read_embedded_run_config(const std::filesystem::path& file);
+
 /// Throws ConfigError naming "/initial_state" when the config has neither truth (a truth file)
 /// nor "initial_state": a navigation run must start somewhere. run_navigation calls it first;
 /// a config that is only inspected (`stochnav plugins show`) needs no start.
