@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "stochnav/core/angles.hpp"
+#include "stochnav/core/minimum_curvature.hpp"
 #include "stochnav/sim/normal_generator.hpp"
 
 namespace stochnav::survey_error {
@@ -49,18 +50,13 @@ WellParameters gyro_test_site() {
 /// Exact minimum-curvature positions (NEV, m) from the first station at the origin.
 std::vector<Vector3d> minimum_curvature_positions(const std::vector<ListingStation>& stations) {
   const auto direction = [](const ListingStation& s) {
-    return Vector3d(std::sin(s.inclination_rad) * std::cos(s.azimuth_rad),
-                    std::sin(s.inclination_rad) * std::sin(s.azimuth_rad),
-                    std::cos(s.inclination_rad));
+    return hole_direction_nev(s.inclination_rad, s.azimuth_rad);
   };
   std::vector<Vector3d> positions = {Vector3d::Zero()};
   for (std::size_t k = 1; k < stations.size(); ++k) {
-    const Vector3d t1 = direction(stations[k - 1]);
-    const Vector3d t2 = direction(stations[k]);
-    const double dogleg = 2.0 * std::atan2((t2 - t1).norm(), (t2 + t1).norm());
-    const double ratio = dogleg < 1e-9 ? 1.0 : 2.0 / dogleg * std::tan(dogleg / 2.0);
-    const double step_m = stations[k].md_m - stations[k - 1].md_m;
-    positions.push_back(positions.back() + step_m / 2.0 * ratio * (t1 + t2));
+    positions.push_back(positions.back() +
+                        minimum_curvature_step(direction(stations[k - 1]), direction(stations[k]),
+                                               stations[k].md_m - stations[k - 1].md_m));
   }
   return positions;
 }

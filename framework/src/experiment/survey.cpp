@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "stochnav/core/angles.hpp"
+#include "stochnav/core/minimum_curvature.hpp"
 #include "stochnav/experiment/navigation_errors.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
@@ -21,28 +22,6 @@ static_assert(kErrorMetricNames[kAzimuthMetric] == "azimuth_err_deg");
 
 /// The INS path keeps at most this many points; beyond it every other point is dropped.
 constexpr std::size_t kMaxInsPathPoints = 4000;
-
-/// Unit vector along the hole (towards the bit) in (north, east, down).
-Eigen::Vector3d hole_direction_ned(double inclination_deg, double azimuth_deg) {
-  const double inclination = inclination_deg * kRadPerDeg;
-  const double azimuth = azimuth_deg * kRadPerDeg;
-  return {std::sin(inclination) * std::cos(azimuth), std::sin(inclination) * std::sin(azimuth),
-          std::cos(inclination)};
-}
-
-/// The dogleg angle between two unit directions (rad). Equal to the header's acos form, but
-/// 2 atan2(|t2 - t1|, |t2 + t1|) keeps full precision for tiny doglegs, where acos of a number
-/// close to 1 loses half the digits, and never leaves acos' domain through rounding.
-double dogleg_rad(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
-  return 2.0 * std::atan2((to - from).norm(), (to + from).norm());
-}
-
-/// RF = (2 / beta) tan(beta / 2): the ratio of the arc to the two straight tangent halves.
-double ratio_factor(double dogleg) {
-  // 0 / 0 at beta = 0; the series 1 + beta^2 / 12 is exact to rounding below 1e-9.
-  if (dogleg < 1e-9) return 1.0 + dogleg * dogleg / 12.0;
-  return 2.0 / dogleg * std::tan(dogleg / 2.0);
-}
 
 /// Keeps the points at even positions (those on a doubled stride). Returns whether the last
 /// point was dropped (it was at an odd position).
@@ -63,14 +42,14 @@ std::vector<WellPathPoint> minimum_curvature_path(const std::vector<SurveyStatio
   WellPathPoint point{tie_on_md_m, 0.0, 0.0, 0.0};
   Eigen::Vector3d previous_direction;
   for (std::size_t i = 0; i < stations.size(); ++i) {
-    const Eigen::Vector3d direction =
-        hole_direction_ned(stations[i].inclination_deg, stations[i].azimuth_deg);
+    const Eigen::Vector3d direction = hole_direction_nev(
+        stations[i].inclination_deg * kRadPerDeg, stations[i].azimuth_deg * kRadPerDeg);
     // The tie-on has no attitude of its own: the first segment is straight along the first
     // station's direction.
     if (i == 0) previous_direction = direction;
     const double md_step_m = stations[i].md_m - point.md_m;
-    const Eigen::Vector3d step_ned = md_step_m / 2.0 * (previous_direction + direction) *
-                                     ratio_factor(dogleg_rad(previous_direction, direction));
+    const Eigen::Vector3d step_ned =
+        minimum_curvature_step(previous_direction, direction, md_step_m);
     point = {stations[i].md_m, point.north_m + step_ned.x(), point.east_m + step_ned.y(),
              point.tvd_m + step_ned.z()};
     path.push_back(point);

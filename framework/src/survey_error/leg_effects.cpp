@@ -34,11 +34,6 @@ void check_listing(std::span<const ListingStation> stations, const WellParameter
   }
 }
 
-Vector3d hole_direction_nev(double inclination_rad, double azimuth_rad) {
-  return {std::sin(inclination_rad) * std::cos(azimuth_rad),
-          std::sin(inclination_rad) * std::sin(azimuth_rad), std::cos(inclination_rad)};
-}
-
 std::vector<StationGeometry> station_geometries(std::span<const ListingStation> stations,
                                                 const WellParameters& well) {
   const double to_true_rad =
@@ -53,14 +48,12 @@ std::vector<StationGeometry> station_geometries(std::span<const ListingStation> 
     g.magnetic_azimuth_rad = g.true_azimuth_rad - well.declination_rad;
     const StationGeometry& previous = geometry[k == 0 ? 0 : k - 1];
     if (k > 0) {
-      // Minimum curvature: the leg's vertical step is dMD / 2 (cos I1 + cos I2) times the ratio
-      // factor (2 / dogleg) tan(dogleg / 2), the dogleg from the directions' half-angle form.
-      const Vector3d t1 = hole_direction_nev(previous.inclination_rad, previous.true_azimuth_rad);
-      const Vector3d t2 = hole_direction_nev(g.inclination_rad, g.true_azimuth_rad);
-      const double dogleg_rad = 2.0 * std::atan2((t2 - t1).norm(), (t2 + t1).norm());
-      const double ratio = dogleg_rad < 1e-9 ? 1.0 + dogleg_rad * dogleg_rad / 12.0
-                                             : 2.0 / dogleg_rad * std::tan(dogleg_rad / 2.0);
-      tvd_m += (g.md_m - previous.md_m) / 2.0 * (t1.z() + t2.z()) * ratio;
+      // The leg's vertical step by minimum curvature.
+      tvd_m += minimum_curvature_step(
+                   hole_direction_nev(previous.inclination_rad, previous.true_azimuth_rad),
+                   hole_direction_nev(g.inclination_rad, g.true_azimuth_rad),
+                   g.md_m - previous.md_m)
+                   .z();
     }
     g.tvd_m = tvd_m;
     g.previous_md_m = previous.md_m;

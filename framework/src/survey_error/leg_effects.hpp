@@ -7,6 +7,8 @@
 #include <span>
 #include <vector>
 
+#include "stochnav/core/minimum_curvature.hpp"
+
 #include "stochnav/survey_error/error_model.hpp"
 #include "stochnav/survey_error/error_propagation.hpp"
 #include "stochnav/survey_error/weighting_functions.hpp"
@@ -18,9 +20,6 @@ namespace stochnav::survey_error {
 /// increasing, or a first MD other than 0 without well.tie_on_tvd_m.
 void check_listing(std::span<const ListingStation> stations, const WellParameters& well,
                    const char* caller);
-
-/// Unit hole direction in NEV (V down) for inclination and azimuth in rad.
-Eigen::Vector3d hole_direction_nev(double inclination_rad, double azimuth_rad);
 
 /// The stations with true and magnetic azimuths, minimum-curvature TVD from
 /// well.tie_on_tvd_m (0 if absent) and their previous station.

@@ -36,9 +36,8 @@
 //   dN = dMD / 2 (sin I1 cos A1 + sin I2 cos A2) RF
 //   dE = dMD / 2 (sin I1 sin A1 + sin I2 sin A2) RF
 //   dTVD = dMD / 2 (cos I1 + cos I2) RF,
-// starting at the tie-on (0, 0, 0) with the first station's attitude. (beta is computed in the
-// equivalent form 2 atan2(|t2 - t1|, |t2 + t1|) of the unit hole directions t, exact for tiny
-// doglegs, and RF = 1 + beta^2 / 12 below beta = 1e-9.)
+// starting at the tie-on (0, 0, 0) with the first station's attitude (core/minimum_curvature.hpp,
+// shared with the ISCWSA error model).
 
 #include <Eigen/Core>
 #include <cstddef>
