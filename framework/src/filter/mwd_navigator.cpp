@@ -306,8 +306,8 @@ void MwdNavigator::propagate_covariance() {
     phi_.topLeftCorner(head_size_, head_size_) += head_f_ + 0.5 * head_f_ * head_f_;
   }
   q_d_.setZero();
-  const Eigen::Vector3d drift = second_order_drift(interval);
-  q_d_.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_ + second_order_noise(interval);
+  const SecondOrderTerm second_order = second_order_term(interval);
+  q_d_.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_ + second_order.noise;
   q_d_.block<3, 3>(cs::kVelocity, cs::kVelocity) = velocity_noise_;
   gyro_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
   q_d_.block<3, 3>(cs::kGyroBias, cs::kGyroBias) = bias_walk_;
@@ -339,7 +339,7 @@ void MwdNavigator::propagate_covariance() {
   } else {
     filter_.propagate(phi_, q_d_);
   }
-  feed_back_second_order_drift(drift);
+  feed_back_second_order_drift(second_order.drift);
   close_interval(interval);
 }
 
@@ -350,43 +350,33 @@ void MwdNavigator::propagate_core_states(const CoreMatrix& f_t, double interval)
   CoreMatrix phi = second_order_transition_increment(f_t);
   phi.diagonal().array() += 1.0;
   CoreMatrix q_d = CoreMatrix::Zero();
-  const Eigen::Vector3d drift = second_order_drift(interval);
-  q_d.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_ + second_order_noise(interval);
+  const SecondOrderTerm second_order = second_order_term(interval);
+  q_d.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_ + second_order.noise;
   q_d.block<3, 3>(cs::kVelocity, cs::kVelocity) = velocity_noise_;
   gyro_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
   q_d.block<3, 3>(cs::kGyroBias, cs::kGyroBias) = bias_walk_;
   accel_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
   q_d.block<3, 3>(cs::kAccelBias, cs::kAccelBias) = bias_walk_;
   filter_.propagate_core(phi, q_d);
-  feed_back_second_order_drift(drift);
+  feed_back_second_order_drift(second_order.drift);
   close_interval(interval);
 }
 
-// omega_in_n (rad/s, ENU): the Earth's rate and the transport rate at the INS's position.
-Eigen::Vector3d MwdNavigator::navigation_frame_rate_n() const {
+// The attitude error's second-order rate while the heading is uncertain by degrees
+// (filter/second_order_attitude.hpp), from the covariance at the interval's start: its spread
+// as process noise, and its mean, the attitude error the interval is expected to have added
+// whatever the sign of the heading error, to be fed back at the interval's end.
+MwdNavigator::SecondOrderTerm MwdNavigator::second_order_term(double interval) const {
+  if (!(options_.second_order_attitude_correlation_s > 0.0)) return {};
   const NavState& state = ins_.state();
   const LatitudeTrig trig(state.latitude_rad);
-  return earth_rate_n(trig) + transport_rate_n(trig, state.height_m, state.v_n);
-}
-
-// The attitude error's second-order rate while the heading is uncertain by degrees
-// (filter/second_order_attitude.hpp), from the covariance at the interval's start.
-Eigen::Matrix3d MwdNavigator::second_order_noise(double interval) const {
-  if (!(options_.second_order_attitude_correlation_s > 0.0)) return Eigen::Matrix3d::Zero();
-  const Eigen::Vector3d omega_in_n = navigation_frame_rate_n();
-  return second_order_attitude_noise(
-      filter_.covariance().block<3, 3>(cs::kAttitude, cs::kAttitude), omega_in_n, interval,
-      options_.second_order_attitude_correlation_s);
-}
-
-// Its mean over the interval, from the covariance at the interval's start: the attitude error
-// the interval is expected to have added, whatever the sign of the heading error.
-Eigen::Vector3d MwdNavigator::second_order_drift(double interval) const {
-  if (!(options_.second_order_attitude_correlation_s > 0.0)) return Eigen::Vector3d::Zero();
-  const Eigen::Vector3d omega_in_n = navigation_frame_rate_n();
-  return second_order_attitude_rate_mean(
-             filter_.covariance().block<3, 3>(cs::kAttitude, cs::kAttitude), omega_in_n) *
-         interval;
+  const Eigen::Vector3d omega_in_n =
+      earth_rate_n(trig) + transport_rate_n(trig, state.height_m, state.v_n);
+  const Eigen::Matrix3d p_attitude =
+      filter_.covariance().block<3, 3>(cs::kAttitude, cs::kAttitude);
+  return {.noise = second_order_attitude_noise(p_attitude, omega_in_n, interval,
+                                               options_.second_order_attitude_correlation_s),
+          .drift = second_order_attitude_rate_mean(p_attitude, omega_in_n) * interval};
 }
 
 void MwdNavigator::feed_back_second_order_drift(const Eigen::Vector3d& drift) {

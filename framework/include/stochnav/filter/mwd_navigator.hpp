@@ -120,9 +120,11 @@ class MwdNavigator final {
                         Eigen::Matrix3d& sum);
   void propagate_covariance();
   void propagate_core_states(const CoreMatrix& f_t, double interval);
-  Eigen::Vector3d navigation_frame_rate_n() const;
-  Eigen::Matrix3d second_order_noise(double interval) const;
-  Eigen::Vector3d second_order_drift(double interval) const;
+  struct SecondOrderTerm {
+    Eigen::Matrix3d noise = Eigen::Matrix3d::Zero();  // rad^2 over the interval
+    Eigen::Vector3d drift = Eigen::Vector3d::Zero();  // rad over the interval
+  };
+  SecondOrderTerm second_order_term(double interval) const;
   void feed_back_second_order_drift(const Eigen::Vector3d& drift);
   void close_interval(double interval);
   void update_augmented_transition(AugmentedGroup& group, double interval_s);
