@@ -20,7 +20,7 @@
 #include "stochnav/experiment/run_consistency.hpp"
 #include "stochnav/experiment/station_qc.hpp"
 #include "stochnav/experiment/survey.hpp"
-#include "stochnav/filter/mwd_navigator.hpp"
+#include "stochnav/filter/heading_hypotheses.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
 #include "stochnav/plugin/aid_schedule.hpp"
@@ -209,6 +209,7 @@ nlohmann::json NavigationRunResult::metrics_json() const {
   out["aids"] = aids;
   out["survey_stations"] = survey_stations;
   out["aid_rows"] = aid_rows;
+  out["heading_hypotheses"] = heading_hypotheses;
   const MwdAttitude attitude = mwd_from_quaternion(start.q_nb);
   const auto degrees = [](const Eigen::Vector3d& v, double scale) {
     return std::vector<double>{v.x() * scale, v.y() * scale, v.z() * scale};
@@ -292,15 +293,21 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   filter = start.options;
   result.filter_options = filter;
 
-  std::vector<plugin::AidPlugin*> aids;
   std::vector<std::string> aid_types;
   std::vector<int> aid_dofs;
   for (const auto& aid : plugins.aids) {
-    aids.push_back(aid.get());
     aid_types.emplace_back(aid->type());
     aid_dofs.push_back(aid->measurement_size());
   }
-  MwdNavigator navigator(initial, *plugins.gyro, *plugins.accel, aids, filter);
+  // One filter, or a bank over the heading when the start leaves it uncertain by many degrees
+  // (filter/heading_hypotheses.hpp); each hypothesis gets its own plugins.
+  HeadingHypotheses navigator(
+      initial, filter, NavigatorPlugins{plugins.gyro, plugins.accel, plugins.aids}, [&] {
+        plugin::RunPlugins more =
+            plugin::build_run_plugins(config, registry, aid_data, initial, imu.rate_hz());
+        return NavigatorPlugins{more.gyro, more.accel, more.aids};
+      });
+  result.heading_hypotheses = {{"initial", navigator.initial_hypotheses()}};
 
   // The survey: tie-on at the start position, MD from the config, else the aid data's first
   // measured depth, else 0.
@@ -345,7 +352,10 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
     const auto innovations = navigator.innovations();
     if (files) {
       files->write_innovations(innovations);
-      if (output_epoch) files->write_state(navigator);
+      if (output_epoch) {
+        files->write_state(navigator.state(), navigator.gyro_bias_b(), navigator.accel_bias_b(),
+                           navigator.covariance());
+      }
     }
     since_aid_epoch.add(increment.delta_theta_b, increment.delta_v_b, increment.dt_s);
     while (truth_pending && truth.t_s < increment.t_s - kTimeMatch_s) {
@@ -393,11 +403,13 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   }
   progress.finish(result.epochs);
   aid_epochs.finish();
-  if (!aids.empty() && consistency.accepted_updates() == 0) {
+  if (!plugins.aids.empty() && consistency.accepted_updates() == 0) {
     throw no_accepted_update(config, aid_data, aid_epochs, result.epochs);
   }
   survey.finish();
   result.health = navigator.health();
+  result.heading_hypotheses["final"] = navigator.hypotheses();
+  result.heading_hypotheses["largest_weight"] = navigator.largest_weight();
   result.duration_s = increment.t_s - imu.start_time_s();
   result.error_series = series.take();
   result.consistency = consistency.consistency_json();

@@ -69,8 +69,8 @@ RunFiles::RunFiles(const std::filesystem::path& out_dir, const plugin::OutputCon
 
 // Per-epoch rows are formatted with io/csv_numbers.hpp (std::to_chars): the characters of
 // the fmt formats in the comments, in half the time.
-void RunFiles::write_state(const MwdNavigator& navigator) {
-  const NavState& s = navigator.state();
+void RunFiles::write_state(const NavState& s, const Eigen::Vector3d& gyro_bias_b,
+                           const Eigen::Vector3d& accel_bias_b, const Eigen::MatrixXd& p) {
   const MwdAttitude a = mwd_from_quaternion(s.q_nb);
   // {:.3f},{:.9f},{:.9f},{:.4f},{:.6g},{:.6g},{:.6g},{:.6f},{:.6f},{:.6f}
   std::string& nav = nav_.buffer();
@@ -92,8 +92,8 @@ void RunFiles::write_state(const MwdNavigator& navigator) {
   nav += '\n';
   nav_.flush_if_full();
   // {:.3f},{:.6g} x 6
-  const Eigen::Vector3d& ba = navigator.accel_bias_b();
-  const Eigen::Vector3d bg = navigator.gyro_bias_b() * kDegPerHourPerRadPerSecond;
+  const Eigen::Vector3d& ba = accel_bias_b;
+  const Eigen::Vector3d bg = gyro_bias_b * kDegPerHourPerRadPerSecond;
   std::string& biases = biases_.buffer();
   append_fixed(biases, s.t_s, 3);
   for (const Eigen::Vector3d* bias : {&ba, &bg}) {
@@ -108,7 +108,6 @@ void RunFiles::write_state(const MwdNavigator& navigator) {
     // {:.3f},{:.6g} x 15
     std::string& out = covariance_->buffer();
     append_fixed(out, s.t_s, 3);
-    const auto& p = navigator.covariance();
     for (int i = 0; i < 15; ++i) {
       const double scale = i >= 6 && i < 9    ? kDegPerRad
                            : i >= 12 ? kDegPerHourPerRadPerSecond

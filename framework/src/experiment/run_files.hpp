@@ -40,7 +40,10 @@ class RunFiles final {
   RunFiles(const std::filesystem::path& out_dir, const plugin::OutputConfig& config,
            const std::vector<std::shared_ptr<plugin::AidPlugin>>& aids, bool with_truth);
 
-  void write_state(const MwdNavigator& navigator);
+  /// One nav.csv, biases.csv (and covariance.csv) row: the estimate, its biases (rad/s,
+  /// m/s^2) and the covariance whose first 15 rows and columns are the core states'.
+  void write_state(const NavState& s, const Eigen::Vector3d& gyro_bias_b,
+                   const Eigen::Vector3d& accel_bias_b, const Eigen::MatrixXd& p);
   void write_innovations(std::span<const InnovationRecord> records);
   void write_errors(const ErrorSample& sample, double nees);
 

@@ -152,12 +152,14 @@ UpdateOutcome ErrorStateFilter::update(const Eigen::Ref<const Eigen::VectorXd>& 
     ++health_.singular_innovations;
     outcome.singular = true;
     outcome.nis = std::numeric_limits<double>::quiet_NaN();
+    outcome.log_det_s = outcome.nis;
     return outcome;
   }
   // NIS = |L^-1 z|^2 with S = L L^T.
   whitened_innovation_ = z;
   innovation_factor_.matrixL().solveInPlace(whitened_innovation_);
   outcome.nis = whitened_innovation_.squaredNorm();
+  outcome.log_det_s = 2.0 * innovation_factor_.matrixLLT().diagonal().array().log().sum();
   if (!(outcome.nis <= gate_threshold)) return outcome;
 
   // K = U S^-1 = U L^-T L^-1.

@@ -446,6 +446,7 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
                             .aid_index = static_cast<int>(index),
                             .accepted = outcome.accepted,
                             .nis = outcome.nis,
+                            .log_det_s = outcome.log_det_s,
                             .size = std::min(m, InnovationRecord::kMaxSize)};
     const Eigen::MatrixXd& s = filter_.last_innovation_covariance();
     for (int i = 0; i < record.size; ++i) {

@@ -21,6 +21,8 @@
 //                     "aid_rows": {"rows", "on_grid", "moved", "max_offset_s",
 //                     "before_start", "after_end"} (experiment/aid_epochs.hpp: rows off the
 //                     IMU grid are applied at the next epoch),
+//                     "heading_hypotheses": {"initial", "final", "largest_weight"} (the bank
+//                     of filters over an uncertain start heading, filter/heading_hypotheses.hpp),
 //                     "self_check": {"source", "optimistic", "reason", "survey_qc":
 //                     {"stations", "checked", "flagged", "worst_inclination_sigmas",
 //                     "worst_azimuth_sigmas"}} (a station whose continuous solution leaves its
@@ -96,6 +98,9 @@ struct NavigationRunResult {
   std::vector<std::string> warnings;      ///< aids rejected too often
   std::size_t survey_stations = 0;        ///< stations in survey.csv
   nlohmann::json aid_rows;                ///< AidEpochs::summary_json(): where the rows went
+  /// {"initial", "final", "largest_weight"}: the bank over the heading (HeadingHypotheses;
+  /// 1 and 1 for a single filter).
+  nlohmann::json heading_hypotheses;
   NavState start;                         ///< the start (after alignment, before the error)
   FilterOptions filter_options;           ///< the options the navigator ran with
   nlohmann::json metrics_json() const;

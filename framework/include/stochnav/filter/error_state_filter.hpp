@@ -46,6 +46,7 @@ struct UpdateOutcome {
   bool accepted = false;  ///< passed the gate and was applied
   bool singular = false;  ///< S was not positive definite (never applied)
   double nis = 0.0;       ///< z^T S^-1 z (NaN when singular)
+  double log_det_s = 0.0; ///< ln det S (NaN when singular): with nis, the Gaussian likelihood
 };
 
 /// One group of augmented states in a BlockTransition: states [offset, offset + k) of the error

@@ -5,6 +5,7 @@
 // else are they written.
 
 #include <Eigen/Core>
+#include <numbers>
 #include <optional>
 
 namespace stochnav {
@@ -52,6 +53,17 @@ struct FilterOptions {
   /// as documented below.
   std::optional<Eigen::Matrix<double, 15, 15>> initial_core_covariance;
 
+  /// When the start comes from a static alignment: the gyro-bias prior that alignment started
+  /// from (its mean and 1-sigma, body axes, rad/s), before the static data. The bank over the
+  /// heading (filter/heading_hypotheses.hpp) weighs each heading on the whole circle by how
+  /// likely the gyro bias it implies is under this prior: the gyrocompass's exact posterior,
+  /// which is far from Gaussian where the bias is as large as the horizontal Earth rate.
+  struct GyroBiasPrior {
+    Eigen::Vector3d mean_radps = Eigen::Vector3d::Zero();
+    Eigen::Vector3d sigma_radps = Eigen::Vector3d::Zero();
+  };
+  std::optional<GyroBiasPrior> alignment_gyro_bias_prior;
+
   // Initial estimates of the sensor biases (the navigator starts from these, not from zero):
   // a run started from an alignment hands over its bias estimates here, and a run config's
   // "initial_error" offsets them (the estimate's offset from where the filter would start).
@@ -84,6 +96,14 @@ struct FilterOptions {
   /// (docs/drilling-envelope.md, section 4); with the heading known to 0.1 deg it adds
   /// nothing measurable.
   double second_order_attitude_correlation_s = 900.0;
+
+  /// Heading 1-sigma (rad) of each hypothesis of the bank of filters over the heading
+  /// (filter/heading_hypotheses.hpp) that a run forms when its start's heading sigma exceeds
+  /// 1.5 times this; 0: one filter whatever the start. A linearisation error of a few degrees
+  /// is what the first-order model with its second-order term absorbs (section 4 of
+  /// docs/drilling-envelope.md: consistent from starts uncertain by up to 6 deg); 4 deg makes 11
+  /// hypotheses of an 80-N alignment's 13 deg.
+  double heading_hypothesis_sigma_rad = 4.0 * std::numbers::pi / 180.0;
 
   /// Covariance products by blocks (filter/error_state_filter.hpp, BlockTransition and
   /// JosephForm::kExpanded): augmented states cost O(n^2) per propagation and update instead of

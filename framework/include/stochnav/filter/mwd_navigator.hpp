@@ -54,6 +54,7 @@ struct InnovationRecord {
   int aid_index = 0;      ///< position of the aid in the run's list
   bool accepted = false;  ///< passed the NIS gate and S was positive definite
   double nis = 0.0;       ///< normalised innovation squared (NaN when S was singular)
+  double log_det_s = 0.0; ///< ln det S (NaN when S was singular)
   int size = 0;           ///< measurement size m (<= kMaxSize)
   static constexpr int kMaxSize = 6;
   double innovation[kMaxSize] = {};        ///< z (aid units)

@@ -1,0 +1,100 @@
+#pragma once
+// A bank of navigation filters over the heading (a Gaussian sum), for a start that leaves the
+// heading uncertain by many degrees: a static alignment at high latitude, where the horizontal
+// Earth rate is a fraction of the equator's (80 N: a sixth; an alignment of 10 min leaves
+// 11-13 deg). One extended Kalman filter linearised about a heading that far off reads its own
+// linearisation error as heading information: it ended 33 deg off with a sigma of 4.8 deg on a
+// sliding east-west well at 74 N, and 3.3 deg off with 0.6 deg at 80 N (docs/drilling-envelope.md,
+// sections 3 and 7). Each hypothesis here starts with a heading sigma small enough for the
+// first-order model (plus the second-order term, filter/second_order_attitude.hpp) to hold.
+//
+// The split. With P0 the start's core covariance and phi_U its heading error (core_state
+// kAttitude + 2, variance s0^2), hypothesis i states phi_U = d_i on a grid d_i = i D, D = 2 s_c,
+// |d_i| <= 3 s0 (s_c: FilterOptions::heading_hypothesis_sigma_rad). It starts from the
+// estimate conditioned on it: corrected by c_i = P0 e_U d_i / s0^2 (so the biases known
+// together with the heading move with it), with P_i = P0 - (1 - s_c^2 / s0^2) P0 e_U e_U^T P0 /
+// s0^2 (heading sigma s_c), and prior weight exp(-d_i^2 / (2 (s0^2 - s_c^2))): the mixture is
+// N(0, P0) to within 1.5 % in density (a Gaussian sum at a spacing of two sigmas).
+//
+// The weights. At every aid epoch each hypothesis' weight is multiplied by the Gaussian
+// likelihood of its innovations, N(z; 0, S) (gated out or not; an aid counts only at epochs
+// where every hypothesis measured it, so that the weights compare like with like). A
+// hypothesis below 1e-5 of the total is dropped; two whose headings agree to a fifth of a sigma
+// merge (the weights add). Once one is left the bank is that filter.
+//
+// The outputs are the mixture's: the mean (about the most probable hypothesis, as an error
+// state) and the covariance sum_i w_i (P_i + (x_i - x)(x_i - x)^T) of the 15 core states.
+// Innovations and health are the most probable hypothesis'. With one hypothesis (a start
+// whose heading sigma is below 1.5 s_c, or s_c = 0) every output is that filter's own.
+
+#include <Eigen/Core>
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "stochnav/filter/core_correction.hpp"
+#include "stochnav/filter/filter_options.hpp"
+#include "stochnav/filter/mwd_navigator.hpp"
+
+namespace stochnav {
+
+/// The plugins of one navigator, owned with it.
+struct NavigatorPlugins {
+  std::shared_ptr<plugin::NoiseModelPlugin> gyro;
+  std::shared_ptr<plugin::NoiseModelPlugin> accel;
+  std::vector<std::shared_ptr<plugin::AidPlugin>> aids;
+};
+
+class HeadingHypotheses final {
+ public:
+  /// `first` serves the first hypothesis; `make_plugins` builds an independent set for each
+  /// further one (plugins may hold state). `initial` and `options` as for MwdNavigator.
+  HeadingHypotheses(const NavState& initial, const FilterOptions& options, NavigatorPlugins first,
+                    const std::function<NavigatorPlugins()>& make_plugins);
+
+  HeadingHypotheses(const HeadingHypotheses&) = delete;
+  HeadingHypotheses& operator=(const HeadingHypotheses&) = delete;
+
+  /// Advances every hypothesis over one IMU epoch of raw increments and reweighs them.
+  void step(const ImuIncrement& raw);
+
+  /// The mixture's mean estimate.
+  const NavState& state() const;
+  const Eigen::Vector3d& gyro_bias_b() const;   ///< rad/s
+  const Eigen::Vector3d& accel_bias_b() const;  ///< m/s^2
+  /// The mixture covariance: 15 x 15 (the core states) with several hypotheses; with one, the
+  /// filter's own n x n P.
+  const Eigen::MatrixXd& covariance() const;
+  /// The update attempts of the last step, of the most probable hypothesis.
+  std::span<const InnovationRecord> innovations() const;
+  const FilterHealth& health() const;
+
+  std::size_t initial_hypotheses() const { return initial_count_; }
+  std::size_t hypotheses() const { return hypotheses_.size(); }
+  /// The normalised weight of the most probable hypothesis.
+  double largest_weight() const;
+  /// The most probable hypothesis' filter.
+  const MwdNavigator& most_probable() const;
+  /// Hypothesis i's filter and normalised weight (i < hypotheses()).
+  const MwdNavigator& hypothesis(std::size_t i) const { return *hypotheses_.at(i).navigator; }
+  double weight(std::size_t i) const;
+
+ private:
+  struct Hypothesis {
+    NavigatorPlugins plugins;
+    std::unique_ptr<MwdNavigator> navigator;
+    double log_weight = 0.0;
+  };
+  void reweigh();
+  void prune_and_merge();
+  void update_mixture();
+
+  std::vector<Hypothesis> hypotheses_;
+  std::size_t initial_count_ = 1;
+  std::size_t best_ = 0;
+  CoreEstimate mixture_;
+  Eigen::MatrixXd mixture_covariance_;
+};
+
+}  // namespace stochnav

@@ -1,0 +1,302 @@
+#include "stochnav/filter/heading_hypotheses.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "stochnav/ins/earth.hpp"
+#include "stochnav/ins/strapdown.hpp"
+#include "stochnav/plugin/state_layout.hpp"
+
+namespace stochnav {
+namespace {
+
+namespace core = plugin::core_state;
+constexpr int kHeading = core::kAttitude + 2;  // phi_U
+// A bank is formed when the start's heading sigma exceeds this many hypothesis sigmas.
+constexpr double kSplitAbove = 1.5;
+constexpr double kSpreadSigmas = 3.0;  // the grid covers +-3 start sigmas
+constexpr int kMaxHalfWidth = 7;       // at most 15 hypotheses
+constexpr double kDropBelow = 1e-5;    // of the total weight
+constexpr double kMergeWithin = 0.2;   // heading sigmas
+
+Eigen::Matrix<double, 15, 15> core_start_covariance(const FilterOptions& o) {
+  if (o.initial_core_covariance) return *o.initial_core_covariance;
+  Eigen::Matrix<double, 15, 1> sigma;
+  sigma << o.position_sigma_m, o.velocity_sigma_mps, o.attitude_sigma_rad,
+      o.accel_bias_sigma_mps2, o.gyro_bias_sigma_radps;
+  return sigma.array().square().matrix().asDiagonal();
+}
+
+std::vector<plugin::AidPlugin*> raw_aids(const NavigatorPlugins& plugins) {
+  std::vector<plugin::AidPlugin*> aids;
+  for (const auto& aid : plugins.aids) aids.push_back(aid.get());
+  return aids;
+}
+
+std::unique_ptr<MwdNavigator> make_navigator(const NavState& start, const FilterOptions& options,
+                                             NavigatorPlugins& plugins) {
+  return std::make_unique<MwdNavigator>(start, *plugins.gyro, *plugins.accel, raw_aids(plugins),
+                                        options);
+}
+
+// One hypothesis' start: its estimate, covariance and prior log-weight.
+struct SplitStart {
+  CoreEstimate estimate;
+  Eigen::Matrix<double, 15, 15> covariance;
+  double log_weight = 0.0;
+};
+
+FilterOptions with_start(const FilterOptions& options, const SplitStart& start) {
+  FilterOptions split = options;
+  split.initial_core_covariance = start.covariance;
+  const Eigen::Matrix<double, 15, 1> sigma = start.covariance.diagonal().cwiseSqrt();
+  split.position_sigma_m = sigma.segment<3>(core::kPosition);
+  split.velocity_sigma_mps = sigma.segment<3>(core::kVelocity);
+  split.attitude_sigma_rad = sigma.segment<3>(core::kAttitude);
+  split.accel_bias_sigma_mps2 = sigma.segment<3>(core::kAccelBias);
+  split.gyro_bias_sigma_radps = sigma.segment<3>(core::kGyroBias);
+  split.initial_accel_bias_mps2 = start.estimate.accel_bias_b;
+  split.initial_gyro_bias_radps = start.estimate.gyro_bias_b;
+  return split;
+}
+
+// Without an alignment prior: the start's Gaussian split along its heading, on a grid of
+// spacing 2 s_c over +-3 start sigmas, each hypothesis conditioned linearly on its heading.
+std::vector<SplitStart> linear_split(const CoreEstimate& start,
+                                     const Eigen::Matrix<double, 15, 15>& p0, double sigma) {
+  const double start_variance = p0(kHeading, kHeading);
+  const double spacing = 2.0 * sigma;
+  const int half_width = std::min(
+      kMaxHalfWidth,
+      static_cast<int>(std::ceil(kSpreadSigmas * std::sqrt(start_variance) / spacing)));
+  const Eigen::Matrix<double, 15, 1> gain = p0.col(kHeading) / start_variance;
+  Eigen::Matrix<double, 15, 15> p_split =
+      p0 - (1.0 - sigma * sigma / start_variance) * gain * p0.row(kHeading);
+  p_split = 0.5 * (p_split + p_split.transpose()).eval();
+  const double residual_variance = start_variance - sigma * sigma;
+  std::vector<SplitStart> starts;
+  for (int i = -half_width; i <= half_width; ++i) {
+    const double heading_error = i * spacing;
+    SplitStart split{start, p_split, -0.5 * heading_error * heading_error / residual_variance};
+    apply_core_correction(gain * heading_error, split.estimate);
+    starts.push_back(std::move(split));
+  }
+  return starts;
+}
+
+// After a static alignment: headings over the whole circle, each with the gyro bias the static
+// data then imply. The aligned estimate measured the mean rate m = C_bn w_ie + b; hypothesis i
+// turns the attitude by d_i about the vertical (C_nb_i = Rot(d_i e_U) C_nb), so its bias is
+// b_i = m - C_bn_i w_ie, exactly, not linearised about the aligned heading. Its prior weight is
+// the bias prior's density at b_i (the static data's noise is negligible beside it): the
+// gyrocompass's posterior. Its covariance is the start's conditioned on the heading, plus a
+// heading sigma s_c along the direction in which the heading moves that bias.
+std::vector<SplitStart> circle_split(const CoreEstimate& start,
+                                     const Eigen::Matrix<double, 15, 15>& p0, double sigma,
+                                     const FilterOptions::GyroBiasPrior& prior) {
+  const int count = static_cast<int>(std::ceil(2.0 * std::numbers::pi / (2.0 * sigma)));
+  const double spacing = 2.0 * std::numbers::pi / count;
+  const Eigen::Vector3d earth_rate = earth_rate_n(start.state.latitude_rad);
+  const Eigen::Matrix3d c_bn = start.state.q_nb.toRotationMatrix().transpose();
+  const Eigen::Vector3d measured_rate = start.gyro_bias_b + c_bn * earth_rate;
+  const auto bias_at = [&](double heading_error) -> Eigen::Vector3d {
+    const Eigen::Matrix3d turn =
+        quaternion_from_rotation_vector(heading_error * Eigen::Vector3d::UnitZ())
+            .toRotationMatrix();
+    return measured_rate - c_bn * turn.transpose() * earth_rate;
+  };
+  Eigen::Matrix<double, 15, 15> conditioned =
+      p0 - p0.col(kHeading) * p0.row(kHeading) / p0(kHeading, kHeading);
+  conditioned = 0.5 * (conditioned + conditioned.transpose()).eval();
+  std::vector<SplitStart> starts;
+  for (int i = 0; i < count; ++i) {
+    const double heading_error = std::remainder(i * spacing, 2.0 * std::numbers::pi);
+    SplitStart split{start, conditioned, 0.0};
+    split.estimate.state.q_nb =
+        (quaternion_from_rotation_vector(heading_error * Eigen::Vector3d::UnitZ()) *
+         start.state.q_nb)
+            .normalized();
+    split.estimate.gyro_bias_b = bias_at(heading_error);
+    const Eigen::Vector3d standardised =
+        (split.estimate.gyro_bias_b - prior.mean_radps).cwiseQuotient(prior.sigma_radps);
+    split.log_weight = -0.5 * standardised.squaredNorm();
+    // d(estimate)/d(heading): the heading itself and, through the Earth rate, the gyro bias.
+    Eigen::Matrix<double, 15, 1> direction = Eigen::Matrix<double, 15, 1>::Zero();
+    direction(kHeading) = 1.0;
+    constexpr double kStep = 1e-4;  // rad
+    // x = estimate - truth: a heading error d + e means the truth's bias is b(d + e).
+    direction.segment<3>(core::kGyroBias) =
+        -(bias_at(heading_error + kStep) - bias_at(heading_error - kStep)) / (2.0 * kStep);
+    split.covariance += sigma * sigma * direction * direction.transpose();
+    starts.push_back(std::move(split));
+  }
+  return starts;
+}
+
+}  // namespace
+
+HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOptions& options,
+                                     NavigatorPlugins first,
+                                     const std::function<NavigatorPlugins()>& make_plugins) {
+  const Eigen::Matrix<double, 15, 15> p0 = core_start_covariance(options);
+  const double sigma = options.heading_hypothesis_sigma_rad;
+  const bool prior_usable = options.alignment_gyro_bias_prior &&
+                            (options.alignment_gyro_bias_prior->sigma_radps.array() > 0.0).all();
+  if (!(sigma > 0.0) || !(p0(kHeading, kHeading) > std::pow(kSplitAbove * sigma, 2))) {
+    hypotheses_.push_back({std::move(first), nullptr, 0.0});
+    hypotheses_.back().navigator = make_navigator(initial, options, hypotheses_.back().plugins);
+    return;
+  }
+  const CoreEstimate start{initial, options.initial_accel_bias_mps2,
+                           options.initial_gyro_bias_radps};
+  std::vector<SplitStart> starts =
+      prior_usable ? circle_split(start, p0, sigma, *options.alignment_gyro_bias_prior)
+                   : linear_split(start, p0, sigma);
+  // Only the hypotheses the prior leaves a chance need a filter.
+  double largest = -INFINITY;
+  for (const SplitStart& s : starts) largest = std::max(largest, s.log_weight);
+  std::erase_if(starts, [&](const SplitStart& s) {
+    return s.log_weight - largest < std::log(kDropBelow);
+  });
+  bool first_used = false;
+  for (const SplitStart& split : starts) {
+    Hypothesis hypothesis{first_used ? make_plugins() : std::move(first), nullptr,
+                          split.log_weight};
+    first_used = true;
+    hypothesis.navigator =
+        make_navigator(split.estimate.state, with_start(options, split), hypothesis.plugins);
+    hypotheses_.push_back(std::move(hypothesis));
+  }
+  initial_count_ = hypotheses_.size();
+  prune_and_merge();
+  update_mixture();
+}
+
+void HeadingHypotheses::step(const ImuIncrement& raw) {
+  for (Hypothesis& hypothesis : hypotheses_) hypothesis.navigator->step(raw);
+  if (hypotheses_.size() == 1) return;
+  reweigh();
+  prune_and_merge();
+  update_mixture();
+}
+
+void HeadingHypotheses::reweigh() {
+  // The aids every hypothesis measured at this epoch: only they compare the hypotheses.
+  std::vector<int> common;
+  for (const InnovationRecord& record : hypotheses_.front().navigator->innovations()) {
+    const bool everywhere = std::all_of(hypotheses_.begin(), hypotheses_.end(), [&](const auto& h) {
+      const auto records = h.navigator->innovations();
+      return std::any_of(records.begin(), records.end(), [&](const InnovationRecord& r) {
+        return r.aid_index == record.aid_index && std::isfinite(r.nis + r.log_det_s);
+      });
+    });
+    if (everywhere) common.push_back(record.aid_index);
+  }
+  if (common.empty()) return;
+  for (Hypothesis& hypothesis : hypotheses_) {
+    for (const InnovationRecord& record : hypothesis.navigator->innovations()) {
+      if (std::find(common.begin(), common.end(), record.aid_index) == common.end()) continue;
+      hypothesis.log_weight -= 0.5 * (record.nis + record.log_det_s);
+    }
+  }
+}
+
+void HeadingHypotheses::prune_and_merge() {
+  double largest = -INFINITY;
+  for (const Hypothesis& h : hypotheses_) largest = std::max(largest, h.log_weight);
+  for (Hypothesis& h : hypotheses_) h.log_weight -= largest;  // the largest is now 0
+  double total = 0.0;
+  for (const Hypothesis& h : hypotheses_) total += std::exp(h.log_weight);
+  std::erase_if(hypotheses_,
+                [&](const Hypothesis& h) { return std::exp(h.log_weight) < kDropBelow * total; });
+  // Merge into the more probable of two hypotheses whose headings agree.
+  std::sort(hypotheses_.begin(), hypotheses_.end(),
+            [](const Hypothesis& a, const Hypothesis& b) { return a.log_weight > b.log_weight; });
+  for (std::size_t keep = 0; keep < hypotheses_.size(); ++keep) {
+    const MwdNavigator& kept = *hypotheses_[keep].navigator;
+    const double heading_sigma = std::sqrt(kept.covariance()(kHeading, kHeading));
+    const CoreEstimate kept_estimate{kept.state(), kept.accel_bias_b(), kept.gyro_bias_b()};
+    for (std::size_t other = keep + 1; other < hypotheses_.size();) {
+      const MwdNavigator& candidate = *hypotheses_[other].navigator;
+      const double difference =
+          core_difference({candidate.state(), candidate.accel_bias_b(), candidate.gyro_bias_b()},
+                          kept_estimate)(kHeading);
+      if (std::abs(difference) < kMergeWithin * heading_sigma) {
+        hypotheses_[keep].log_weight +=
+            std::log1p(std::exp(hypotheses_[other].log_weight - hypotheses_[keep].log_weight));
+        hypotheses_.erase(hypotheses_.begin() + static_cast<std::ptrdiff_t>(other));
+      } else {
+        ++other;
+      }
+    }
+  }
+  best_ = 0;  // sorted, and merging only adds to the kept ones' weights
+  for (std::size_t i = 1; i < hypotheses_.size(); ++i) {
+    if (hypotheses_[i].log_weight > hypotheses_[best_].log_weight) best_ = i;
+  }
+}
+
+void HeadingHypotheses::update_mixture() {
+  if (hypotheses_.size() == 1) return;
+  const MwdNavigator& best = *hypotheses_[best_].navigator;
+  mixture_ = {best.state(), best.accel_bias_b(), best.gyro_bias_b()};
+  std::vector<double> weights;
+  double total = 0.0;
+  for (const Hypothesis& h : hypotheses_) total += weights.emplace_back(std::exp(h.log_weight));
+  std::vector<Eigen::Matrix<double, 15, 1>> differences;
+  Eigen::Matrix<double, 15, 1> mean = Eigen::Matrix<double, 15, 1>::Zero();
+  for (std::size_t i = 0; i < hypotheses_.size(); ++i) {
+    const MwdNavigator& n = *hypotheses_[i].navigator;
+    differences.push_back(
+        core_difference({n.state(), n.accel_bias_b(), n.gyro_bias_b()}, mixture_));
+    mean += weights[i] / total * differences.back();
+  }
+  mixture_covariance_.setZero(15, 15);
+  for (std::size_t i = 0; i < hypotheses_.size(); ++i) {
+    const Eigen::Matrix<double, 15, 1> spread = differences[i] - mean;
+    mixture_covariance_ += weights[i] / total *
+                           (hypotheses_[i].navigator->covariance().topLeftCorner<15, 15>() +
+                            spread * spread.transpose());
+  }
+  apply_core_correction(-mean, mixture_);
+}
+
+const NavState& HeadingHypotheses::state() const {
+  return hypotheses_.size() == 1 ? hypotheses_.front().navigator->state() : mixture_.state;
+}
+
+const Eigen::Vector3d& HeadingHypotheses::gyro_bias_b() const {
+  return hypotheses_.size() == 1 ? hypotheses_.front().navigator->gyro_bias_b()
+                                 : mixture_.gyro_bias_b;
+}
+
+const Eigen::Vector3d& HeadingHypotheses::accel_bias_b() const {
+  return hypotheses_.size() == 1 ? hypotheses_.front().navigator->accel_bias_b()
+                                 : mixture_.accel_bias_b;
+}
+
+const Eigen::MatrixXd& HeadingHypotheses::covariance() const {
+  return hypotheses_.size() == 1 ? hypotheses_.front().navigator->covariance()
+                                 : mixture_covariance_;
+}
+
+std::span<const InnovationRecord> HeadingHypotheses::innovations() const {
+  return most_probable().innovations();
+}
+
+const FilterHealth& HeadingHypotheses::health() const { return most_probable().health(); }
+
+double HeadingHypotheses::largest_weight() const { return weight(best_); }
+
+double HeadingHypotheses::weight(std::size_t i) const {
+  double total = 0.0;
+  for (const Hypothesis& h : hypotheses_) total += std::exp(h.log_weight);
+  return std::exp(hypotheses_.at(i).log_weight) / total;
+}
+
+const MwdNavigator& HeadingHypotheses::most_probable() const {
+  return *hypotheses_[best_].navigator;
+}
+
+}  // namespace stochnav

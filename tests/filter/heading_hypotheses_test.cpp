@@ -1,0 +1,231 @@
+// The bank of filters over the heading: its split start is the start distribution (mean and
+// covariance); after a static alignment it is the gyrocompass's exact posterior over the whole
+// circle (every hypothesis explains the measured rate, and the truth falls in its credible
+// intervals as often as they claim); a start whose heading is known is one plain filter with
+// identical outputs; the core error-state difference and its feedback are inverse to each other.
+
+#include "stochnav/filter/heading_hypotheses.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <random>
+
+#include "stochnav/filter/alignment.hpp"
+#include "stochnav/ins/earth.hpp"
+#include "stochnav/ins/mwd_attitude.hpp"
+
+#include "static_truth.hpp"
+
+namespace stochnav {
+namespace {
+
+using testing::kDeg;
+using testing::NoisyStaticAid;
+using testing::StaticImu;
+using testing::TestWhiteNoise;
+
+constexpr int kHeading = plugin::core_state::kAttitude + 2;
+constexpr int kGyroBiasX = plugin::core_state::kGyroBias;
+
+NavigatorPlugins white_noise_plugins(const NavState& site, std::uint64_t seed) {
+  return {std::make_shared<TestWhiteNoise>(plugin::SensorGroup::kGyro, 0.01 * kDeg / 60.0),
+          std::make_shared<TestWhiteNoise>(plugin::SensorGroup::kAccel, 0.01 / 60.0),
+          {std::make_shared<NoisyStaticAid>(site, 0.05, 0.002, seed)}};
+}
+
+// A start with the heading uncertain by `heading_sigma` and correlated with the x gyro bias
+// (as a gyrocompass leaves them: correlation 0.9).
+FilterOptions uncertain_heading_start(double heading_sigma) {
+  FilterOptions options;
+  options.attitude_sigma_rad.z() = heading_sigma;
+  Eigen::Matrix<double, 15, 1> sigma;
+  sigma << options.position_sigma_m, options.velocity_sigma_mps, options.attitude_sigma_rad,
+      options.accel_bias_sigma_mps2, options.gyro_bias_sigma_radps;
+  Eigen::Matrix<double, 15, 15> p = sigma.array().square().matrix().asDiagonal();
+  p(kHeading, kGyroBiasX) = p(kGyroBiasX, kHeading) = 0.9 * sigma(kHeading) * sigma(kGyroBiasX);
+  options.initial_core_covariance = p;
+  return options;
+}
+
+TEST(CoreCorrection, DifferenceFedBackGivesTheReference) {
+  const NavState site = testing::static_truth_state();
+  CoreEstimate reference{site, Eigen::Vector3d(1e-4, -2e-4, 3e-4),
+                         Eigen::Vector3d(1e-6, 2e-6, -3e-6)};
+  CoreEstimate estimate = reference;
+  estimate.state.latitude_rad += 2e-6;
+  estimate.state.longitude_rad -= 3e-6;
+  estimate.state.height_m += 4.0;
+  estimate.state.v_n += Eigen::Vector3d(0.1, -0.2, 0.05);
+  estimate.state.q_nb =
+      Eigen::Quaterniond(Eigen::AngleAxisd(40.0 * kDeg, Eigen::Vector3d(0.1, 0.2, 1.0).normalized())) *
+      estimate.state.q_nb;
+  estimate.gyro_bias_b += Eigen::Vector3d(3e-6, 0.0, -1e-6);
+  estimate.accel_bias_b -= Eigen::Vector3d(0.0, 2e-4, 0.0);
+
+  const Eigen::Matrix<double, 15, 1> x = core_difference(estimate, reference);
+  // The estimate is the reference rotated by +40 deg: C_ref = Rot(phi) C_est gives phi = -40 deg
+  // about that axis.
+  EXPECT_NEAR(x(kHeading), -40.0 * kDeg * Eigen::Vector3d(0.1, 0.2, 1.0).normalized().z(),
+              1e-12);
+  CoreEstimate corrected = estimate;
+  apply_core_correction(x, corrected);
+  // Position to first order: the radii of the two latitudes differ (1e-11 rad: 0.06 mm).
+  EXPECT_NEAR(corrected.state.latitude_rad, reference.state.latitude_rad, 1e-11);
+  EXPECT_NEAR(corrected.state.longitude_rad, reference.state.longitude_rad, 1e-11);
+  EXPECT_NEAR(corrected.state.height_m, reference.state.height_m, 1e-9);
+  EXPECT_LT((corrected.state.v_n - reference.state.v_n).norm(), 1e-12);
+  EXPECT_LT(corrected.state.q_nb.angularDistance(reference.state.q_nb), 1e-12);
+  EXPECT_LT((corrected.gyro_bias_b - reference.gyro_bias_b).norm(), 1e-18);
+  EXPECT_LT((corrected.accel_bias_b - reference.accel_bias_b).norm(), 1e-16);
+}
+
+TEST(HeadingHypotheses, AKnownHeadingIsOnePlainFilterWithTheSameOutputs) {
+  const NavState site = testing::static_truth_state();
+  const FilterOptions options;  // heading sigma 0.57 deg
+  NavigatorPlugins plain_plugins = white_noise_plugins(site, 7);
+  MwdNavigator plain(site, *plain_plugins.gyro, *plain_plugins.accel,
+                     {plain_plugins.aids.front().get()}, options);
+  HeadingHypotheses bank(site, options, white_noise_plugins(site, 7),
+                         [&] { return white_noise_plugins(site, 7); });
+  ASSERT_EQ(bank.hypotheses(), 1u);
+  StaticImu imu(site, {.gyro_arw = 0.01 * kDeg / 60.0, .accel_vrw = 0.01 / 60.0}, 100.0, 3);
+  for (int k = 0; k < 2000; ++k) {
+    const ImuIncrement increment = imu.next();
+    plain.step(increment);
+    bank.step(increment);
+  }
+  EXPECT_EQ(bank.state().q_nb.coeffs(), plain.state().q_nb.coeffs());
+  EXPECT_EQ(bank.state().v_n, plain.state().v_n);
+  EXPECT_EQ(bank.gyro_bias_b(), plain.gyro_bias_b());
+  EXPECT_EQ(bank.covariance(), plain.covariance());
+  EXPECT_EQ(bank.innovations().size(), plain.innovations().size());
+}
+
+TEST(HeadingHypotheses, TheSplitStartHasTheStartsMeanAndCovariance) {
+  const NavState site = testing::static_truth_state();
+  for (const double sigma_deg : {12.0, 20.0}) {
+    const FilterOptions options = uncertain_heading_start(sigma_deg * kDeg);
+    HeadingHypotheses bank(site, options, white_noise_plugins(site, 1),
+                           [&] { return white_noise_plugins(site, 1); });
+    // A grid 2 x 4 deg apart over +-3 sigma (at most 15).
+    EXPECT_EQ(bank.hypotheses(), sigma_deg == 12.0 ? 11u : 15u) << sigma_deg;
+    const Eigen::Matrix<double, 15, 15> p0 = *options.initial_core_covariance;
+    const Eigen::MatrixXd& p = bank.covariance();
+    ASSERT_EQ(p.rows(), 15);
+    // The grid's truncation at +-3 sigma (2.8 sigma for 20 deg) loses a few % of the variance.
+    EXPECT_NEAR(p(kHeading, kHeading) / p0(kHeading, kHeading), 1.0, 0.05) << sigma_deg;
+    EXPECT_NEAR(p(kHeading, kGyroBiasX) / p0(kHeading, kGyroBiasX), 1.0, 0.05) << sigma_deg;
+    EXPECT_NEAR(p(kGyroBiasX, kGyroBiasX) / p0(kGyroBiasX, kGyroBiasX), 1.0, 0.05) << sigma_deg;
+    for (int i = 0; i < 15; ++i) {
+      if (i == kHeading || i == kGyroBiasX) continue;
+      EXPECT_NEAR(p(i, i) / p0(i, i), 1.0, 1e-9) << "state " << i << ", " << sigma_deg;
+    }
+    EXPECT_LT(bank.state().q_nb.angularDistance(site.q_nb), 1e-9) << sigma_deg;
+    // The middle hypothesis' prior weight: about the grid spacing times the density of the
+    // remaining spread, N(0, sigma^2 - 4^2), at zero.
+    const double spread_deg = std::sqrt(sigma_deg * sigma_deg - 16.0);
+    EXPECT_NEAR(bank.largest_weight(), 8.0 / (std::sqrt(2.0 * std::numbers::pi) * spread_deg),
+                0.01)
+        << sigma_deg;
+  }
+}
+
+// A horizontal tool pointing east at 80 N, after a static alignment that measured the mean rate
+// C_bn w_ie + b exactly (noise-free): the coarse (TRIAD) attitude, the bias that attitude implies
+// (nearly zero: the gyrocompass puts the whole bias into the heading), the heading sigma of a
+// linearised fine alignment, and the gyro-bias prior the alignment started from.
+struct AlignedAt80N {
+  NavState truth;
+  NavState aligned;
+  FilterOptions options;
+};
+
+AlignedAt80N aligned_at_80n(const Eigen::Vector3d& gyro_bias_radps, double prior_sigma_radps) {
+  AlignedAt80N out;
+  out.truth = testing::static_truth_state();
+  out.truth.latitude_rad = 80.0 * kDeg;
+  out.truth.q_nb = quaternion_from_mwd(
+      {.inclination_rad = 90.0 * kDeg, .toolface_rad = 0.0, .azimuth_rad = 90.0 * kDeg});
+  const Eigen::Vector3d earth_rate = earth_rate_n(out.truth.latitude_rad);
+  const Eigen::Matrix3d c_bn = out.truth.q_nb.toRotationMatrix().transpose();
+  StaticMeans means;
+  means.omega_ib_b = c_bn * earth_rate + gyro_bias_radps;
+  means.f_ib_b = -(c_bn * gravity_n(out.truth.latitude_rad, out.truth.height_m));
+  means.duration_s = 600.0;
+  out.aligned = out.truth;
+  out.aligned.q_nb = coarse_alignment(means, out.truth.latitude_rad);
+  out.options = uncertain_heading_start(18.0 * kDeg);
+  out.options.initial_gyro_bias_radps =
+      means.omega_ib_b - out.aligned.q_nb.toRotationMatrix().transpose() * earth_rate;
+  out.options.alignment_gyro_bias_prior =
+      FilterOptions::GyroBiasPrior{Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(prior_sigma_radps)};
+  return out;
+}
+
+// The hypothesis' heading error against the truth (rad, wrapped to (-pi, pi]).
+double heading_error(const MwdNavigator& hypothesis, const NavState& truth) {
+  const CoreEstimate estimate{hypothesis.state(), {}, {}};
+  return core_difference(estimate, CoreEstimate{truth, {}, {}})(kHeading);
+}
+
+TEST(HeadingHypotheses, AfterAnAlignmentEveryHeadingExplainsTheMeasuredRate) {
+  const double bias = 2.5 * kDeg / 3600.0;  // as large as the horizontal Earth rate at 80 N
+  const AlignedAt80N start = aligned_at_80n(Eigen::Vector3d(0.2 * bias, -0.2 * bias, bias), bias);
+  HeadingHypotheses bank(start.aligned, start.options, white_noise_plugins(start.aligned, 1),
+                         [&] { return white_noise_plugins(start.aligned, 1); });
+  // The along-hole bias turns the coarse heading 44 deg; the bank holds hypotheses near the
+  // truth all the same.
+  EXPECT_GT(std::abs(core_difference({start.aligned, {}, {}}, {start.truth, {}, {}})(kHeading)),
+            30.0 * kDeg);
+  ASSERT_GT(bank.hypotheses(), 10u);
+  const Eigen::Vector3d earth_rate = earth_rate_n(start.truth.latitude_rad);
+  const Eigen::Vector3d measured =
+      start.options.initial_gyro_bias_radps +
+      start.aligned.q_nb.toRotationMatrix().transpose() * earth_rate;
+  double nearest = INFINITY;
+  for (std::size_t i = 0; i < bank.hypotheses(); ++i) {
+    const MwdNavigator& h = bank.hypothesis(i);
+    const Eigen::Vector3d explained =
+        h.gyro_bias_b() + h.state().q_nb.toRotationMatrix().transpose() * earth_rate;
+    EXPECT_LT((explained - measured).norm(), 1e-15) << i;
+    // Levelled as the alignment left it: only the heading differs.
+    const MwdAttitude a = mwd_from_quaternion(h.state().q_nb);
+    EXPECT_NEAR(a.inclination_rad, 90.0 * kDeg, 1e-9) << i;
+    nearest = std::min(nearest, std::abs(heading_error(h, start.truth)));
+  }
+  EXPECT_LT(nearest, 4.0 * kDeg);  // half the grid spacing of 2 x 4 deg
+}
+
+TEST(HeadingHypotheses, TheAlignedBankIsTheGyrocompassPosteriorAndCoversTheTruth) {
+  // Biases drawn from the prior the bank assumes, as large as the horizontal Earth rate
+  // (2.6 deg/h at 80 N): the heading's posterior is far from Gaussian. Its probability of
+  // lying below the truth (the PIT) must be uniform over the draws.
+  const double sigma = 1.3 * kDeg / 3600.0;
+  std::mt19937_64 engine(20261127);
+  std::normal_distribution<double> normal(0.0, sigma);
+  constexpr int kDraws = 300;
+  int central_95 = 0, central_50 = 0;
+  for (int draw = 0; draw < kDraws; ++draw) {
+    const Eigen::Vector3d bias(normal(engine), normal(engine), normal(engine));
+    const AlignedAt80N start = aligned_at_80n(bias, sigma);
+    HeadingHypotheses bank(start.aligned, start.options, white_noise_plugins(start.aligned, 1),
+                           [&] { return white_noise_plugins(start.aligned, 1); });
+    double below = 0.0;
+    for (std::size_t i = 0; i < bank.hypotheses(); ++i) {
+      // Each hypothesis spreads its weight over its cell (4-deg sigma): the part below.
+      const double error = heading_error(bank.hypothesis(i), start.truth);
+      below += bank.weight(i) * 0.5 * std::erfc(error / (4.0 * kDeg * std::sqrt(2.0)));
+    }
+    central_95 += below > 0.025 && below < 0.975;
+    central_50 += below > 0.25 && below < 0.75;
+  }
+  // Binomial 3-sigma bands for 300 draws: 95 % +- 3.8 %, 50 % +- 8.7 %.
+  EXPECT_NEAR(central_95 / double(kDraws), 0.95, 0.038);
+  EXPECT_NEAR(central_50 / double(kDraws), 0.50, 0.087);
+}
+
+}  // namespace
+}  // namespace stochnav
