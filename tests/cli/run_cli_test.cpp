@@ -294,6 +294,29 @@ struct BadRunCase {
 };
 void PrintTo(const BadRunCase& c, std::ostream* os) { *os << c.name; }
 
+// A run into a folder that held an earlier run with truth: none of that run's files (its
+// errors.csv and errors.png, which a recording does not write) stays beside this run's.
+TEST_F(RunCli, ARunReplacesAnEarlierRunsFilesWhole) {
+  const fs::path out = dir_->path() / "out_reused";
+  fs::create_directories(out);
+  for (const char* file : {"errors.csv", "errors.png", "metrics.json", "covariance.csv"}) {
+    dir_->write(std::string("out_reused/") + file, "from an earlier run");
+  }
+  const std::string kept = dir_->write("out_reused/notes.txt", "the user's own file");
+  const std::string config = write_config("recording_reused.json", recording_config());
+  const auto result = run_cli("run '" + config + "' --out '" + out.string() + "' --data '" +
+                                  (dir_->path() / "recording").string() + "' --no-plot",
+                              dir_->path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  for (const char* file : {"errors.csv", "errors.png"}) {
+    EXPECT_FALSE(fs::exists(out / file)) << file << " of the earlier run stayed";
+  }
+  for (const char* file : {"metrics.json", "covariance.csv"}) {
+    EXPECT_NE(read(out / file), "from an earlier run") << file;
+  }
+  EXPECT_TRUE(fs::exists(kept)) << "a file no run writes was removed";
+}
+
 class BadRun : public RunCli, public ::testing::WithParamInterface<BadRunCase> {};
 
 TEST_P(BadRun, ExitCodeTwoOneLineNoOutput) {

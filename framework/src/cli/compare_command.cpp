@@ -17,6 +17,7 @@
 #include "stochnav/experiment/shard_files.hpp"
 #include "stochnav/experiment/shard_merge.hpp"
 #include "stochnav/experiment/shard_run.hpp"
+#include "stochnav/io/atomic_file.hpp"
 
 namespace stochnav::cli {
 namespace {
@@ -77,8 +78,10 @@ void run_unsharded(const CompareArguments& arguments, const ExperimentConfig& co
         arguments.out, sweep["levels"].size()));
     return;
   }
+  OutputFolder folder(arguments.out);  // one writer from the first run to the last file
   const ComparisonResult result = run_comparison(config, arguments.out, true);
   write_comparison(result, config, arguments.out);
+  folder.keep();
   write_standard_output(fmt::format(
       "{}\nwrote {}/results.json, table.md, metrics.png, errors_<variant>.png ({} s)\n",
       comparison_table(result, config), arguments.out, result.wall_seconds));

@@ -4,6 +4,11 @@
 
 #include <array>
 #include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/temporary_files.hpp"
@@ -85,16 +90,37 @@ void plot_metrics(const ComparisonResult& result, const std::filesystem::path& p
   render_gnuplot(script, path);
 }
 
+// An earlier comparison in the same folder: its results.json (the completion mark) goes
+// first, then the plots it made, so that the folder never shows old results beside new plots,
+// nor an old variant's plot beside new results.
+void remove_previous_comparison(const std::filesystem::path& out_dir) {
+  const std::filesystem::path results = out_dir / "results.json";
+  std::vector<std::string> variants;
+  try {
+    std::ifstream in(results);
+    if (in) {
+      const nlohmann::json previous = nlohmann::json::parse(in);
+      for (const auto& variant : previous.at("variants")) {
+        variants.push_back(variant.at("name").get<std::string>());
+      }
+    }
+  } catch (const std::exception&) {
+    // Not a comparison's results.json: remove it, keep every plot.
+  }
+  std::error_code ignored;
+  std::filesystem::remove(results, ignored);
+  std::filesystem::remove(out_dir / "metrics.png", ignored);
+  for (const std::string& name : variants) {
+    std::filesystem::remove(out_dir / fmt::format("errors_{}.png", name), ignored);
+  }
+}
+
 }  // namespace
 
 void write_comparison(const ComparisonResult& result, const ExperimentConfig& config,
                       const std::filesystem::path& out_dir) {
-  std::error_code error;
-  create_directories_before_cleanup(out_dir, error);
-  if (error) {
-    throw InputError(out_dir.string() + ": cannot create the output folder (" + error.message() +
-                     "); choose another --out");
-  }
+  OutputFolder folder(out_dir);  // one writer (nested in the caller's lock when it holds one)
+  remove_previous_comparison(out_dir);
   try {
     check_plot_request(out_dir / "metrics.png");
     plot_metrics(result, out_dir / "metrics.png");
@@ -110,7 +136,9 @@ void write_comparison(const ComparisonResult& result, const ExperimentConfig& co
     // gnuplot missing: the numbers below are complete without the plots.
   }
   write_file_atomically(out_dir / "table.md", comparison_table(result, config));
+  // Last: its presence says the folder holds one whole comparison.
   write_file_atomically(out_dir / "results.json", comparison_json(result).dump(2) + "\n");
+  folder.keep();
 }
 
 }  // namespace stochnav

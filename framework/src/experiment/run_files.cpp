@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cerrno>
 #include <cmath>
 
@@ -156,8 +157,25 @@ void RunFiles::write_errors(const ErrorSample& sample, double nees) {
   errors_->flush_if_full();
 }
 
+namespace {
+
+// An earlier run's files in the same folder: metrics.json (the completion mark) first, then
+// every file a run may write, so that none this run does not write (errors.csv of a run with
+// truth, survey.png) stays beside this run's.
+void remove_previous_run(const std::filesystem::path& out_dir) {
+  static constexpr std::array kRunFiles = {
+      "metrics.json", "nav.csv",    "biases.csv",        "innovations.csv",
+      "errors.csv",   "errors.png", "covariance.csv",    "survey.csv",
+      "survey.png",   "well_path.csv", "survey_errors.csv"};
+  std::error_code ignored;
+  for (const char* name : kRunFiles) std::filesystem::remove(out_dir / name, ignored);
+}
+
+}  // namespace
+
 void RunFiles::commit(const NavigationRunResult& result, bool plot, const SurveyRecorder& survey,
                       const SurveyTieOn& tie_on) {
+  remove_previous_run(out_dir_);
   const std::filesystem::path plot_path = out_dir_ / "errors.png";
   if (plot && result.has_truth && result.error_series.size() > 1) {
     try {

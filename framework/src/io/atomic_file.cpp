@@ -149,6 +149,12 @@ OutputFolder::OutputFolder(std::filesystem::path path) : path_(std::move(path)) 
     throw InputError(path_.string() + ": cannot create the output folder (" + reason +
                      "); choose a writable --out");
   }
+  try {
+    lock_.emplace(path_);
+  } catch (...) {
+    if (!created_.empty()) std::filesystem::remove_all(created_, error);
+    throw;
+  }
 }
 
 OutputFolder::~OutputFolder() {

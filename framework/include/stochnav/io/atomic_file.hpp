@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "stochnav/core/temporary_files.hpp"
+#include "stochnav/io/folder_lock.hpp"
 
 namespace stochnav {
 
@@ -73,10 +74,12 @@ class PendingFile final {
 /// InputError as write_file_atomically.
 void write_pending_file(const PendingFile& pending, std::string_view content);
 
-/// An output folder a failure does not leave behind. The constructor creates it (and missing
-/// parents); if it did not exist, the destructor removes it again, whole, unless keep() was
-/// called, and so does a fatal signal meanwhile. A folder that existed is left alone. Throws
-/// InputError naming the folder and the system's reason if it cannot be created.
+/// An output folder a failure does not leave behind, with one writer. The constructor creates
+/// it (and missing parents) and locks it (io/folder_lock.hpp: a second process writing into it
+/// is refused with InputError); if it did not exist, the destructor removes it again, whole,
+/// unless keep() was called, and so does a fatal signal meanwhile. A folder that existed is
+/// left alone. Throws InputError naming the folder and the system's reason if it cannot be
+/// created.
 class OutputFolder final {
  public:
   explicit OutputFolder(std::filesystem::path path);
@@ -92,6 +95,7 @@ class OutputFolder final {
   std::filesystem::path path_;
   std::filesystem::path created_;  // the outermost folder this object created; empty if none
   std::unique_ptr<TemporaryPath> registration_;
+  std::optional<FolderLock> lock_;
 };
 
 }  // namespace stochnav
