@@ -90,6 +90,25 @@ TEST(CompareFailure, ExistingOutputFolderStaysWithoutScenarios) {
   EXPECT_FALSE(fs::exists(out / "results.json"));
 }
 
+// A comparison into a folder that held an earlier one: the earlier results and the plot of a
+// variant this one does not have are gone; the user's own files stay.
+TEST(CompareFolder, AnEarlierComparisonIsReplacedWhole) {
+  const TempDir dir;
+  const fs::path file = write(dir, experiment(1), still_table(20));
+  const fs::path out = dir.path() / "out";
+  fs::create_directories(out);
+  std::ofstream(out / "results.json") << R"({"variants": [{"name": "retired"}]})";
+  std::ofstream(out / "errors_retired.png") << "an earlier plot";
+  std::ofstream(out / "notes.txt") << "mine";
+  const auto result = run_cli(compare(file, out), dir.path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_FALSE(fs::exists(out / "errors_retired.png"));
+  EXPECT_TRUE(fs::exists(out / "notes.txt"));
+  std::ifstream in(out / "results.json");
+  const nlohmann::json results = nlohmann::json::parse(in);
+  EXPECT_EQ(results["variants"][0]["name"], "classic");
+}
+
 struct RefusedCase {
   std::string name;
   nlohmann::json seeds;  // the experiment's data/seeds
