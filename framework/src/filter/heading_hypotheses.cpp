@@ -13,8 +13,10 @@ namespace {
 
 namespace core = plugin::core_state;
 constexpr int kHeading = core::kAttitude + 2;  // phi_U
-// A bank is formed when the start's heading sigma exceeds this many hypothesis sigmas.
-constexpr double kSplitAbove = 1.5;
+// A bank is formed when the start's heading sigma exceeds this many hypothesis sigmas (10 deg
+// at the default 4): below it one first-order filter with the second-order attitude term is
+// consistent (docs/drilling-envelope.md, section 4: aligned starts of 5.7-7.9 deg at 60 N).
+constexpr double kSplitAbove = 2.5;
 constexpr double kSpreadSigmas = 3.0;  // the grid covers +-3 start sigmas
 constexpr int kMaxHalfWidth = 7;       // at most 15 hypotheses
 constexpr double kDropBelow = 1e-5;    // of the total weight

@@ -99,10 +99,10 @@ struct FilterOptions {
 
   /// Heading 1-sigma (rad) of each hypothesis of the bank of filters over the heading
   /// (filter/heading_hypotheses.hpp) that a run forms when its start's heading sigma exceeds
-  /// 1.5 times this; 0: one filter whatever the start. A linearisation error of a few degrees
-  /// is what the first-order model with its second-order term absorbs (section 4 of
-  /// docs/drilling-envelope.md: consistent from starts uncertain by up to 6 deg); 4 deg makes 11
-  /// hypotheses of an 80-N alignment's 13 deg.
+  /// 2.5 times this (10 deg); 0: one filter whatever the start. After a static alignment the
+  /// hypotheses cover the whole circle 2 sigmas apart (45 at 4 deg, fewer once the prior's
+  /// unlikely headings are dropped). 8 deg was tried and is worse (docs/drilling-envelope.md,
+  /// section 4).
   double heading_hypothesis_sigma_rad = 4.0 * std::numbers::pi / 180.0;
 
   /// Covariance products by blocks (filter/error_state_filter.hpp, BlockTransition and

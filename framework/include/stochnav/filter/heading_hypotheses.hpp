@@ -1,20 +1,23 @@
 #pragma once
 // A bank of navigation filters over the heading (a Gaussian sum), for a start that leaves the
-// heading uncertain by many degrees: a static alignment at high latitude, where the horizontal
-// Earth rate is a fraction of the equator's (80 N: a sixth; an alignment of 10 min leaves
-// 11-13 deg). One extended Kalman filter linearised about a heading that far off reads its own
-// linearisation error as heading information: it ended 33 deg off with a sigma of 4.8 deg on a
-// sliding east-west well at 74 N, and 3.3 deg off with 0.6 deg at 80 N (docs/drilling-envelope.md,
-// sections 3 and 7). Each hypothesis here starts with a heading sigma small enough for the
-// first-order model (plus the second-order term, filter/second_order_attitude.hpp) to hold.
+// heading uncertain by more than 10 deg: a static alignment at high latitude, where the
+// horizontal Earth rate is a fraction of the equator's (80 N: a sixth) and a FOG's turn-on bias
+// may be as large. The gyrocompass's heading is then far from Gaussian (seed 1 at 80 N: 120 deg
+// off while the linearised fine alignment said 18 +- 18), and one extended Kalman filter
+// linearised about it converged 3 deg off with a sigma of 0.6 (docs/drilling-envelope.md,
+// section 4). Each hypothesis starts with a heading sigma small enough for the first-order model
+// (plus the second-order term, filter/second_order_attitude.hpp) to hold.
 //
-// The split. With P0 the start's core covariance and phi_U its heading error (core_state
-// kAttitude + 2, variance s0^2), hypothesis i states phi_U = d_i on a grid d_i = i D, D = 2 s_c,
-// |d_i| <= 3 s0 (s_c: FilterOptions::heading_hypothesis_sigma_rad). It starts from the
-// estimate conditioned on it: corrected by c_i = P0 e_U d_i / s0^2 (so the biases known
-// together with the heading move with it), with P_i = P0 - (1 - s_c^2 / s0^2) P0 e_U e_U^T P0 /
-// s0^2 (heading sigma s_c), and prior weight exp(-d_i^2 / (2 (s0^2 - s_c^2))): the mixture is
-// N(0, P0) to within 1.5 % in density (a Gaussian sum at a spacing of two sigmas).
+// The split after a static alignment (FilterOptions::alignment_gyro_bias_prior set): headings
+// over the whole circle, 2 s_c apart (s_c: FilterOptions::heading_hypothesis_sigma_rad). With
+// m the static span's mean rate, hypothesis i turns the aligned attitude by d_i about the
+// vertical and carries the gyro bias the span then implies, b_i = m - C_bn(d_i) w_ie, exactly;
+// its prior weight is the bias prior's density at b_i (the gyrocompass's posterior); its
+// covariance is the start's conditioned on the heading, plus s_c^2 along the direction in which
+// the heading moves b_i. Without an alignment: the start's Gaussian split along its heading on a
+// grid 2 s_c apart over +-3 start sigmas s0, each hypothesis conditioned on its heading linearly
+// (corrected by P0 e_U d_i / s0^2, covariance P0 - (1 - s_c^2 / s0^2) P0 e_U e_U^T P0 / s0^2,
+// weight exp(-d_i^2 / (2 (s0^2 - s_c^2))): N(0, P0) to within 1.5 % in density).
 //
 // The weights. At every aid epoch each hypothesis' weight is multiplied by the Gaussian
 // likelihood of its innovations, N(z; 0, S) (gated out or not; an aid counts only at epochs
@@ -25,7 +28,9 @@
 // The outputs are the mixture's: the mean (about the most probable hypothesis, as an error
 // state) and the covariance sum_i w_i (P_i + (x_i - x)(x_i - x)^T) of the 15 core states.
 // Innovations and health are the most probable hypothesis'. With one hypothesis (a start
-// whose heading sigma is below 1.5 s_c, or s_c = 0) every output is that filter's own.
+// whose heading sigma is below 2.5 s_c, or s_c = 0) every output is that filter's own. Each
+// hypothesis is a whole navigator: a bank that cannot single out a heading (sliding east-west
+// at 74 N: 21 hypotheses after 8 h) costs that many filters.
 
 #include <Eigen/Core>
 #include <functional>
