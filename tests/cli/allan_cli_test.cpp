@@ -5,8 +5,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "run_cli.hpp"
 #include "temp_dir.hpp"
@@ -32,8 +34,19 @@ std::vector<Stable32Row> read_stable32_table(const std::string& path) {
     std::istringstream cells(line);
     Stable32Row row{};
     double tau = 0.0;
-    cells >> row.m >> tau >> row.n >> row.alpha >> row.lower >> row.deviation >> row.upper;
-    if (cells) rows.push_back(row);
+    std::vector<double> rest;
+    cells >> row.m >> tau >> row.n;
+    for (double value = 0.0; cells >> value;) rest.push_back(value);
+    if (rest.size() == 1) {  // MTIE, TIE rms: AF, Tau, #, value
+      row.deviation = rest[0];
+      rows.push_back(row);
+    } else if (rest.size() == 4) {
+      row.alpha = static_cast<int>(rest[0]);
+      row.lower = rest[1];
+      row.deviation = rest[2];
+      row.upper = rest[3];
+      rows.push_back(row);
+    }
   }
   return rows;
 }
@@ -50,8 +63,10 @@ TEST(AllanCli, JsonOnPhaseDatMatchesStable32OctaveTable) {
   std::vector<std::string> keys;
   for (const auto& item : json.items()) keys.push_back(item.key());
   std::sort(keys.begin(), keys.end());
-  EXPECT_EQ(keys, (std::vector<std::string>{"adev", "adev_hi", "adev_lo", "alpha", "edf", "n",
-                                            "tau"}));
+  // The contract's keys, plus the deviation's name and its columns under that name.
+  EXPECT_EQ(keys, (std::vector<std::string>{"adev", "adev_hi", "adev_lo", "alpha", "deviation",
+                                            "edf", "n", "oadev", "oadev_hi", "oadev_lo", "tau"}));
+  EXPECT_EQ(json["oadev"], json["adev"]);
   const auto reference = read_stable32_table(table);
   ASSERT_EQ(json["tau"].size(), reference.size());
   for (std::size_t i = 0; i < reference.size(); ++i) {
@@ -86,6 +101,55 @@ TEST(AllanCli, TotdevOnPhaseDatMatchesStable32OctaveTable) {
     EXPECT_NEAR(json["adev_lo"][i].get<double>(), row.lower, 1e-3 * row.lower);
     EXPECT_NEAR(json["adev_hi"][i].get<double>(), row.upper, 1e-3 * row.upper);
   }
+}
+
+// The new deviations through the CLI: MTIE (no interval: alpha null) and HTOTDEV with its own
+// JSON key beside "adev".
+TEST(AllanCli, MtieAndHtotdevOnPhaseDatMatchStable32) {
+  STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
+  STOCHNAV_REQUIRE_SHARED_DATA(mtie_table, "allan/phasedat/phase_dat_mtie.txt");
+  STOCHNAV_REQUIRE_SHARED_DATA(htot_table, "allan/phasedat/phase_dat_htotdev_octave.txt");
+  TempDir dir;
+  const auto mtie = run_cli("allan --input '" + phase_dat +
+                                "' --data phase --rate 1 --deviation mtie --format json",
+                            dir.path().string());
+  ASSERT_EQ(mtie.exit_code, 0) << mtie.err;
+  const auto mtie_json = nlohmann::json::parse(mtie.out);
+  EXPECT_EQ(mtie_json["deviation"], "mtie");
+  const auto mtie_rows = read_stable32_table(mtie_table);
+  ASSERT_EQ(mtie_json["mtie"].size(), mtie_rows.size());
+  for (std::size_t i = 0; i < mtie_rows.size(); ++i) {
+    EXPECT_TRUE(mtie_json["alpha"][i].is_null());
+    EXPECT_NEAR(mtie_json["mtie"][i].get<double>(), mtie_rows[i].deviation,
+                1e-4 * mtie_rows[i].deviation);
+  }
+  const auto htot = run_cli("allan --input '" + phase_dat +
+                                "' --data phase --rate 1 --deviation htotdev --format json",
+                            dir.path().string());
+  ASSERT_EQ(htot.exit_code, 0) << htot.err;
+  const auto htot_json = nlohmann::json::parse(htot.out);
+  const auto htot_rows = read_stable32_table(htot_table);
+  ASSERT_GE(htot_json["htotdev"].size(), htot_rows.size());
+  for (std::size_t i = 0; i < htot_rows.size(); ++i) {
+    EXPECT_EQ(htot_json["n"][i].get<std::size_t>(), htot_rows[i].n);
+    EXPECT_NEAR(htot_json["htotdev"][i].get<double>(), htot_rows[i].deviation,
+                1e-4 * htot_rows[i].deviation);
+  }
+}
+
+// A Theo1 factor the record cannot hold is bad input (exit 2, one line), like any other.
+TEST(AllanCli, DeviationOnTooShortRecordExitsTwo) {
+  TempDir dir;
+  const auto path = dir.path() / "short.txt";
+  {
+    std::ofstream out(path);
+    for (int i = 0; i < 8; ++i) out << i * 0.5 << "\n";
+  }
+  const auto result = run_cli("allan --input '" + path.string() +
+                                  "' --data phase --rate 1 --deviation theo1",
+                              dir.path().string());
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
 }
 
 TEST(AllanCli, RateAndPhaseInputsAgree) {

@@ -1,5 +1,6 @@
 #include "stable32_reference.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -25,8 +26,19 @@ std::vector<Stable32Row> read_stable32_table(const std::string& relative_path) {
     if (line.empty() || line.front() == '#') continue;
     std::istringstream cells(line);
     Stable32Row row;
-    if (cells >> row.m >> row.tau_text >> row.terms >> row.alpha >> row.lower >> row.deviation >>
-        row.upper) {
+    double terms = 0.0;  // Theo1 tables print it as 4.9550e+03
+    if (!(cells >> row.m >> row.tau_text >> terms)) continue;
+    row.terms = static_cast<std::size_t>(std::llround(terms));
+    std::vector<double> rest;
+    for (double value = 0.0; cells >> value;) rest.push_back(value);
+    if (rest.size() == 1) {  // MTIE and TIE rms tables: AF, Tau, #, value
+      row.deviation = rest[0];
+      rows.push_back(row);
+    } else if (rest.size() == 4) {
+      row.alpha = static_cast<int>(rest[0]);
+      row.lower = rest[1];
+      row.deviation = rest[2];
+      row.upper = rest[3];
       rows.push_back(row);
     }
   }
