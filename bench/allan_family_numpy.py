@@ -85,7 +85,9 @@ ESTIMATORS = {"mtotdev": mtotdev, "ttotdev": ttotdev, "htotdev": htotdev, "theo1
 
 def octave_factors(name, n):
     if name == "theo1":
-        return [m for m in (2 ** p for p in range(1, 64)) if 10 <= m <= n - 1] or [10]
+        return [m for m in (2 ** p for p in range(1, 64)) if 10 <= m <= n - 3] or [10]
+    if name == "mtie":
+        return [w - 1 for w in (2 ** p for p in range(1, 64)) if w - 1 <= n - 1]
     limit = {"mtie": n - 1, "tierms": (n - 2) // 4}.get(name, (n - 1) // 3)
     factors = []
     m = 1

@@ -67,14 +67,17 @@ double equivalent_degrees_of_freedom(Deviation kind, int alpha, std::size_t m, s
 }
 
 /// Theo1, MTIE, TIE rms: no Stable32 identification per tau. Theo1 takes the nominal noise
-/// type of its ThêoBR factor for every row, the time-interval errors none (0).
+/// type of its ThêoBR factor for every row; uncorrected Theo1 and the time-interval errors
+/// none (0).
 std::vector<DeviationPoint> points_without_identification(Deviation kind,
                                                           std::span<const double> phase,
                                                           double tau0_s,
                                                           std::span<const std::size_t> m_values,
                                                           double confidence) {
   const std::vector<double> values = deviation_values(kind, phase, tau0_s, m_values);
-  const int alpha = is_theo1(kind) ? theo1_bias_noise_type(theo1_bias_factor(phase)) : 0;
+  // The factor costs O(N^3): only the corrected Theo1 pays for it.
+  const int alpha =
+      kind == Deviation::kTheo1 ? theo1_bias_noise_type(theo1_bias_factor(phase)) : 0;
   std::vector<DeviationPoint> points;
   for (std::size_t k = 0; k < m_values.size(); ++k) {
     DeviationPoint point;
