@@ -51,7 +51,8 @@ def main():
         path = os.path.join(folder, "phase.txt")
         np.savetxt(path, phase, fmt="%.17g")
         print(f"{args.samples} phase points, octave factors, best of {args.repeats} runs")
-        print(f"{'deviation':<10} {'numpy s':>9} {'stochnav s':>11} {'ratio':>8} {'max rel diff':>13}")
+        print(f"{'deviation':<14} {'numpy s':>9} {'stochnav s':>11} {'ratio':>8} "
+              f"{'max rel diff':>13}")
         for numpy_name, name in DEVIATIONS.items():
             numpy_s, expected = best_of(["/usr/bin/python3", reference, path, numpy_name],
                                         args.repeats)
@@ -64,7 +65,7 @@ def main():
                            for tau, dev in zip(ours["tau"], ours[name])
                            if round(tau / tau_scale) in by_m]
             worst = max(differences) if differences else float("nan")
-            print(f"{name:<10} {numpy_s:>9.3f} {ours_s:>11.3f} {numpy_s / ours_s:>7.0f}x "
+            print(f"{name:<14} {numpy_s:>9.3f} {ours_s:>11.3f} {numpy_s / ours_s:>7.0f}x "
                   f"{worst:>13.1e}")
     sys.stdout.flush()
 

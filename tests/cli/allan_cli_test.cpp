@@ -7,49 +7,18 @@
 
 #include <algorithm>
 #include <fstream>
-#include <sstream>
 #include <vector>
 
 #include "run_cli.hpp"
+#include "stable32_table.hpp"
 #include "temp_dir.hpp"
 
 namespace stochnav {
 namespace {
 
+using testing::read_stable32_table_file;
 using testing::run_cli;
 using testing::TempDir;
-
-struct Stable32Row {
-  std::size_t m, n;
-  int alpha;
-  double lower, deviation, upper;
-};
-
-std::vector<Stable32Row> read_stable32_table(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<Stable32Row> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream cells(line);
-    Stable32Row row{};
-    double tau = 0.0;
-    std::vector<double> rest;
-    cells >> row.m >> tau >> row.n;
-    for (double value = 0.0; cells >> value;) rest.push_back(value);
-    if (rest.size() == 1) {  // MTIE, TIE rms: AF, Tau, #, value
-      row.deviation = rest[0];
-      rows.push_back(row);
-    } else if (rest.size() == 4) {
-      row.alpha = static_cast<int>(rest[0]);
-      row.lower = rest[1];
-      row.deviation = rest[2];
-      row.upper = rest[3];
-      rows.push_back(row);
-    }
-  }
-  return rows;
-}
 
 TEST(AllanCli, JsonOnPhaseDatMatchesStable32OctaveTable) {
   STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
@@ -67,12 +36,12 @@ TEST(AllanCli, JsonOnPhaseDatMatchesStable32OctaveTable) {
   EXPECT_EQ(keys, (std::vector<std::string>{"adev", "adev_hi", "adev_lo", "alpha", "deviation",
                                             "edf", "n", "oadev", "oadev_hi", "oadev_lo", "tau"}));
   EXPECT_EQ(json["oadev"], json["adev"]);
-  const auto reference = read_stable32_table(table);
+  const auto reference = read_stable32_table_file(table);
   ASSERT_EQ(json["tau"].size(), reference.size());
   for (std::size_t i = 0; i < reference.size(); ++i) {
     const auto& row = reference[i];
     EXPECT_EQ(json["tau"][i].get<double>(), static_cast<double>(row.m));
-    EXPECT_EQ(json["n"][i].get<std::size_t>(), row.n);
+    EXPECT_EQ(json["n"][i].get<std::size_t>(), row.terms);
     EXPECT_NEAR(json["adev"][i].get<double>(), row.deviation, 1e-4 * row.deviation);
     EXPECT_NEAR(json["adev_lo"][i].get<double>(), row.lower, 1e-2 * row.lower);
     EXPECT_NEAR(json["adev_hi"][i].get<double>(), row.upper, 1e-2 * row.upper);
@@ -90,12 +59,12 @@ TEST(AllanCli, TotdevOnPhaseDatMatchesStable32OctaveTable) {
                               dir.path().string());
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const auto json = nlohmann::json::parse(result.out);
-  const auto reference = read_stable32_table(table);
+  const auto reference = read_stable32_table_file(table);
   ASSERT_EQ(json["tau"].size(), reference.size());
   for (std::size_t i = 0; i < reference.size(); ++i) {
     const auto& row = reference[i];
     EXPECT_EQ(json["tau"][i].get<double>(), static_cast<double>(row.m));
-    EXPECT_EQ(json["n"][i].get<std::size_t>(), row.n);
+    EXPECT_EQ(json["n"][i].get<std::size_t>(), row.terms);
     EXPECT_EQ(json["alpha"][i].get<int>(), row.alpha);
     EXPECT_NEAR(json["adev"][i].get<double>(), row.deviation, 1e-4 * row.deviation);
     EXPECT_NEAR(json["adev_lo"][i].get<double>(), row.lower, 1e-3 * row.lower);
@@ -116,7 +85,7 @@ TEST(AllanCli, MtieAndHtotdevOnPhaseDatMatchStable32) {
   ASSERT_EQ(mtie.exit_code, 0) << mtie.err;
   const auto mtie_json = nlohmann::json::parse(mtie.out);
   EXPECT_EQ(mtie_json["deviation"], "mtie");
-  const auto mtie_rows = read_stable32_table(mtie_table);
+  const auto mtie_rows = read_stable32_table_file(mtie_table);
   ASSERT_EQ(mtie_json["mtie"].size(), mtie_rows.size());
   for (std::size_t i = 0; i < mtie_rows.size(); ++i) {
     EXPECT_TRUE(mtie_json["alpha"][i].is_null());
@@ -128,10 +97,10 @@ TEST(AllanCli, MtieAndHtotdevOnPhaseDatMatchStable32) {
                             dir.path().string());
   ASSERT_EQ(htot.exit_code, 0) << htot.err;
   const auto htot_json = nlohmann::json::parse(htot.out);
-  const auto htot_rows = read_stable32_table(htot_table);
+  const auto htot_rows = read_stable32_table_file(htot_table);
   ASSERT_GE(htot_json["htotdev"].size(), htot_rows.size());
   for (std::size_t i = 0; i < htot_rows.size(); ++i) {
-    EXPECT_EQ(htot_json["n"][i].get<std::size_t>(), htot_rows[i].n);
+    EXPECT_EQ(htot_json["n"][i].get<std::size_t>(), htot_rows[i].terms);
     EXPECT_NEAR(htot_json["htotdev"][i].get<double>(), htot_rows[i].deviation,
                 1e-4 * htot_rows[i].deviation);
   }
@@ -158,8 +127,8 @@ TEST(AllanCli, RateAndPhaseInputsAgree) {
   TempDir dir;
   const auto from_rate =
       run_cli("allan --input '" + freq + "' --rate 1 --format json", dir.path().string());
-  const auto from_phase = run_cli("allan --input '" + phase_dat + "' --data phase --rate 1 --format json",
-                                  dir.path().string());
+  const auto from_phase = run_cli(
+      "allan --input '" + phase_dat + "' --data phase --rate 1 --format json", dir.path().string());
   ASSERT_EQ(from_rate.exit_code, 0) << from_rate.err;
   ASSERT_EQ(from_phase.exit_code, 0) << from_phase.err;
   const auto a = nlohmann::json::parse(from_rate.out);
@@ -192,7 +161,9 @@ TEST(AllanCli, PlotsARecordWhoseNameHasAQuote) {
   TempDir dir;
   std::filesystem::create_directories(dir.path() / "it's");
   std::string csv = "t,g\n";
-  for (int i = 0; i < 4000; ++i) csv += std::to_string(0.01 * i) + "," + std::to_string(i % 7) + "\n";
+  for (int i = 0; i < 4000; ++i) {
+    csv += std::to_string(0.01 * i) + "," + std::to_string(i % 7) + "\n";
+  }
   const std::string input = dir.write("it's/record.csv", csv);
   for (const std::string command : {"allan", "davar --window 1000 --step 500"}) {
     const std::string plot = (dir.path() / "it's" / (command.substr(0, 5) + ".png")).string();

@@ -1,8 +1,10 @@
 // The rest of the Allan family (MTOTDEV, TTOTDEV, HTOTDEV, Theo1, MTIE, TIE rms) against
-// Stable32's tables (../shared/data/allan, SOURCES.md): deviations to 1e-4, the `#` column
-// and, where Stable32 identified one, the noise type. Their bounds are not compared: the EDF
-// rules Stable32 uses for these estimators are not published (see edf.hpp); the worst bound
-// disagreement is printed.
+// Stable32's tables (../shared/data/allan, SOURCES.md): deviations to 1e-4 (Stable32 prints 5
+// significant digits), the `#` column and, where Stable32 identified one, the noise type. Each
+// table's worst relative error is printed and asserted. Bounds: Stable32 prints them only for
+// MTOTDEV, TTOTDEV and HTOTDEV, whose EDF rules it does not publish and ours (SP 1065's tables,
+// edf.hpp) knowingly differ from: their worst disagreement is printed, not asserted
+// (docs/allan.md lists it). Theo1's tables have no bounds, MTIE and TIE rms none at all.
 
 #include <gtest/gtest.h>
 
@@ -22,14 +24,28 @@ namespace {
 
 using stats_test::ReferenceRecord;
 
+/// Whether a table's confidence bounds are compared.
+enum class Bounds {
+  kAssert,  ///< our EDF is Stable32's rule: bounds to 1e-3
+  kReport,  ///< Stable32's rule is not ours (or unknown): the worst disagreement is printed
+};
+
 struct FamilyCase {
   const char* table;
   ReferenceRecord record;
   Deviation kind;
-  std::optional<TauSpacing> spacing;  // set: the table's factors are exactly our set
+  std::optional<TauSpacing> spacing;  // set: the table's factors are our set (or its start)
   bool compare_alpha = true;          // false where Stable32 was told the noise type
-  bool compare_terms = true;
+  Bounds bounds = Bounds::kReport;
+  // allantools' copies of some octave tables keep only the rows up to m = 16 or 32 (the rest
+  // are commented out there): the table is the start of our set.
+  bool table_is_prefix = false;
 };
+
+/// Stable32 prints 5 significant digits: half a unit of the last is at most 5e-5 relative.
+constexpr double kDeviationTolerance = 1e-4;
+/// allantools' tolerance for Stable32's bounds where the noise type and EDF rule agree.
+constexpr double kBoundTolerance = 1e-3;
 
 class AllanFamilyTable : public ::testing::TestWithParam<FamilyCase> {};
 
@@ -42,35 +58,54 @@ TEST_P(AllanFamilyTable, MatchesStable32) {
   std::vector<std::size_t> table_m;
   for (const auto& row : rows) table_m.push_back(row.m);
   if (c.spacing) {
-    EXPECT_EQ(averaging_factors(c.kind, *c.spacing, data.phase.size(), data.tau0_s), table_m);
+    auto our_m = averaging_factors(c.kind, *c.spacing, data.phase.size(), data.tau0_s);
+    if (c.table_is_prefix && our_m.size() > table_m.size()) our_m.resize(table_m.size());
+    EXPECT_EQ(our_m, table_m);
   }
   const auto points = compute_deviation(c.kind, data.phase, data.tau0_s, table_m);
   ASSERT_EQ(points.size(), rows.size());
   double worst_deviation = 0.0;
+  std::size_t worst_m = 0;
   double worst_bound = 0.0;
+  std::size_t bound_rows = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& row = rows[i];
     const auto& point = points[i];
     SCOPED_TRACE(std::string(c.table) + " m = " + std::to_string(row.m));
     const double error = std::abs(point.deviation / row.deviation - 1.0);
-    worst_deviation = std::max(worst_deviation, error);
-    EXPECT_LT(error, 1e-4);
+    if (!(error <= worst_deviation)) {  // NaN counts as worst
+      worst_deviation = error;
+      worst_m = row.m;
+    }
     char tau_text[32];
     std::snprintf(tau_text, sizeof tau_text, "%.4e", point.tau_s);
     EXPECT_EQ(std::string(tau_text), row.tau_text);
-    if (c.compare_terms) {
-      // Theo1 prints `#` with 5 significant digits.
-      EXPECT_NEAR(static_cast<double>(point.terms), static_cast<double>(row.terms),
-                  5e-5 * static_cast<double>(row.terms));
+    // Theo1 prints `#` with 5 significant digits.
+    EXPECT_NEAR(static_cast<double>(point.terms), static_cast<double>(row.terms),
+                5e-5 * static_cast<double>(row.terms));
+    if (c.compare_alpha && has_confidence_interval(c.kind)) {
+      EXPECT_EQ(point.alpha, row.alpha);
     }
-    if (c.compare_alpha && has_confidence_interval(c.kind)) EXPECT_EQ(point.alpha, row.alpha);
     if (row.lower > 0.0 && point.alpha == row.alpha) {
-      worst_bound = std::max({worst_bound, std::abs(point.lower / row.lower - 1.0),
-                              std::abs(point.upper / row.upper - 1.0)});
+      ++bound_rows;
+      const double lower_error = std::abs(point.lower / row.lower - 1.0);
+      const double upper_error = std::abs(point.upper / row.upper - 1.0);
+      worst_bound = std::max({worst_bound, lower_error, upper_error});
+      if (c.bounds == Bounds::kAssert) {
+        EXPECT_LT(lower_error, kBoundTolerance);
+        EXPECT_LT(upper_error, kBoundTolerance);
+      }
     }
   }
-  std::printf("[ worst    ] %s: deviation %.2e, bounds %.2e\n", c.table, worst_deviation,
-              worst_bound);
+  std::printf("[ worst    ] %-14s %s: deviation %.2e (%zu rows, limit %.0e)",
+              std::string(deviation_name(c.kind)).c_str(), c.table, worst_deviation, rows.size(),
+              kDeviationTolerance);
+  if (bound_rows > 0) {
+    std::printf(", bounds %.2e (%zu rows, %s)", worst_bound, bound_rows,
+                c.bounds == Bounds::kAssert ? "limit 1e-3" : "not asserted");
+  }
+  std::printf("\n");
+  EXPECT_LT(worst_deviation, kDeviationTolerance) << c.table << " at m = " << worst_m;
 }
 
 std::string case_name(const ::testing::TestParamInfo<FamilyCase>& info) {
@@ -89,14 +124,24 @@ constexpr auto kAll = TauSpacing::kAll;
 INSTANTIATE_TEST_SUITE_P(
     PhaseDat, AllanFamilyTable,
     ::testing::Values(
-        FamilyCase{"phasedat/phase_dat_mtotdev_octave.txt", kPhaseDat, Deviation::kMtotdev,
-                   kOctave},
+        FamilyCase{.table = "phasedat/phase_dat_mtotdev_octave.txt",
+                   .record = kPhaseDat,
+                   .kind = Deviation::kMtotdev,
+                   .spacing = kOctave,
+                   .table_is_prefix = true},
         FamilyCase{"phasedat/phase_dat_mtotdev_decade.txt", kPhaseDat, Deviation::kMtotdev,
                    kDecade},
-        FamilyCase{"phasedat/phase_dat_mtotdev_octave_alpha0.txt", kPhaseDat,
-                   Deviation::kMtotdev, kOctave, false},
-        FamilyCase{"phasedat/phase_dat_ttotdev_octave.txt", kPhaseDat, Deviation::kTtotdev,
-                   kOctave},
+        FamilyCase{.table = "phasedat/phase_dat_mtotdev_octave_alpha0.txt",
+                   .record = kPhaseDat,
+                   .kind = Deviation::kMtotdev,
+                   .spacing = kOctave,
+                   .compare_alpha = false,
+                   .table_is_prefix = true},
+        FamilyCase{.table = "phasedat/phase_dat_ttotdev_octave.txt",
+                   .record = kPhaseDat,
+                   .kind = Deviation::kTtotdev,
+                   .spacing = kOctave,
+                   .table_is_prefix = true},
         FamilyCase{"phasedat/phase_dat_ttotdev_decade.txt", kPhaseDat, Deviation::kTtotdev,
                    kDecade},
         FamilyCase{"phasedat/phase_dat_htotdev_octave.txt", kPhaseDat, Deviation::kHtotdev,
@@ -107,8 +152,8 @@ INSTANTIATE_TEST_SUITE_P(
         FamilyCase{"phasedat/phase_dat_theo1.txt", kPhaseDat, Deviation::kTheo1, std::nullopt},
         FamilyCase{"phasedat/phase_dat_theo1_alpha0.txt", kPhaseDat, Deviation::kTheo1Nobias,
                    std::nullopt, false},
-        FamilyCase{"phasedat/phase_dat_theo1_alpha0_decade.txt", kPhaseDat,
-                   Deviation::kTheo1Nobias, std::nullopt, false},
+        FamilyCase{"phasedat/phase_dat_theo1_alpha0_decade.txt", kPhaseDat, Deviation::kTheo1Nobias,
+                   std::nullopt, false},
         FamilyCase{"phasedat/phase_dat_mtie.txt", kPhaseDat, Deviation::kMtie, kOctave},
         FamilyCase{"phasedat/phase_dat_tierms.txt", kPhaseDat, Deviation::kTierms, kAll}),
     case_name);
@@ -145,12 +190,27 @@ TEST(AllanFamilyNbs14, MatchesPublishedValues) {
       {Deviation::kTheo1Nobias, {10, 100, 1000}, {1.0757e-01, 3.1789e-02, 5.0524e-03}},
   };
   for (const auto& e : expected) {
-    const auto values = deviation_values(e.kind, data.phase, data.tau0_s, e.m);
+    auto values = deviation_values(e.kind, data.phase, data.tau0_s, e.m);
+    if (e.kind == Deviation::kHtotdevNobias) {
+      // SP 1065 prints HTOTDEV with the bias correction of the record's known noise type,
+      // white FM (a = -0.005) at every m > 1; stable32 corrects with the type it identifies
+      // per tau (flicker PM, no correction, at m = 100 here), so the raw estimator is compared.
+      for (std::size_t k = 0; k < e.m.size(); ++k) {
+        if (e.m[k] > 1) values[k] /= std::sqrt(1.0 - 0.005);
+      }
+    }
+    double worst = 0.0;
     for (std::size_t k = 0; k < e.m.size(); ++k) {
       SCOPED_TRACE(std::string(deviation_name(e.kind)) + " m = " + std::to_string(e.m[k]));
+      const double error = std::abs(values[k] / e.deviation[k] - 1.0);
+      worst = std::max(worst, error);
       // The Stable32 values have 5 significant digits: 1e-4 relative.
-      EXPECT_NEAR(values[k] / e.deviation[k], 1.0, 1e-4);
+      EXPECT_LT(error, kDeviationTolerance);
     }
+    std::printf(
+        "[ worst    ] %-14s NBS14 1000 points: deviation %.2e (%zu values, "
+        "limit %.0e)\n",
+        std::string(deviation_name(e.kind)).c_str(), worst, e.m.size(), kDeviationTolerance);
   }
 }
 
@@ -166,6 +226,11 @@ TEST(AllanFamilyProperties, CorrectionsAndTausAreTheDocumentedOnes) {
     // ThêoBR factor of PHASE.DAT, 0.6028 (Stable32's Theo1 table over its alpha-0 table).
     const double ratio = corrected[k].deviation / raw[k].deviation;
     EXPECT_NEAR(ratio * ratio, 0.60279, 1e-4);
+  }
+  // compute_deviation applies the factor itself: the same numbers as deviation_values.
+  const auto values = deviation_values(Deviation::kTheo1, data.phase, 1.0, m);
+  for (std::size_t k = 0; k < m.size(); ++k) {
+    EXPECT_NEAR(corrected[k].deviation / values[k], 1.0, 1e-12);
   }
   const std::vector<std::size_t> two = {2};
   const auto htot = compute_deviation(Deviation::kHtotdev, data.phase, 1.0, two);

@@ -1,10 +1,7 @@
 #include "stable32_reference.hpp"
 
-#include <cmath>
-#include <fstream>
 #include <map>
 #include <mutex>
-#include <sstream>
 #include <stdexcept>
 
 #include "stochnav/io/record.hpp"
@@ -17,32 +14,7 @@ std::filesystem::path allan_data_dir() {
 }
 
 std::vector<Stable32Row> read_stable32_table(const std::string& relative_path) {
-  const auto path = allan_data_dir() / relative_path;
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  std::vector<Stable32Row> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line.front() == '#') continue;
-    std::istringstream cells(line);
-    Stable32Row row;
-    double terms = 0.0;  // Theo1 tables print it as 4.9550e+03
-    if (!(cells >> row.m >> row.tau_text >> terms)) continue;
-    row.terms = static_cast<std::size_t>(std::llround(terms));
-    std::vector<double> rest;
-    for (double value = 0.0; cells >> value;) rest.push_back(value);
-    if (rest.size() == 1) {  // MTIE and TIE rms tables: AF, Tau, #, value
-      row.deviation = rest[0];
-      rows.push_back(row);
-    } else if (rest.size() == 4) {
-      row.alpha = static_cast<int>(rest[0]);
-      row.lower = rest[1];
-      row.deviation = rest[2];
-      row.upper = rest[3];
-      rows.push_back(row);
-    }
-  }
-  return rows;
+  return testing::read_stable32_table_file(allan_data_dir() / relative_path);
 }
 
 namespace {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "stable32_table.hpp"
+
 namespace stochnav::stats_test {
 
 /// STOCHNAV_SHARED_DATA_DIR/allan.
@@ -24,16 +26,7 @@ std::filesystem::path allan_data_dir();
     }                                                                                \
   } while (false)
 
-/// One data row of a Stable32 result table.
-struct Stable32Row {
-  std::size_t m = 0;      ///< AF column
-  std::string tau_text;   ///< Tau column as printed (5 significant digits)
-  std::size_t terms = 0;  ///< # column
-  int alpha = 0;          ///< Alpha column
-  double lower = 0.0;     ///< Min Sigma (0 when not computed)
-  double deviation = 0.0;
-  double upper = 0.0;  ///< Max Sigma (0 when not computed)
-};
+using Stable32Row = ::stochnav::testing::Stable32Row;
 
 /// Rows of a table file relative to allan_data_dir(); throws std::runtime_error when unreadable.
 std::vector<Stable32Row> read_stable32_table(const std::string& relative_path);

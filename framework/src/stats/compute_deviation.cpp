@@ -66,6 +66,22 @@ double equivalent_degrees_of_freedom(Deviation kind, int alpha, std::size_t m, s
   }
 }
 
+/// One result row: the deviation at m with its noise type, EDF and interval.
+DeviationPoint make_point(Deviation kind, std::size_t m, double deviation, int alpha,
+                          std::size_t phase_count, double tau0_s, double confidence) {
+  DeviationPoint point;
+  point.m = m;
+  point.tau_s = tau_of(kind, m, tau0_s);
+  point.deviation = deviation;
+  point.terms = term_count(kind, m, phase_count);
+  point.alpha = alpha;
+  point.edf = equivalent_degrees_of_freedom(kind, alpha, m, phase_count);
+  const DeviationInterval interval = chi_square_interval(deviation, point.edf, confidence);
+  point.lower = interval.lower;
+  point.upper = interval.upper;
+  return point;
+}
+
 /// Theo1, MTIE, TIE rms: no Stable32 identification per tau. Theo1 takes the nominal noise
 /// type of its ThêoBR factor for every row; uncorrected Theo1 and the time-interval errors
 /// none (0).
@@ -74,23 +90,18 @@ std::vector<DeviationPoint> points_without_identification(Deviation kind,
                                                           double tau0_s,
                                                           std::span<const std::size_t> m_values,
                                                           double confidence) {
-  const std::vector<double> values = deviation_values(kind, phase, tau0_s, m_values);
-  // The factor costs O(N^3): only the corrected Theo1 pays for it.
-  const int alpha =
-      kind == Deviation::kTheo1 ? theo1_bias_noise_type(theo1_bias_factor(phase)) : 0;
+  // The ThêoBR factor costs O(N^3): computed once, here, and only for the corrected Theo1.
+  const bool corrected_theo1 = kind == Deviation::kTheo1;
+  const double bias_factor = corrected_theo1 ? theo1_bias_factor(phase) : 1.0;
+  const int alpha = corrected_theo1 ? theo1_bias_noise_type(bias_factor) : 0;
+  const Deviation raw_kind = corrected_theo1 ? Deviation::kTheo1Nobias : kind;
+  const std::vector<double> values = deviation_values(raw_kind, phase, tau0_s, m_values);
+  const double scale = std::sqrt(bias_factor);
   std::vector<DeviationPoint> points;
+  points.reserve(m_values.size());
   for (std::size_t k = 0; k < m_values.size(); ++k) {
-    DeviationPoint point;
-    point.m = m_values[k];
-    point.tau_s = tau_of(kind, point.m, tau0_s);
-    point.deviation = values[k];
-    point.terms = term_count(kind, point.m, phase.size());
-    point.alpha = alpha;
-    point.edf = equivalent_degrees_of_freedom(kind, alpha, point.m, phase.size());
-    const DeviationInterval interval = chi_square_interval(point.deviation, point.edf, confidence);
-    point.lower = interval.lower;
-    point.upper = interval.upper;
-    points.push_back(point);
+    points.push_back(
+        make_point(kind, m_values[k], scale * values[k], alpha, phase.size(), tau0_s, confidence));
   }
   return points;
 }
@@ -122,23 +133,14 @@ std::vector<DeviationPoint> compute_deviation(Deviation kind, std::span<const do
   std::vector<DeviationPoint> points;
   points.reserve(m_values.size());
   for (std::size_t k = 0; k < m_values.size(); ++k) {
-    DeviationPoint point;
-    point.m = m_values[k];
-    point.tau_s = tau_of(kind, point.m, tau0_s);
-    point.deviation = values[k];
-    point.terms = term_count(kind, point.m, phase.size());
-    point.alpha =
-        !points.empty() && keeps_previous_noise_type(identification_kind, point.m, phase.size())
+    const std::size_t m = m_values[k];
+    const int alpha =
+        !points.empty() && keeps_previous_noise_type(identification_kind, m, phase.size())
             ? points.back().alpha
             : identified[next_identified++].alpha;
-    if (kind == Deviation::kHtotdev) {
-      point.deviation *= hadamard_total_correction(point.alpha, point.m);
-    }
-    point.edf = equivalent_degrees_of_freedom(kind, point.alpha, point.m, phase.size());
-    const DeviationInterval interval = chi_square_interval(point.deviation, point.edf, confidence);
-    point.lower = interval.lower;
-    point.upper = interval.upper;
-    points.push_back(point);
+    const double deviation =
+        kind == Deviation::kHtotdev ? values[k] * hadamard_total_correction(alpha, m) : values[k];
+    points.push_back(make_point(kind, m, deviation, alpha, phase.size(), tau0_s, confidence));
   }
   return points;
 }

@@ -10,10 +10,10 @@ namespace stochnav {
 namespace {
 
 constexpr std::array<Deviation, 15> kAllDeviations = {
-    Deviation::kAdev,    Deviation::kOadev,   Deviation::kMdev,         Deviation::kTdev,
-    Deviation::kHdev,    Deviation::kOhdev,   Deviation::kTotdev,       Deviation::kMtotdev,
-    Deviation::kTtotdev, Deviation::kHtotdev, Deviation::kHtotdevNobias, Deviation::kTheo1,
-    Deviation::kTheo1Nobias, Deviation::kMtie, Deviation::kTierms};
+    Deviation::kAdev,        Deviation::kOadev,   Deviation::kMdev,          Deviation::kTdev,
+    Deviation::kHdev,        Deviation::kOhdev,   Deviation::kTotdev,        Deviation::kMtotdev,
+    Deviation::kTtotdev,     Deviation::kHtotdev, Deviation::kHtotdevNobias, Deviation::kTheo1,
+    Deviation::kTheo1Nobias, Deviation::kMtie,    Deviation::kTierms};
 
 /// Smallest Theo1 averaging factor (Stable32 and SP 1065: 10 <= m, m even).
 constexpr std::size_t kTheo1MinFactor = 10;

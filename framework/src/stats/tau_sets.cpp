@@ -58,8 +58,7 @@ std::vector<std::size_t> window_octave_factors(std::size_t max_m) {
 
 /// Theo1 needs even factors of at least 10: the others of a set are dropped, an odd one is
 /// rounded up to the next even factor (duplicates removed).
-std::vector<std::size_t> theo1_factors(const std::vector<std::size_t>& factors,
-                                       std::size_t max_m) {
+std::vector<std::size_t> theo1_factors(const std::vector<std::size_t>& factors, std::size_t max_m) {
   std::vector<std::size_t> even;
   for (std::size_t m : factors) {
     const std::size_t rounded = m + m % 2;
