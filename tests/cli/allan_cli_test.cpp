@@ -20,15 +20,46 @@ using testing::read_stable32_table_file;
 using testing::run_cli;
 using testing::TempDir;
 
+/// `stochnav allan --input PHASE --data phase --rate 1 OPTIONS --format json`, parsed; an empty
+/// object (and a failure) when the tool does not exit with 0.
+nlohmann::json allan_json(const std::string& phase_path, const std::string& options,
+                          const TempDir& dir) {
+  const auto result = run_cli("allan --input '" + phase_path + "' --data phase --rate 1 " +
+                                  options + " --format json",
+                              dir.path().string());
+  EXPECT_EQ(result.exit_code, 0) << options << ": " << result.err;
+  if (result.exit_code != 0) return nlohmann::json::object();
+  return nlohmann::json::parse(result.out);
+}
+
+/// The JSON's rows against a Stable32 table (which may be the start of them): tau = m (tau0 = 1
+/// s), n, the deviation under `name` to 1e-4 and, when bound_tolerance > 0, alpha and the
+/// bounds to that relative tolerance.
+void expect_matches_table(const nlohmann::json& json, const std::string& name,
+                          const std::vector<testing::Stable32Row>& rows,
+                          double bound_tolerance) {
+  ASSERT_TRUE(json.contains(name) && json.contains("tau")) << json.dump();
+  ASSERT_FALSE(rows.empty());
+  ASSERT_GE(json[name].size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& row = rows[i];
+    SCOPED_TRACE(name + " m = " + std::to_string(row.m));
+    EXPECT_EQ(json["tau"][i].get<double>(), static_cast<double>(row.m));
+    EXPECT_EQ(json["n"][i].get<std::size_t>(), row.terms);
+    EXPECT_NEAR(json[name][i].get<double>(), row.deviation, 1e-4 * row.deviation);
+    if (bound_tolerance > 0.0) {
+      EXPECT_EQ(json["alpha"][i].get<int>(), row.alpha);
+      EXPECT_NEAR(json[name + "_lo"][i].get<double>(), row.lower, bound_tolerance * row.lower);
+      EXPECT_NEAR(json[name + "_hi"][i].get<double>(), row.upper, bound_tolerance * row.upper);
+    }
+  }
+}
+
 TEST(AllanCli, JsonOnPhaseDatMatchesStable32OctaveTable) {
   STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
   STOCHNAV_REQUIRE_SHARED_DATA(table, "allan/phasedat/phase_dat_oadev_octave.txt");
   TempDir dir;
-  const auto result = run_cli("allan --input '" + phase_dat +
-                                  "' --data phase --rate 1 --taus octave --format json",
-                              dir.path().string());
-  ASSERT_EQ(result.exit_code, 0) << result.err;
-  const auto json = nlohmann::json::parse(result.out);
+  const auto json = allan_json(phase_dat, "--taus octave", dir);
   std::vector<std::string> keys;
   for (const auto& item : json.items()) keys.push_back(item.key());
   std::sort(keys.begin(), keys.end());
@@ -37,15 +68,8 @@ TEST(AllanCli, JsonOnPhaseDatMatchesStable32OctaveTable) {
                                             "edf", "n", "oadev", "oadev_hi", "oadev_lo", "tau"}));
   EXPECT_EQ(json["oadev"], json["adev"]);
   const auto reference = read_stable32_table_file(table);
-  ASSERT_EQ(json["tau"].size(), reference.size());
-  for (std::size_t i = 0; i < reference.size(); ++i) {
-    const auto& row = reference[i];
-    EXPECT_EQ(json["tau"][i].get<double>(), static_cast<double>(row.m));
-    EXPECT_EQ(json["n"][i].get<std::size_t>(), row.terms);
-    EXPECT_NEAR(json["adev"][i].get<double>(), row.deviation, 1e-4 * row.deviation);
-    EXPECT_NEAR(json["adev_lo"][i].get<double>(), row.lower, 1e-2 * row.lower);
-    EXPECT_NEAR(json["adev_hi"][i].get<double>(), row.upper, 1e-2 * row.upper);
-  }
+  EXPECT_EQ(json["tau"].size(), reference.size());
+  expect_matches_table(json, "adev", reference, 1e-2);
 }
 
 // Every --deviation keeps the JSON keys of the contract ("adev" holds the chosen deviation).
@@ -53,57 +77,27 @@ TEST(AllanCli, TotdevOnPhaseDatMatchesStable32OctaveTable) {
   STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
   STOCHNAV_REQUIRE_SHARED_DATA(table, "allan/phasedat/phase_dat_totdev_octave.txt");
   TempDir dir;
-  const auto result = run_cli("allan --input '" + phase_dat +
-                                  "' --data phase --rate 1 --taus octave --deviation totdev"
-                                  " --format json",
-                              dir.path().string());
-  ASSERT_EQ(result.exit_code, 0) << result.err;
-  const auto json = nlohmann::json::parse(result.out);
+  const auto json = allan_json(phase_dat, "--taus octave --deviation totdev", dir);
   const auto reference = read_stable32_table_file(table);
-  ASSERT_EQ(json["tau"].size(), reference.size());
-  for (std::size_t i = 0; i < reference.size(); ++i) {
-    const auto& row = reference[i];
-    EXPECT_EQ(json["tau"][i].get<double>(), static_cast<double>(row.m));
-    EXPECT_EQ(json["n"][i].get<std::size_t>(), row.terms);
-    EXPECT_EQ(json["alpha"][i].get<int>(), row.alpha);
-    EXPECT_NEAR(json["adev"][i].get<double>(), row.deviation, 1e-4 * row.deviation);
-    EXPECT_NEAR(json["adev_lo"][i].get<double>(), row.lower, 1e-3 * row.lower);
-    EXPECT_NEAR(json["adev_hi"][i].get<double>(), row.upper, 1e-3 * row.upper);
-  }
+  EXPECT_EQ(json["tau"].size(), reference.size());
+  expect_matches_table(json, "adev", reference, 1e-3);
 }
 
 // The new deviations through the CLI: MTIE (no interval: alpha null) and HTOTDEV with its own
-// JSON key beside "adev".
+// JSON key beside "adev" (its bounds follow another EDF rule than Stable32's: docs/allan.md).
 TEST(AllanCli, MtieAndHtotdevOnPhaseDatMatchStable32) {
   STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
   STOCHNAV_REQUIRE_SHARED_DATA(mtie_table, "allan/phasedat/phase_dat_mtie.txt");
   STOCHNAV_REQUIRE_SHARED_DATA(htot_table, "allan/phasedat/phase_dat_htotdev_octave.txt");
   TempDir dir;
-  const auto mtie = run_cli("allan --input '" + phase_dat +
-                                "' --data phase --rate 1 --deviation mtie --format json",
-                            dir.path().string());
-  ASSERT_EQ(mtie.exit_code, 0) << mtie.err;
-  const auto mtie_json = nlohmann::json::parse(mtie.out);
-  EXPECT_EQ(mtie_json["deviation"], "mtie");
+  const auto mtie = allan_json(phase_dat, "--deviation mtie", dir);
+  EXPECT_EQ(mtie["deviation"], "mtie");
   const auto mtie_rows = read_stable32_table_file(mtie_table);
-  ASSERT_EQ(mtie_json["mtie"].size(), mtie_rows.size());
-  for (std::size_t i = 0; i < mtie_rows.size(); ++i) {
-    EXPECT_TRUE(mtie_json["alpha"][i].is_null());
-    EXPECT_NEAR(mtie_json["mtie"][i].get<double>(), mtie_rows[i].deviation,
-                1e-4 * mtie_rows[i].deviation);
-  }
-  const auto htot = run_cli("allan --input '" + phase_dat +
-                                "' --data phase --rate 1 --deviation htotdev --format json",
-                            dir.path().string());
-  ASSERT_EQ(htot.exit_code, 0) << htot.err;
-  const auto htot_json = nlohmann::json::parse(htot.out);
-  const auto htot_rows = read_stable32_table_file(htot_table);
-  ASSERT_GE(htot_json["htotdev"].size(), htot_rows.size());
-  for (std::size_t i = 0; i < htot_rows.size(); ++i) {
-    EXPECT_EQ(htot_json["n"][i].get<std::size_t>(), htot_rows[i].terms);
-    EXPECT_NEAR(htot_json["htotdev"][i].get<double>(), htot_rows[i].deviation,
-                1e-4 * htot_rows[i].deviation);
-  }
+  EXPECT_EQ(mtie["mtie"].size(), mtie_rows.size());
+  expect_matches_table(mtie, "mtie", mtie_rows, 0.0);
+  for (const auto& alpha : mtie["alpha"]) EXPECT_TRUE(alpha.is_null());
+  const auto htot = allan_json(phase_dat, "--deviation htotdev", dir);
+  expect_matches_table(htot, "htotdev", read_stable32_table_file(htot_table), 0.0);
 }
 
 // A Theo1 factor the record cannot hold is bad input (exit 2, one line), like any other.

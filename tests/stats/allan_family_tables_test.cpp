@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -77,9 +76,7 @@ TEST_P(AllanFamilyTable, MatchesStable32) {
       worst_deviation = error;
       worst_m = row.m;
     }
-    char tau_text[32];
-    std::snprintf(tau_text, sizeof tau_text, "%.4e", point.tau_s);
-    EXPECT_EQ(std::string(tau_text), row.tau_text);
+    EXPECT_EQ(stats_test::tau_as_stable32_prints_it(point.tau_s), row.tau_text);
     // Theo1 prints `#` with 5 significant digits.
     EXPECT_NEAR(static_cast<double>(point.terms), static_cast<double>(row.terms),
                 5e-5 * static_cast<double>(row.terms));
@@ -106,14 +103,6 @@ TEST_P(AllanFamilyTable, MatchesStable32) {
   }
   std::printf("\n");
   EXPECT_LT(worst_deviation, kDeviationTolerance) << c.table << " at m = " << worst_m;
-}
-
-std::string case_name(const ::testing::TestParamInfo<FamilyCase>& info) {
-  std::string name = info.param.table;
-  for (char& ch : name) {
-    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-  }
-  return name;
 }
 
 constexpr ReferenceRecord kPhaseDat = ReferenceRecord::kPhaseDat;
@@ -156,13 +145,13 @@ INSTANTIATE_TEST_SUITE_P(
                    std::nullopt, false},
         FamilyCase{"phasedat/phase_dat_mtie.txt", kPhaseDat, Deviation::kMtie, kOctave},
         FamilyCase{"phasedat/phase_dat_tierms.txt", kPhaseDat, Deviation::kTierms, kAll}),
-    case_name);
+    stats_test::table_case_name<FamilyCase>);
 
 INSTANTIATE_TEST_SUITE_P(KeysightTic, AllanFamilyTable,
                          ::testing::Values(FamilyCase{"keysight53230a_tic/tic_tierms.txt",
                                                       ReferenceRecord::kKeysightTic,
                                                       Deviation::kTierms, kOctave}),
-                         case_name);
+                         stats_test::table_case_name<FamilyCase>);
 
 // Cs 5071A (556 990 points): MTIE is O(N) per factor, TIE rms O(N): well under a second.
 constexpr ReferenceRecord kCs = ReferenceRecord::kCs5071a;
@@ -172,7 +161,7 @@ INSTANTIATE_TEST_SUITE_P(
                       FamilyCase{"cs5071a/mtie_all.txt", kCs, Deviation::kMtie, kOctave},
                       FamilyCase{"cs5071a/tierms_decade.txt", kCs, Deviation::kTierms, kDecade},
                       FamilyCase{"cs5071a/tierms_all.txt", kCs, Deviation::kTierms, kAll}),
-    case_name);
+    stats_test::table_case_name<FamilyCase>);
 
 /// NIST SP 1065 / Stable32 NBS14 1000-point reference values (nbs14_1000_reference.csv).
 TEST(AllanFamilyNbs14, MatchesPublishedValues) {

@@ -1,5 +1,6 @@
 #include "stable32_reference.hpp"
 
+#include <cstdio>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -15,6 +16,12 @@ std::filesystem::path allan_data_dir() {
 
 std::vector<Stable32Row> read_stable32_table(const std::string& relative_path) {
   return testing::read_stable32_table_file(allan_data_dir() / relative_path);
+}
+
+std::string tau_as_stable32_prints_it(double tau_s) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4e", tau_s);
+  return text;
 }
 
 namespace {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -30,6 +31,20 @@ using Stable32Row = ::stochnav::testing::Stable32Row;
 
 /// Rows of a table file relative to allan_data_dir(); throws std::runtime_error when unreadable.
 std::vector<Stable32Row> read_stable32_table(const std::string& relative_path);
+
+/// Tau as Stable32's Tau column prints it ("%.4e").
+std::string tau_as_stable32_prints_it(double tau_s);
+
+/// The GoogleTest name of a table case (any struct with a `table` path): the path with every
+/// character but letters and digits turned into '_'.
+template <typename Case>
+std::string table_case_name(const ::testing::TestParamInfo<Case>& info) {
+  std::string name = info.param.table;
+  for (char& ch : name) {
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  }
+  return name;
+}
 
 /// The input records of the tables, as phase (converted as SOURCES.md prescribes).
 enum class ReferenceRecord {
