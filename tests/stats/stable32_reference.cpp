@@ -1,5 +1,6 @@
 #include "stable32_reference.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <mutex>
@@ -16,6 +17,23 @@ std::filesystem::path allan_data_dir() {
 
 std::vector<Stable32Row> read_stable32_table(const std::string& relative_path) {
   return testing::read_stable32_table_file(allan_data_dir() / relative_path);
+}
+
+std::vector<std::size_t> averaging_factors_of(const std::vector<Stable32Row>& rows) {
+  std::vector<std::size_t> factors;
+  factors.reserve(rows.size());
+  for (const auto& row : rows) factors.push_back(row.m);
+  return factors;
+}
+
+void expect_table_factors(const std::vector<std::size_t>& ours,
+                          const std::vector<std::size_t>& table_m, bool table_is_prefix) {
+  if (table_is_prefix && ours.size() >= table_m.size()) {
+    EXPECT_TRUE(std::equal(table_m.begin(), table_m.end(), ours.begin()))
+        << "the table's factors are not the start of ours";
+  } else {
+    EXPECT_EQ(ours, table_m);
+  }
 }
 
 std::string tau_as_stable32_prints_it(double tau_s) {

@@ -32,6 +32,14 @@ using Stable32Row = ::stochnav::testing::Stable32Row;
 /// Rows of a table file relative to allan_data_dir(); throws std::runtime_error when unreadable.
 std::vector<Stable32Row> read_stable32_table(const std::string& relative_path);
 
+/// The table's averaging factors (its AF column), in its order.
+std::vector<std::size_t> averaging_factors_of(const std::vector<Stable32Row>& rows);
+
+/// Expects our averaging factors to be the table's, or with `table_is_prefix` to start with
+/// them (runs Stable32 ended early, rows allantools commented out).
+void expect_table_factors(const std::vector<std::size_t>& ours,
+                          const std::vector<std::size_t>& table_m, bool table_is_prefix);
+
 /// Tau as Stable32's Tau column prints it ("%.4e").
 std::string tau_as_stable32_prints_it(double tau_s);
 

@@ -76,15 +76,10 @@ TEST_P(Stable32Table, MatchesStable32) {
   ASSERT_FALSE(rows.empty()) << c.table;
   const auto& data = stats_test::reference_phase(c.record);
 
-  std::vector<std::size_t> table_m;
-  for (const auto& row : rows) table_m.push_back(row.m);
-  const auto our_m = averaging_factors(c.kind, c.spacing, data.phase.size(), data.tau0_s);
-  if (c.table_is_prefix) {
-    ASSERT_GE(our_m.size(), table_m.size());
-    EXPECT_TRUE(std::equal(table_m.begin(), table_m.end(), our_m.begin()));
-  } else {
-    EXPECT_EQ(our_m, table_m);
-  }
+  const auto table_m = stats_test::averaging_factors_of(rows);
+  stats_test::expect_table_factors(
+      averaging_factors(c.kind, c.spacing, data.phase.size(), data.tau0_s), table_m,
+      c.table_is_prefix);
 
   const auto points = compute_deviation(c.kind, data.phase, data.tau0_s, table_m);
   ASSERT_EQ(points.size(), rows.size());
