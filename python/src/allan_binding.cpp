@@ -114,7 +114,10 @@ rate : float
     Sampling rate in Hz (tau0 = 1 / rate s).
 deviation : str
     "oadev" (overlapping Allan), "adev", "mdev" (modified), "tdev" (time deviation, in U*s),
-    "hdev", "ohdev" (Hadamard), "totdev" (total).
+    "hdev", "ohdev" (Hadamard), "totdev" (total), "mtotdev", "ttotdev" (modified and time
+    total, ttotdev in U*s), "htotdev" (Hadamard total, Stable32's bias correction),
+    "htotdev_nobias", "theo1" (tau = 0.75 m / rate, ThêoBR bias removal), "theo1_nobias",
+    "mtie", "tierms" (time interval errors, U*s; no interval: lo, hi, edf NaN).
 taus : str
     Averaging factors m (tau = m / rate): "octave" (1, 2, 4, ...), "decade" (1, 2, 4, 10, ...),
     "dense" (about 10 per decade) or "all" (Stable32's "all tau").

@@ -5,63 +5,71 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
-#include <sstream>
+#include <vector>
 
 #include "run_cli.hpp"
+#include "stable32_table.hpp"
 #include "temp_dir.hpp"
 
 namespace stochnav {
 namespace {
 
+using testing::read_stable32_table_file;
 using testing::run_cli;
 using testing::TempDir;
 
-struct Stable32Row {
-  std::size_t m, n;
-  int alpha;
-  double lower, deviation, upper;
-};
+/// `stochnav allan --input PHASE --data phase --rate 1 OPTIONS --format json`, parsed; an empty
+/// object (and a failure) when the tool does not exit with 0.
+nlohmann::json allan_json(const std::string& phase_path, const std::string& options,
+                          const TempDir& dir) {
+  const auto result = run_cli("allan --input '" + phase_path + "' --data phase --rate 1 " +
+                                  options + " --format json",
+                              dir.path().string());
+  EXPECT_EQ(result.exit_code, 0) << options << ": " << result.err;
+  if (result.exit_code != 0) return nlohmann::json::object();
+  return nlohmann::json::parse(result.out);
+}
 
-std::vector<Stable32Row> read_stable32_table(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<Stable32Row> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream cells(line);
-    Stable32Row row{};
-    double tau = 0.0;
-    cells >> row.m >> tau >> row.n >> row.alpha >> row.lower >> row.deviation >> row.upper;
-    if (cells) rows.push_back(row);
+/// The JSON's rows against a Stable32 table (which may be the start of them): tau = m (tau0 = 1
+/// s), n, the deviation under `name` to 1e-4 and, when bound_tolerance > 0, alpha and the
+/// bounds to that relative tolerance.
+void expect_matches_table(const nlohmann::json& json, const std::string& name,
+                          const std::vector<testing::Stable32Row>& rows,
+                          double bound_tolerance) {
+  ASSERT_TRUE(json.contains(name) && json.contains("tau")) << json.dump();
+  ASSERT_FALSE(rows.empty());
+  ASSERT_GE(json[name].size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& row = rows[i];
+    SCOPED_TRACE(name + " m = " + std::to_string(row.m));
+    EXPECT_EQ(json["tau"][i].get<double>(), static_cast<double>(row.m));
+    EXPECT_EQ(json["n"][i].get<std::size_t>(), row.terms);
+    EXPECT_NEAR(json[name][i].get<double>(), row.deviation, 1e-4 * row.deviation);
+    if (bound_tolerance > 0.0) {
+      EXPECT_EQ(json["alpha"][i].get<int>(), row.alpha);
+      EXPECT_NEAR(json[name + "_lo"][i].get<double>(), row.lower, bound_tolerance * row.lower);
+      EXPECT_NEAR(json[name + "_hi"][i].get<double>(), row.upper, bound_tolerance * row.upper);
+    }
   }
-  return rows;
 }
 
 TEST(AllanCli, JsonOnPhaseDatMatchesStable32OctaveTable) {
   STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
   STOCHNAV_REQUIRE_SHARED_DATA(table, "allan/phasedat/phase_dat_oadev_octave.txt");
   TempDir dir;
-  const auto result = run_cli("allan --input '" + phase_dat +
-                                  "' --data phase --rate 1 --taus octave --format json",
-                              dir.path().string());
-  ASSERT_EQ(result.exit_code, 0) << result.err;
-  const auto json = nlohmann::json::parse(result.out);
+  const auto json = allan_json(phase_dat, "--taus octave", dir);
   std::vector<std::string> keys;
   for (const auto& item : json.items()) keys.push_back(item.key());
   std::sort(keys.begin(), keys.end());
-  EXPECT_EQ(keys, (std::vector<std::string>{"adev", "adev_hi", "adev_lo", "alpha", "edf", "n",
-                                            "tau"}));
-  const auto reference = read_stable32_table(table);
-  ASSERT_EQ(json["tau"].size(), reference.size());
-  for (std::size_t i = 0; i < reference.size(); ++i) {
-    const auto& row = reference[i];
-    EXPECT_EQ(json["tau"][i].get<double>(), static_cast<double>(row.m));
-    EXPECT_EQ(json["n"][i].get<std::size_t>(), row.n);
-    EXPECT_NEAR(json["adev"][i].get<double>(), row.deviation, 1e-4 * row.deviation);
-    EXPECT_NEAR(json["adev_lo"][i].get<double>(), row.lower, 1e-2 * row.lower);
-    EXPECT_NEAR(json["adev_hi"][i].get<double>(), row.upper, 1e-2 * row.upper);
-  }
+  // The contract's keys, plus the deviation's name and its columns under that name.
+  EXPECT_EQ(keys, (std::vector<std::string>{"adev", "adev_hi", "adev_lo", "alpha", "deviation",
+                                            "edf", "n", "oadev", "oadev_hi", "oadev_lo", "tau"}));
+  EXPECT_EQ(json["oadev"], json["adev"]);
+  const auto reference = read_stable32_table_file(table);
+  EXPECT_EQ(json["tau"].size(), reference.size());
+  expect_matches_table(json, "adev", reference, 1e-2);
 }
 
 // Every --deviation keeps the JSON keys of the contract ("adev" holds the chosen deviation).
@@ -69,23 +77,42 @@ TEST(AllanCli, TotdevOnPhaseDatMatchesStable32OctaveTable) {
   STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
   STOCHNAV_REQUIRE_SHARED_DATA(table, "allan/phasedat/phase_dat_totdev_octave.txt");
   TempDir dir;
-  const auto result = run_cli("allan --input '" + phase_dat +
-                                  "' --data phase --rate 1 --taus octave --deviation totdev"
-                                  " --format json",
-                              dir.path().string());
-  ASSERT_EQ(result.exit_code, 0) << result.err;
-  const auto json = nlohmann::json::parse(result.out);
-  const auto reference = read_stable32_table(table);
-  ASSERT_EQ(json["tau"].size(), reference.size());
-  for (std::size_t i = 0; i < reference.size(); ++i) {
-    const auto& row = reference[i];
-    EXPECT_EQ(json["tau"][i].get<double>(), static_cast<double>(row.m));
-    EXPECT_EQ(json["n"][i].get<std::size_t>(), row.n);
-    EXPECT_EQ(json["alpha"][i].get<int>(), row.alpha);
-    EXPECT_NEAR(json["adev"][i].get<double>(), row.deviation, 1e-4 * row.deviation);
-    EXPECT_NEAR(json["adev_lo"][i].get<double>(), row.lower, 1e-3 * row.lower);
-    EXPECT_NEAR(json["adev_hi"][i].get<double>(), row.upper, 1e-3 * row.upper);
+  const auto json = allan_json(phase_dat, "--taus octave --deviation totdev", dir);
+  const auto reference = read_stable32_table_file(table);
+  EXPECT_EQ(json["tau"].size(), reference.size());
+  expect_matches_table(json, "adev", reference, 1e-3);
+}
+
+// The new deviations through the CLI: MTIE (no interval: alpha null) and HTOTDEV with its own
+// JSON key beside "adev" (its bounds follow another EDF rule than Stable32's: docs/allan.md).
+TEST(AllanCli, MtieAndHtotdevOnPhaseDatMatchStable32) {
+  STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
+  STOCHNAV_REQUIRE_SHARED_DATA(mtie_table, "allan/phasedat/phase_dat_mtie.txt");
+  STOCHNAV_REQUIRE_SHARED_DATA(htot_table, "allan/phasedat/phase_dat_htotdev_octave.txt");
+  TempDir dir;
+  const auto mtie = allan_json(phase_dat, "--deviation mtie", dir);
+  EXPECT_EQ(mtie["deviation"], "mtie");
+  const auto mtie_rows = read_stable32_table_file(mtie_table);
+  EXPECT_EQ(mtie["mtie"].size(), mtie_rows.size());
+  expect_matches_table(mtie, "mtie", mtie_rows, 0.0);
+  for (const auto& alpha : mtie["alpha"]) EXPECT_TRUE(alpha.is_null());
+  const auto htot = allan_json(phase_dat, "--deviation htotdev", dir);
+  expect_matches_table(htot, "htotdev", read_stable32_table_file(htot_table), 0.0);
+}
+
+// A Theo1 factor the record cannot hold is bad input (exit 2, one line), like any other.
+TEST(AllanCli, DeviationOnTooShortRecordExitsTwo) {
+  TempDir dir;
+  const auto path = dir.path() / "short.txt";
+  {
+    std::ofstream out(path);
+    for (int i = 0; i < 8; ++i) out << i * 0.5 << "\n";
   }
+  const auto result = run_cli("allan --input '" + path.string() +
+                                  "' --data phase --rate 1 --deviation theo1",
+                              dir.path().string());
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
 }
 
 TEST(AllanCli, RateAndPhaseInputsAgree) {
@@ -94,8 +121,8 @@ TEST(AllanCli, RateAndPhaseInputsAgree) {
   TempDir dir;
   const auto from_rate =
       run_cli("allan --input '" + freq + "' --rate 1 --format json", dir.path().string());
-  const auto from_phase = run_cli("allan --input '" + phase_dat + "' --data phase --rate 1 --format json",
-                                  dir.path().string());
+  const auto from_phase = run_cli(
+      "allan --input '" + phase_dat + "' --data phase --rate 1 --format json", dir.path().string());
   ASSERT_EQ(from_rate.exit_code, 0) << from_rate.err;
   ASSERT_EQ(from_phase.exit_code, 0) << from_phase.err;
   const auto a = nlohmann::json::parse(from_rate.out);
@@ -128,7 +155,9 @@ TEST(AllanCli, PlotsARecordWhoseNameHasAQuote) {
   TempDir dir;
   std::filesystem::create_directories(dir.path() / "it's");
   std::string csv = "t,g\n";
-  for (int i = 0; i < 4000; ++i) csv += std::to_string(0.01 * i) + "," + std::to_string(i % 7) + "\n";
+  for (int i = 0; i < 4000; ++i) {
+    csv += std::to_string(0.01 * i) + "," + std::to_string(i % 7) + "\n";
+  }
   const std::string input = dir.write("it's/record.csv", csv);
   for (const std::string command : {"allan", "davar --window 1000 --step 500"}) {
     const std::string plot = (dir.path() / "it's" / (command.substr(0, 5) + ".png")).string();

@@ -151,3 +151,45 @@ def test_result_arrays_are_numpy_float64_and_int64():
     for name in ("n", "alpha", "m"):
         assert getattr(result, name).dtype == np.int64
     assert "oadev of 1001 phase samples at 1 Hz" in repr(result)
+
+
+# The rest of the Allan family through stochnav.allan (the C++ suite checks every table:
+# tests/stats/allan_family_tables_test.cpp): factors, term counts and deviations to 1e-4 of a
+# few PHASE.DAT tables, 7-column and 4-column. Their bounds are not compared (docs/allan.md).
+FAMILY = [("phasedat/phase_dat_mtotdev_octave.txt", "mtotdev", "octave"),
+          ("phasedat/phase_dat_ttotdev_decade.txt", "ttotdev", "decade"),
+          ("phasedat/phase_dat_htotdev_octave.txt", "htotdev", "octave"),
+          ("phasedat/phase_dat_mtie.txt", "mtie", "octave"),
+          ("keysight53230a_tic/tic_tierms.txt", "tierms", "octave")]
+
+
+def read_family_table(path):
+    """(m, terms, deviation) of each data row: 7 columns, or 4 for MTIE and TIE rms."""
+    rows = []
+    for line in open(path):
+        cells = line.split()
+        if line.startswith("#") or len(cells) not in (4, 7):
+            continue
+        value = cells[3] if len(cells) == 4 else cells[5]
+        rows.append((int(cells[0]), round(float(cells[2])), float(value)))
+    return rows
+
+
+@pytest.mark.parametrize("path,deviation,taus", FAMILY, ids=[f[0] for f in FAMILY])
+def test_allan_family_matches_stable32(path, deviation, taus):
+    rows = read_family_table(require_shared_file("allan/" + path))
+    assert rows
+    values, data, tau0 = record("tic" if path.startswith("keysight") else "phasedat")
+    result = stochnav.allan(values, 1.0 / tau0, deviation=deviation, taus=taus, data=data)
+    assert result.deviation == deviation
+    index = {int(m): i for i, m in enumerate(result.m)}
+    worst = 0.0
+    for m, terms, expected in rows:
+        where = f"{path} m = {m}"
+        assert m in index, where
+        i = index[m]
+        assert result.n[i] == pytest.approx(terms, rel=5e-5), where
+        worst = max(worst, abs(result.dev[i] / expected - 1.0))
+    assert worst < 1e-4, f"{path}: worst relative error {worst:.2e}"
+    if deviation in ("mtie", "tierms"):
+        assert np.all(np.isnan(result.edf)) and np.all(np.isnan(result.lo))

@@ -1,9 +1,9 @@
 #include "stable32_reference.hpp"
 
-#include <fstream>
+#include <algorithm>
+#include <cstdio>
 #include <map>
 #include <mutex>
-#include <sstream>
 #include <stdexcept>
 
 #include "stochnav/io/record.hpp"
@@ -16,21 +16,30 @@ std::filesystem::path allan_data_dir() {
 }
 
 std::vector<Stable32Row> read_stable32_table(const std::string& relative_path) {
-  const auto path = allan_data_dir() / relative_path;
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  std::vector<Stable32Row> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line.front() == '#') continue;
-    std::istringstream cells(line);
-    Stable32Row row;
-    if (cells >> row.m >> row.tau_text >> row.terms >> row.alpha >> row.lower >> row.deviation >>
-        row.upper) {
-      rows.push_back(row);
-    }
+  return testing::read_stable32_table_file(allan_data_dir() / relative_path);
+}
+
+std::vector<std::size_t> averaging_factors_of(const std::vector<Stable32Row>& rows) {
+  std::vector<std::size_t> factors;
+  factors.reserve(rows.size());
+  for (const auto& row : rows) factors.push_back(row.m);
+  return factors;
+}
+
+void expect_table_factors(const std::vector<std::size_t>& ours,
+                          const std::vector<std::size_t>& table_m, bool table_is_prefix) {
+  if (table_is_prefix && ours.size() >= table_m.size()) {
+    EXPECT_TRUE(std::equal(table_m.begin(), table_m.end(), ours.begin()))
+        << "the table's factors are not the start of ours";
+  } else {
+    EXPECT_EQ(ours, table_m);
   }
-  return rows;
+}
+
+std::string tau_as_stable32_prints_it(double tau_s) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4e", tau_s);
+  return text;
 }
 
 namespace {

@@ -4,10 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstddef>
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "stable32_table.hpp"
 
 namespace stochnav::stats_test {
 
@@ -24,19 +27,32 @@ std::filesystem::path allan_data_dir();
     }                                                                                \
   } while (false)
 
-/// One data row of a Stable32 result table.
-struct Stable32Row {
-  std::size_t m = 0;      ///< AF column
-  std::string tau_text;   ///< Tau column as printed (5 significant digits)
-  std::size_t terms = 0;  ///< # column
-  int alpha = 0;          ///< Alpha column
-  double lower = 0.0;     ///< Min Sigma (0 when not computed)
-  double deviation = 0.0;
-  double upper = 0.0;  ///< Max Sigma (0 when not computed)
-};
+using Stable32Row = ::stochnav::testing::Stable32Row;
 
 /// Rows of a table file relative to allan_data_dir(); throws std::runtime_error when unreadable.
 std::vector<Stable32Row> read_stable32_table(const std::string& relative_path);
+
+/// The table's averaging factors (its AF column), in its order.
+std::vector<std::size_t> averaging_factors_of(const std::vector<Stable32Row>& rows);
+
+/// Expects our averaging factors to be the table's, or with `table_is_prefix` to start with
+/// them (runs Stable32 ended early, rows allantools commented out).
+void expect_table_factors(const std::vector<std::size_t>& ours,
+                          const std::vector<std::size_t>& table_m, bool table_is_prefix);
+
+/// Tau as Stable32's Tau column prints it ("%.4e").
+std::string tau_as_stable32_prints_it(double tau_s);
+
+/// The GoogleTest name of a table case (any struct with a `table` path): the path with every
+/// character but letters and digits turned into '_'.
+template <typename Case>
+std::string table_case_name(const ::testing::TestParamInfo<Case>& info) {
+  std::string name = info.param.table;
+  for (char& ch : name) {
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  }
+  return name;
+}
 
 /// The input records of the tables, as phase (converted as SOURCES.md prescribes).
 enum class ReferenceRecord {

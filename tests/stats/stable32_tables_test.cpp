@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -68,12 +67,6 @@ class AlphaAgreementReport final : public ::testing::Environment {
 [[maybe_unused]] ::testing::Environment* const kAlphaAgreementReport =
     ::testing::AddGlobalTestEnvironment(new AlphaAgreementReport);
 
-std::string tau_as_stable32_prints_it(double tau_s) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4e", tau_s);
-  return text;
-}
-
 class Stable32Table : public ::testing::TestWithParam<TableCase> {};
 
 TEST_P(Stable32Table, MatchesStable32) {
@@ -83,15 +76,10 @@ TEST_P(Stable32Table, MatchesStable32) {
   ASSERT_FALSE(rows.empty()) << c.table;
   const auto& data = stats_test::reference_phase(c.record);
 
-  std::vector<std::size_t> table_m;
-  for (const auto& row : rows) table_m.push_back(row.m);
-  const auto our_m = averaging_factors(c.kind, c.spacing, data.phase.size(), data.tau0_s);
-  if (c.table_is_prefix) {
-    ASSERT_GE(our_m.size(), table_m.size());
-    EXPECT_TRUE(std::equal(table_m.begin(), table_m.end(), our_m.begin()));
-  } else {
-    EXPECT_EQ(our_m, table_m);
-  }
+  const auto table_m = stats_test::averaging_factors_of(rows);
+  stats_test::expect_table_factors(
+      averaging_factors(c.kind, c.spacing, data.phase.size(), data.tau0_s), table_m,
+      c.table_is_prefix);
 
   const auto points = compute_deviation(c.kind, data.phase, data.tau0_s, table_m);
   ASSERT_EQ(points.size(), rows.size());
@@ -102,7 +90,7 @@ TEST_P(Stable32Table, MatchesStable32) {
     const auto& point = points[i];
     SCOPED_TRACE(std::string(c.table) + " m = " + std::to_string(row.m));
     EXPECT_EQ(point.terms, row.terms);
-    EXPECT_EQ(tau_as_stable32_prints_it(point.tau_s), row.tau_text);
+    EXPECT_EQ(stats_test::tau_as_stable32_prints_it(point.tau_s), row.tau_text);
     EXPECT_NEAR(point.deviation / row.deviation, 1.0, c.deviation_tolerance);
     if (c.unmatched_alpha_from_m != 0 && row.m >= c.unmatched_alpha_from_m) continue;
     ++alpha_rows;
@@ -123,14 +111,6 @@ TEST_P(Stable32Table, MatchesStable32) {
   // "All tau" runs also print alpha; a few rows right at a rounding boundary of the lag-1
   // estimate differ (Keysight ADEV 11 of 260, the worst).
   EXPECT_GE(agreement, 0.95) << alpha_matches << " of " << alpha_rows;
-}
-
-std::string case_name(const ::testing::TestParamInfo<TableCase>& info) {
-  std::string name = info.param.table;
-  for (char& ch : name) {
-    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-  }
-  return name;
 }
 
 constexpr Deviation kAdev = Deviation::kAdev;
@@ -195,7 +175,7 @@ INSTANTIATE_TEST_SUITE_P(
                       total("phasedat/phase_dat_totdev_octave.txt", kPhaseDat, kTotdev,
                             TauSpacing::kOctave),
                       phase_dat_totdev_all_tau()),
-    case_name);
+    stats_test::table_case_name<TableCase>);
 
 // Keysight 53230A time-interval-counter noise floor (55 688 phase points, white PM).
 constexpr ReferenceRecord kTic = ReferenceRecord::kKeysightTic;
@@ -208,7 +188,7 @@ INSTANTIATE_TEST_SUITE_P(KeysightTic, Stable32Table,
                                            total("keysight53230a_tic/tic_totdev.txt", kTic, kTotdev,
                                                  TauSpacing::kOctave, 8192),
                                            all_tau("keysight53230a_tic/tic_adev.txt", kTic, kAdev)),
-                         case_name);
+                         stats_test::table_case_name<TableCase>);
 
 // OCXO frequency record (19 982 values in Hz). Stable32's OADEV, MDEV, TDEV and OHDEV tables
 // were computed on a slightly different copy of the file (its OADEV at m = 1 is 7.6143e-11,
@@ -225,7 +205,7 @@ INSTANTIATE_TEST_SUITE_P(
                       octave("ocxo_freq/mdev_octave.txt", kOcxo, kMdev, 2e-3),
                       octave("ocxo_freq/tdev_octave.txt", kOcxo, kTdev, 2e-3),
                       octave("ocxo_freq/ohdev_octave.txt", kOcxo, kOhdev, 2e-3)),
-    case_name);
+    stats_test::table_case_name<TableCase>);
 
 // Simulated flicker FM, 10 000 frequency values at tau0 = 42 s, "all tau" runs. Stable32 ended
 // the OADEV, MDEV, TDEV and OHDEV runs at m = 2369 (tau just under 1e5 s) although its
@@ -249,7 +229,7 @@ INSTANTIATE_TEST_SUITE_P(PinkFrequency, Stable32Table,
                                            octave("pink_frequency/s32_oadev_octave.txt",
                                                   ReferenceRecord::kPinkFrequencyTau1, kOadev),
                                            pink_totdev()),
-                         case_name);
+                         stats_test::table_case_name<TableCase>);
 
 // GPS 1PPS against an H-maser (241 218 phase points).
 constexpr ReferenceRecord kGps = ReferenceRecord::kGps;
@@ -263,7 +243,7 @@ INSTANTIATE_TEST_SUITE_P(
                       octave("gps_1pps/stable32_OHDEV_octave.txt", kGps, kOhdev),
                       total("gps_1pps/stable32_TOTDEV_octave.txt", kGps, kTotdev,
                             TauSpacing::kOctave, 32768)),
-    case_name);
+    stats_test::table_case_name<TableCase>);
 
 // Cs 5071A against an H-maser (556 990 phase points): decade runs with bounds and ~310-row
 // "all tau" runs; about 1 s for the twelve tables in Release.
@@ -291,7 +271,7 @@ INSTANTIATE_TEST_SUITE_P(Cs5071a, Stable32Table,
                                            all_tau("cs5071a/ohdev_all.txt", kCs, kOhdev),
                                            cs_totdev_decade(),
                                            all_tau("cs5071a/totdev_all.txt", kCs, kTotdev)),
-                         case_name);
+                         stats_test::table_case_name<TableCase>);
 
 }  // namespace
 }  // namespace stochnav

@@ -26,7 +26,11 @@ struct AllanArguments {
   std::string output;
 };
 
-std::string as_json(const std::vector<DeviationPoint>& points) {
+/// DESIGN.md's layout ("adev", "adev_lo", "adev_hi" hold the deviation of every kind), plus
+/// "deviation" (its name) and the same columns under the deviation's own name ("mtie", ...).
+/// MTIE and TIE rms have no noise type: their alpha is null (their edf and bounds, NaN, too).
+std::string as_json(const std::vector<DeviationPoint>& points, Deviation kind) {
+  const std::string name(deviation_name(kind));
   nlohmann::json out = {{"tau", nlohmann::json::array()},   {"adev", nlohmann::json::array()},
                         {"adev_lo", nlohmann::json::array()}, {"adev_hi", nlohmann::json::array()},
                         {"n", nlohmann::json::array()},     {"edf", nlohmann::json::array()},
@@ -38,7 +42,17 @@ std::string as_json(const std::vector<DeviationPoint>& points) {
     out["adev_hi"].push_back(p.upper);
     out["n"].push_back(p.terms);
     out["edf"].push_back(p.edf);
-    out["alpha"].push_back(p.alpha);
+    if (has_confidence_interval(kind)) {
+      out["alpha"].push_back(p.alpha);
+    } else {
+      out["alpha"].push_back(nullptr);
+    }
+  }
+  out["deviation"] = name;
+  if (name != "adev") {
+    out[name] = out["adev"];
+    out[name + "_lo"] = out["adev_lo"];
+    out[name + "_hi"] = out["adev_hi"];
   }
   return out.dump(2) + "\n";
 }
@@ -86,7 +100,7 @@ void run_allan(const AllanArguments& arguments) {
 
   std::string text;
   switch (format) {
-    case OutputFormat::kJson: text = as_json(points); break;
+    case OutputFormat::kJson: text = as_json(points, kind); break;
     case OutputFormat::kCsv: text = as_csv(points); break;
     case OutputFormat::kTable: text = as_table(points, record, input.samples, kind); break;
   }
@@ -106,7 +120,8 @@ void add_allan_command(CLI::App& app) {
       ->capture_default_str();
   command
       ->add_option("--deviation", arguments->deviation,
-                   "oadev, adev, mdev, tdev, hdev, ohdev, totdev")
+                   "oadev, adev, mdev, tdev, hdev, ohdev, totdev, mtotdev, ttotdev, htotdev, "
+                   "htotdev_nobias, theo1, theo1_nobias, mtie, tierms")
       ->capture_default_str();
   add_format_option(*command, arguments->format);
   command->add_option("--plot", arguments->plot, "Draw the deviation to FILE.png or FILE.svg");

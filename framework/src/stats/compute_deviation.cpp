@@ -1,26 +1,131 @@
 // A Stable32-style result table: deviation, noise type, EDF and confidence interval per tau.
 
+#include <cmath>
+#include <limits>
+
 #include "fused_passes.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/edf.hpp"
 #include "stochnav/stats/noise_id.hpp"
+#include "theo1_sums.hpp"
 
 namespace stochnav {
+namespace {
+
+/// The estimator whose noise identification Stable32 uses for `kind`: the modified totals
+/// identify as MDEV, the Hadamard totals as OHDEV.
+Deviation identified_as(Deviation kind) {
+  switch (kind) {
+    case Deviation::kMtotdev:
+    case Deviation::kTtotdev:
+      return Deviation::kMdev;
+    case Deviation::kHtotdev:
+    case Deviation::kHtotdevNobias:
+      return Deviation::kOhdev;
+    default:
+      return kind;
+  }
+}
+
+/// Stable32's HTOTDEV bias correction factor of the deviation at m > 1 (deviation.hpp).
+double hadamard_total_correction(int alpha, std::size_t m) {
+  if (m <= 1) return 1.0;
+  switch (alpha) {
+    case 0:
+      return 1.0 / std::sqrt(1.0 - 0.005);
+    case -1:
+      return 1.0 / std::sqrt(1.0 - 0.149);
+    case -2:
+      return 1.0 / std::sqrt(1.0 - 0.229);
+    default:
+      return 1.0;
+  }
+}
+
+double equivalent_degrees_of_freedom(Deviation kind, int alpha, std::size_t m, std::size_t n) {
+  switch (kind) {
+    case Deviation::kTotdev:
+      return total_variance_edf(alpha, m, n);
+    case Deviation::kMtotdev:
+    case Deviation::kTtotdev:
+      return modified_total_variance_edf(alpha, m, n);
+    case Deviation::kTheo1:
+    case Deviation::kTheo1Nobias:
+    case Deviation::kMtie:
+    case Deviation::kTierms:
+      return std::numeric_limits<double>::quiet_NaN();
+    default: {
+      const Deviation as = identified_as(kind);
+      return greenhall_edf({.alpha = alpha,
+                            .d = difference_order(as),
+                            .m = m,
+                            .phase_count = n,
+                            .overlapping = is_overlapping(as),
+                            .modified = is_modified(as)});
+    }
+  }
+}
+
+/// One result row: the deviation at m with its noise type, EDF and interval.
+DeviationPoint make_point(Deviation kind, std::size_t m, double deviation, int alpha,
+                          std::size_t phase_count, double tau0_s, double confidence) {
+  DeviationPoint point;
+  point.m = m;
+  point.tau_s = tau_of(kind, m, tau0_s);
+  point.deviation = deviation;
+  point.terms = term_count(kind, m, phase_count);
+  point.alpha = alpha;
+  point.edf = equivalent_degrees_of_freedom(kind, alpha, m, phase_count);
+  const DeviationInterval interval = chi_square_interval(deviation, point.edf, confidence);
+  point.lower = interval.lower;
+  point.upper = interval.upper;
+  return point;
+}
+
+/// Theo1, MTIE, TIE rms: no Stable32 identification per tau. Theo1 takes the nominal noise
+/// type of its ThêoBR factor for every row; uncorrected Theo1 and the time-interval errors
+/// none (0).
+std::vector<DeviationPoint> points_without_identification(Deviation kind,
+                                                          std::span<const double> phase,
+                                                          double tau0_s,
+                                                          std::span<const std::size_t> m_values,
+                                                          double confidence) {
+  // The ThêoBR factor costs O(N^3): computed once, here, and only for the corrected Theo1.
+  const bool corrected_theo1 = kind == Deviation::kTheo1;
+  const double bias_factor = corrected_theo1 ? theo1_bias_factor(phase) : 1.0;
+  const int alpha = corrected_theo1 ? theo1_bias_noise_type(bias_factor) : 0;
+  const Deviation raw_kind = corrected_theo1 ? Deviation::kTheo1Nobias : kind;
+  const std::vector<double> values = deviation_values(raw_kind, phase, tau0_s, m_values);
+  const double scale = std::sqrt(bias_factor);
+  std::vector<DeviationPoint> points;
+  points.reserve(m_values.size());
+  for (std::size_t k = 0; k < m_values.size(); ++k) {
+    points.push_back(
+        make_point(kind, m_values[k], scale * values[k], alpha, phase.size(), tau0_s, confidence));
+  }
+  return points;
+}
+
+}  // namespace
 
 std::vector<DeviationPoint> compute_deviation(Deviation kind, std::span<const double> phase,
                                               double tau0_s, std::span<const std::size_t> m_values,
                                               double confidence) {
   // Every factor's terms checked first: a factor too long for both gives the estimator's error.
   for (std::size_t m : m_values) require_deviation_terms(kind, m, phase.size());
+  if (is_theo1(kind) || !has_confidence_interval(kind)) {
+    return points_without_identification(kind, phase, tau0_s, m_values, confidence);
+  }
+  const Deviation identification_kind = identified_as(kind);
   // The noise types Stable32 identifies (not those it carries over), all together; their pass
   // over the record runs inside the pass of the deviation sums (fused_passes.hpp).
   std::vector<std::size_t> identified_m;
   for (std::size_t k = 0; k < m_values.size(); ++k) {
-    if (k == 0 || !keeps_previous_noise_type(kind, m_values[k], phase.size())) {
+    if (k == 0 || !keeps_previous_noise_type(identification_kind, m_values[k], phase.size())) {
       identified_m.push_back(m_values[k]);
     }
   }
-  NoiseIdentification identification(kind, phase, identified_m);
+  NoiseIdentification identification(identification_kind, phase, identified_m);
   const std::vector<double> values =
       deviation_values_alongside(kind, phase, tau0_s, m_values, identification.lag1_job());
   const std::vector<NoiseId> identified = identification.finish();
@@ -28,25 +133,14 @@ std::vector<DeviationPoint> compute_deviation(Deviation kind, std::span<const do
   std::vector<DeviationPoint> points;
   points.reserve(m_values.size());
   for (std::size_t k = 0; k < m_values.size(); ++k) {
-    DeviationPoint point;
-    point.m = m_values[k];
-    point.tau_s = static_cast<double>(point.m) * tau0_s;
-    point.deviation = values[k];
-    point.terms = term_count(kind, point.m, phase.size());
-    point.alpha = !points.empty() && keeps_previous_noise_type(kind, point.m, phase.size())
-                      ? points.back().alpha
-                      : identified[next_identified++].alpha;
-    point.edf = kind == Deviation::kTotdev ? total_variance_edf(point.alpha, point.m, phase.size())
-                                           : greenhall_edf({.alpha = point.alpha,
-                                                            .d = difference_order(kind),
-                                                            .m = point.m,
-                                                            .phase_count = phase.size(),
-                                                            .overlapping = is_overlapping(kind),
-                                                            .modified = is_modified(kind)});
-    const DeviationInterval interval = chi_square_interval(point.deviation, point.edf, confidence);
-    point.lower = interval.lower;
-    point.upper = interval.upper;
-    points.push_back(point);
+    const std::size_t m = m_values[k];
+    const int alpha =
+        !points.empty() && keeps_previous_noise_type(identification_kind, m, phase.size())
+            ? points.back().alpha
+            : identified[next_identified++].alpha;
+    const double deviation =
+        kind == Deviation::kHtotdev ? values[k] * hadamard_total_correction(alpha, m) : values[k];
+    points.push_back(make_point(kind, m, deviation, alpha, phase.size(), tau0_s, confidence));
   }
   return points;
 }

@@ -227,4 +227,12 @@ double total_variance_edf(int alpha, std::size_t m, std::size_t phase_count) {
   return e.a0 * static_cast<double>(phase_count) / static_cast<double>(m) - e.a1;
 }
 
+double modified_total_variance_edf(int alpha, std::size_t m, std::size_t phase_count) {
+  if (alpha < -2 || alpha > 2 || m == 0 || phase_count < 3) return kNaN;
+  constexpr std::array<TableEntry, 5> kModifiedTotalTable = {
+      {{1.90, 2.10}, {1.20, 1.40}, {1.10, 1.20}, {0.85, 0.50}, {0.75, 0.31}}};
+  const TableEntry e = kModifiedTotalTable[static_cast<std::size_t>(2 - alpha)];
+  return e.a0 * static_cast<double>(phase_count) / static_cast<double>(m) - e.a1;
+}
+
 }  // namespace stochnav

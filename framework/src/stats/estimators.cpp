@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "extended_estimators.hpp"
 #include "fused_passes.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/parallel.hpp"
@@ -341,8 +342,9 @@ double to_deviation(Deviation kind, double sum, double tau0_s, std::size_t m, st
     case Deviation::kHdev:
     case Deviation::kOhdev:
       return std::sqrt(sum / (6.0 * tau * tau * n));
+    default:  // the extended estimators are normalised where they are summed
+      return 0.0;
   }
-  return 0.0;
 }
 
 /// deviation_values with an optional job run in the same pass (deviation_values_alongside).
@@ -351,6 +353,10 @@ std::vector<double> deviation_values_with(Deviation kind, std::span<const double
                                           const AlongsideJob* job) {
   const std::size_t n = phase.size();
   for (std::size_t m : m_values) require_deviation_terms(kind, m, n);
+  if (is_extended_estimator(kind)) {
+    if (job != nullptr) parallel_for(job->blocks, job->run);
+    return extended_deviation_values(kind, phase, tau0_s, m_values);
+  }
 
   std::vector<double> sums;
   if (kind == Deviation::kOadev || kind == Deviation::kOhdev) {

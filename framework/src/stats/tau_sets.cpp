@@ -49,12 +49,26 @@ std::vector<std::size_t> all_tau_factors(std::size_t max_m, double tau0_s) {
   return factors;
 }
 
-}  // namespace
+/// Stable32's "fast" MTIE factors: windows of 2^k points, m = 2^k - 1.
+std::vector<std::size_t> window_octave_factors(std::size_t max_m) {
+  std::vector<std::size_t> factors;
+  for (std::size_t window = 2; window - 1 <= max_m; window *= 2) factors.push_back(window - 1);
+  return factors;
+}
 
-std::vector<std::size_t> averaging_factors(Deviation kind, TauSpacing spacing,
-                                           std::size_t phase_count, double tau0_s) {
-  const std::size_t max_m = max_averaging_factor(kind, phase_count);
-  if (max_m == 0) return {};
+/// Theo1 needs even factors of at least 10: the others of a set are dropped, an odd one is
+/// rounded up to the next even factor (duplicates removed).
+std::vector<std::size_t> theo1_factors(const std::vector<std::size_t>& factors, std::size_t max_m) {
+  std::vector<std::size_t> even;
+  for (std::size_t m : factors) {
+    const std::size_t rounded = m + m % 2;
+    if (rounded < 10 || rounded > max_m) continue;
+    if (even.empty() || rounded != even.back()) even.push_back(rounded);
+  }
+  return even;
+}
+
+std::vector<std::size_t> spaced_factors(TauSpacing spacing, std::size_t max_m, double tau0_s) {
   switch (spacing) {
     case TauSpacing::kOctave:
       return octave_factors(max_m);
@@ -66,6 +80,19 @@ std::vector<std::size_t> averaging_factors(Deviation kind, TauSpacing spacing,
       return all_tau_factors(max_m, tau0_s);
   }
   return {};
+}
+
+}  // namespace
+
+std::vector<std::size_t> averaging_factors(Deviation kind, TauSpacing spacing,
+                                           std::size_t phase_count, double tau0_s) {
+  const std::size_t max_m = max_averaging_factor(kind, phase_count);
+  if (max_m == 0) return {};
+  if (kind == Deviation::kMtie && spacing == TauSpacing::kOctave) {
+    return window_octave_factors(max_m);
+  }
+  if (is_theo1(kind)) return theo1_factors(spaced_factors(spacing, max_m, tau0_s), max_m);
+  return spaced_factors(spacing, max_m, tau0_s);
 }
 
 }  // namespace stochnav

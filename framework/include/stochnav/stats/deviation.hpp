@@ -22,6 +22,32 @@
 //           / (2 tau^2 (N - 2)),  n = N - 2 terms at every m, where x* is the phase extended
 //           by odd reflection about both end points: x*[-j] = 2 x[0] - x[j] and
 //           x*[N-1+j] = 2 x[N-1] - x[N-1-j] (NIST SP 1065 Eq. 25)
+//   kMtotdev modified total (Howe & Vernotte): for each of the N - 3m + 1 subsequences of 3m
+//           phase points, the linear trend of its half means is removed (slope = difference of
+//           the means of the first and last floor(3m/2) points over their distance
+//           3m - floor(3m/2)), the result z is extended to 9m points by even reflection at both
+//           ends (reverse(z), z, reverse(z)) and the 6m terms (S1 - 2 S2 + S3) / m, S the sums
+//           of three adjacent m-point blocks, are averaged squared; MTOTVAR is the mean of
+//           those averages over the subsequences / (2 tau^2) (SP 1065 Eq. 27). No bias
+//           correction (Stable32's octave and decade runs), n = N - 3m + 1 terms
+//   kTtotdev time total: TTOTDEV = tau * MTOTDEV / sqrt(3) (SP 1065 Eq. 28 with tau^2)
+//   kHtotdev Hadamard total (Howe et al., PTTI 2000): the kMtotdev construction applied to the
+//           N - 1 frequency values y[i] = (x[i+1] - x[i]) / tau0 with 1/6 in place of 1/(2 tau^2);
+//           n = N - 3m terms. At m = 1 it is OHDEV, as in Stable32. Stable32's bias correction
+//           HTOTVAR / (1 + a) for m > 1, a = -0.005, -0.149, -0.229 for alpha = 0, -1, -2
+//           (white, flicker, random-walk FM; none for PM noise), with the identified alpha
+//   kHtotdevNobias the same without the bias correction
+//   kTheo1Nobias Theo1 (Howe & Tasset), even m >= 10 only, tau = 0.75 m tau0:
+//           THEO1 = sum_{i=0}^{N-m-1} sum_{j=1}^{m/2} (x[i] - x[i+j] + x[i+m] - x[i+m-j])^2 / j
+//           / (0.75 (N - m) (m tau0)^2)  (SP 1065 Eq. 30),  n = (N - m) m / 2 terms
+//   kTheo1 Theo1 with Stable32's bias removal (ThêoBR, Taylor & Howe): THEO1 * k, one factor
+//           for the whole record, k = mean over i = 0 .. floor(N/6) - 3 of
+//           OAVAR(9 + 3i) / THEO1(12 + 4i) (equal taus; needs N >= 24, else k = 1). Its alpha
+//           is the nominal noise type nearest k (theo1_bias_noise_type)
+//   kMtie   maximum time interval error: the largest max - min of the phase over the N - m
+//           windows of m + 1 points (unit of the phase, U*s); n = N - m
+//   kTierms rms time interval error: sqrt(mean of (x[i+m] - x[i])^2), n = N - m terms (U*s)
+// MTIE and TIE rms carry no noise type, EDF or interval (alpha 0, edf and bounds NaN).
 
 #include <cstddef>
 #include <optional>
@@ -33,7 +59,23 @@
 
 namespace stochnav {
 
-enum class Deviation { kAdev, kOadev, kMdev, kTdev, kHdev, kOhdev, kTotdev };
+enum class Deviation {
+  kAdev,
+  kOadev,
+  kMdev,
+  kTdev,
+  kHdev,
+  kOhdev,
+  kTotdev,
+  kMtotdev,
+  kTtotdev,
+  kHtotdev,
+  kHtotdevNobias,
+  kTheo1,
+  kTheo1Nobias,
+  kMtie,
+  kTierms,
+};
 
 /// Which averaging factors to evaluate.
 enum class TauSpacing {
@@ -44,7 +86,8 @@ enum class TauSpacing {
             ///< spread over the decades of tau the result spans (see averaging_factors)
 };
 
-/// "adev", "oadev", "mdev", "tdev", "hdev", "ohdev", "totdev".
+/// "adev", "oadev", "mdev", "tdev", "hdev", "ohdev", "totdev", "mtotdev", "ttotdev", "htotdev",
+/// "htotdev_nobias", "theo1", "theo1_nobias", "mtie", "tierms".
 std::string_view deviation_name(Deviation kind);
 /// The inverse of deviation_name; nullopt for anything else (case-sensitive).
 std::optional<Deviation> deviation_from_name(std::string_view name);
@@ -57,24 +100,34 @@ int difference_order(Deviation kind);
 bool is_overlapping(Deviation kind);
 /// True for MDEV and TDEV (the phase is averaged over m points before differencing).
 bool is_modified(Deviation kind);
+/// True for Theo1 (corrected or not): tau = 0.75 m tau0, m even and >= 10.
+bool is_theo1(Deviation kind);
+/// False for MTIE and TIE rms: no noise type, EDF or confidence interval.
+bool has_confidence_interval(Deviation kind);
+/// tau (s) of averaging factor m: m tau0, or 0.75 m tau0 for Theo1.
+double tau_of(Deviation kind, std::size_t m, double tau0_s);
 
 /// Number of terms (squared differences) of the estimator at averaging factor m on N phase
 /// points, as Stable32 reports it in its `#` column: OADEV N - 2m; ADEV floor((N-1)/m) - 1;
 /// MDEV and TDEV N - 3m + 1; HDEV floor((N-1)/m) - 2; OHDEV N - 3m; TOTDEV N - 2 for every
-/// m <= N - 2 (the reflected record is long enough). 0 when m == 0 or the record is too short
-/// for even one term.
+/// m <= N - 2 (the reflected record is long enough); MTOTDEV, TTOTDEV N - 3m + 1; HTOTDEV
+/// N - 3m; Theo1 (N - m) m / 2 for even m >= 10 (0 for odd m or m < 10); MTIE, TIE rms N - m.
+/// 0 when m == 0 or the record is too short for even one term.
 std::size_t term_count(Deviation kind, std::size_t m, std::size_t phase_count);
 
 /// Largest averaging factor Stable32 evaluates on N phase points: the largest m with
 /// 5m < N - 1 (ADEV, HDEV), 4m < N - 1 (the other overlapping and modified estimators) or
-/// 2m < N - 1 (TOTDEV). Inferred from Stable32 tables: PHASE.DAT (N = 1001) stops ADEV at
-/// m = 197 < 200, OADEV at 247 and TOTDEV at 499.
+/// 2m < N - 1 (TOTDEV); 3m <= N - 1 (MTOTDEV, TTOTDEV, HTOTDEV); m <= N - 3 (Theo1); m <= N - 1
+/// (MTIE); TIE rms as OADEV. Inferred from Stable32 tables: PHASE.DAT (N = 1001) stops ADEV at
+/// m = 197 < 200, OADEV at 247, TOTDEV at 499, MTOTDEV at 332 and Theo1 at 998.
 /// 0 when the record is too short.
 std::size_t max_averaging_factor(Deviation kind, std::size_t phase_count);
 
 /// The averaging factors Stable32 would use for `kind` on N phase points, ascending, all
 /// <= max_averaging_factor(kind, N); empty when N is too short.
-///   kOctave, kDecade: powers of two; 1, 2, 4 times powers of ten.
+///   kOctave, kDecade: powers of two; 1, 2, 4 times powers of ten. Theo1 takes the even
+///     factors >= 10 of those sets (octave 16, 32, ...), MTIE's octave set is 2^k - 1 (windows
+///     of 2^k points, Stable32's "fast" MTIE).
 ///   kAll: m = 1, then m <- m + floor(m / K) + 1 with K = floor(213 / D), where D is the number
 ///     of decades of tau the result spans, ceil(log10(m_max * tau0_s)) - floor(log10(tau0_s)):
 ///     about 490 / D points per decade. Inferred from Stable32's all-tau tables, which it
@@ -102,8 +155,8 @@ std::vector<double> deviation_values(Deviation kind, std::span<const double> pha
 /// One row of a Stable32-style result table.
 struct DeviationPoint {
   std::size_t m = 0;       ///< averaging factor
-  double tau_s = 0.0;      ///< m * tau0 (s)
-  double deviation = 0.0;  ///< the estimate (unit of the rate; U*s for TDEV)
+  double tau_s = 0.0;      ///< m * tau0 (s); 0.75 m tau0 for Theo1
+  double deviation = 0.0;  ///< the estimate (unit of the rate; U*s for TDEV, TTOTDEV, MTIE, TIE)
   std::size_t terms = 0;   ///< term_count(kind, m, N)
   int alpha = 0;           ///< identified power-law noise, S_y(f) ~ f^alpha, in [-2, 2]
   double edf = 0.0;        ///< equivalent degrees of freedom of the variance (Greenhall)

@@ -45,4 +45,12 @@ double greenhall_edf(const EdfQuery& query);
 /// noise type agrees. NaN for alpha outside [-2, 2], m == 0 or N < 3.
 double total_variance_edf(int alpha, std::size_t m, std::size_t phase_count);
 
+/// EDF of the modified total variance (MTOTDEV, TTOTDEV): NIST SP 1065 Sec. 5.2.11, Table 8,
+///   edf = b N / m - c,  (b, c) = (1.90, 2.10), (1.20, 1.40), (1.10, 1.20), (0.85, 0.50),
+///   (0.75, 0.31) for alpha = 2, 1, 0, -1, -2.
+/// Not Stable32's: its MTOTDEV bounds on PHASE.DAT imply about 1.33 N / m - 1.9 for white FM
+/// (m >= 16) and the MDEV EDF below; its rule is not published. NaN for alpha outside [-2, 2],
+/// m == 0 or N < 3.
+double modified_total_variance_edf(int alpha, std::size_t m, std::size_t phase_count);
+
 }  // namespace stochnav
