@@ -134,9 +134,9 @@ TEST(HeadingHypotheses, TheSplitStartHasTheStartsMeanAndCovariance) {
 }
 
 // A horizontal tool pointing east at 80 N, after a static alignment that measured the mean rate
-// C_bn w_ie + b exactly (noise-free): the coarse (TRIAD) attitude, the bias that attitude implies
-// (nearly zero: the gyrocompass puts the whole bias into the heading), the heading sigma of a
-// linearised fine alignment, and the gyro-bias prior the alignment started from.
+// C_bn w_ie + b exactly (noise-free): the coarse (TRIAD) attitude, part of the bias that attitude
+// implies, the heading sigma of a linearised fine alignment, the span's mean rate and the
+// gyro-bias prior the alignment started from.
 struct AlignedAt80N {
   NavState truth;
   NavState aligned;
@@ -158,10 +158,12 @@ AlignedAt80N aligned_at_80n(const Eigen::Vector3d& gyro_bias_radps, double prior
   out.aligned = out.truth;
   out.aligned.q_nb = coarse_alignment(means, out.truth.latitude_rad);
   out.options = uncertain_heading_start(18.0 * kDeg);
+  // What the fine alignment hands over: the core bias it kept (here half the bias the coarse
+  // attitude implies; the rest went to augmented states that do not reach the run).
   out.options.initial_gyro_bias_radps =
-      means.omega_ib_b - out.aligned.q_nb.toRotationMatrix().transpose() * earth_rate;
-  out.options.alignment_gyro_bias_prior =
-      FilterOptions::GyroBiasPrior{Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(prior_sigma_radps)};
+      0.5 * (means.omega_ib_b - out.aligned.q_nb.toRotationMatrix().transpose() * earth_rate);
+  out.options.static_gyrocompass = FilterOptions::StaticGyrocompass{
+      means.omega_ib_b, Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(prior_sigma_radps)};
   return out;
 }
 
@@ -182,9 +184,7 @@ TEST(HeadingHypotheses, AfterAnAlignmentEveryHeadingExplainsTheMeasuredRate) {
             30.0 * kDeg);
   ASSERT_GT(bank.hypotheses(), 10u);
   const Eigen::Vector3d earth_rate = earth_rate_n(start.truth.latitude_rad);
-  const Eigen::Vector3d measured =
-      start.options.initial_gyro_bias_radps +
-      start.aligned.q_nb.toRotationMatrix().transpose() * earth_rate;
+  const Eigen::Vector3d measured = start.options.static_gyrocompass->mean_rate_radps;
   double nearest = INFINITY;
   for (std::size_t i = 0; i < bank.hypotheses(); ++i) {
     const MwdNavigator& h = bank.hypothesis(i);

@@ -143,7 +143,8 @@ AlignedStart align_at_rest(std::span<const ImuIncrement> span, const NavState& s
   NavState start = site;
   start.t_s = span.front().t_s - span.front().dt_s;
   start.v_n.setZero();
-  start.q_nb = coarse_alignment(static_means(span), site.latitude_rad);
+  const StaticMeans means = static_means(span);
+  start.q_nb = coarse_alignment(means, site.latitude_rad);
 
   FilterOptions fine = options;
   fine.position_sigma_m.setConstant(config.position_sigma_m);
@@ -185,8 +186,9 @@ AlignedStart align_at_rest(std::span<const ImuIncrement> span, const NavState& s
   // With the correlations: the heading and the horizontal gyro biases are known together far
   // better than apart, and the run must not count that information a second time.
   out.initial_core_covariance = result.core_covariance;
-  out.alignment_gyro_bias_prior = FilterOptions::GyroBiasPrior{
-      options.initial_gyro_bias_radps, start_bias_sigma(options.gyro_bias_sigma_radps, gyro_noise)};
+  out.static_gyrocompass = FilterOptions::StaticGyrocompass{
+      means.omega_ib_b, options.initial_gyro_bias_radps,
+      start_bias_sigma(options.gyro_bias_sigma_radps, gyro_noise)};
   return aligned;
 }
 

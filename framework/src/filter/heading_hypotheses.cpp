@@ -88,25 +88,25 @@ std::vector<SplitStart> linear_split(const CoreEstimate& start,
 }
 
 // After a static alignment: headings over the whole circle, each with the gyro bias the static
-// data then imply. The aligned estimate measured the mean rate m = C_bn w_ie + b; hypothesis i
-// turns the attitude by d_i about the vertical (C_nb_i = Rot(d_i e_U) C_nb), so its bias is
-// b_i = m - C_bn_i w_ie, exactly, not linearised about the aligned heading. Its prior weight is
+// data then imply. The static span's mean rate is m = C_bn w_ie + b; hypothesis i turns the
+// aligned attitude by d_i about the vertical (C_nb_i = Rot(d_i e_U) C_nb), so its bias is
+// b_i = m - C_bn_i w_ie, exactly, not linearised about the aligned heading (and all of it: the
+// alignment's augmented states, which held part of it, do not reach the run). Its prior weight is
 // the bias prior's density at b_i (the static data's noise is negligible beside it): the
 // gyrocompass's posterior. Its covariance is the start's conditioned on the heading, plus a
 // heading sigma s_c along the direction in which the heading moves that bias.
 std::vector<SplitStart> circle_split(const CoreEstimate& start,
                                      const Eigen::Matrix<double, 15, 15>& p0, double sigma,
-                                     const FilterOptions::GyroBiasPrior& prior) {
+                                     const FilterOptions::StaticGyrocompass& gyrocompass) {
   const int count = static_cast<int>(std::ceil(2.0 * std::numbers::pi / (2.0 * sigma)));
   const double spacing = 2.0 * std::numbers::pi / count;
   const Eigen::Vector3d earth_rate = earth_rate_n(start.state.latitude_rad);
   const Eigen::Matrix3d c_bn = start.state.q_nb.toRotationMatrix().transpose();
-  const Eigen::Vector3d measured_rate = start.gyro_bias_b + c_bn * earth_rate;
   const auto bias_at = [&](double heading_error) -> Eigen::Vector3d {
     const Eigen::Matrix3d turn =
         quaternion_from_rotation_vector(heading_error * Eigen::Vector3d::UnitZ())
             .toRotationMatrix();
-    return measured_rate - c_bn * turn.transpose() * earth_rate;
+    return gyrocompass.mean_rate_radps - c_bn * turn.transpose() * earth_rate;
   };
   Eigen::Matrix<double, 15, 15> conditioned =
       p0 - p0.col(kHeading) * p0.row(kHeading) / p0(kHeading, kHeading);
@@ -121,7 +121,8 @@ std::vector<SplitStart> circle_split(const CoreEstimate& start,
             .normalized();
     split.estimate.gyro_bias_b = bias_at(heading_error);
     const Eigen::Vector3d standardised =
-        (split.estimate.gyro_bias_b - prior.mean_radps).cwiseQuotient(prior.sigma_radps);
+        (split.estimate.gyro_bias_b - gyrocompass.bias_mean_radps)
+            .cwiseQuotient(gyrocompass.bias_sigma_radps);
     split.log_weight = -0.5 * standardised.squaredNorm();
     // d(estimate)/d(heading): the heading itself and, through the Earth rate, the gyro bias.
     Eigen::Matrix<double, 15, 1> direction = Eigen::Matrix<double, 15, 1>::Zero();
@@ -143,8 +144,8 @@ HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOption
                                      const std::function<NavigatorPlugins()>& make_plugins) {
   const Eigen::Matrix<double, 15, 15> p0 = core_start_covariance(options);
   const double sigma = options.heading_hypothesis_sigma_rad;
-  const bool prior_usable = options.alignment_gyro_bias_prior &&
-                            (options.alignment_gyro_bias_prior->sigma_radps.array() > 0.0).all();
+  const bool after_alignment = options.static_gyrocompass &&
+                               (options.static_gyrocompass->bias_sigma_radps.array() > 0.0).all();
   if (!(sigma > 0.0) || !(p0(kHeading, kHeading) > std::pow(kSplitAbove * sigma, 2))) {
     hypotheses_.push_back({std::move(first), nullptr, 0.0});
     hypotheses_.back().navigator = make_navigator(initial, options, hypotheses_.back().plugins);
@@ -153,7 +154,7 @@ HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOption
   const CoreEstimate start{initial, options.initial_accel_bias_mps2,
                            options.initial_gyro_bias_radps};
   std::vector<SplitStart> starts =
-      prior_usable ? circle_split(start, p0, sigma, *options.alignment_gyro_bias_prior)
+      after_alignment ? circle_split(start, p0, sigma, *options.static_gyrocompass)
                    : linear_split(start, p0, sigma);
   // Only the hypotheses the prior leaves a chance need a filter.
   double largest = -INFINITY;

@@ -53,16 +53,17 @@ struct FilterOptions {
   /// as documented below.
   std::optional<Eigen::Matrix<double, 15, 15>> initial_core_covariance;
 
-  /// When the start comes from a static alignment: the gyro-bias prior that alignment started
-  /// from (its mean and 1-sigma, body axes, rad/s), before the static data. The bank over the
-  /// heading (filter/heading_hypotheses.hpp) weighs each heading on the whole circle by how
-  /// likely the gyro bias it implies is under this prior: the gyrocompass's exact posterior,
-  /// which is far from Gaussian where the bias is as large as the horizontal Earth rate.
-  struct GyroBiasPrior {
-    Eigen::Vector3d mean_radps = Eigen::Vector3d::Zero();
-    Eigen::Vector3d sigma_radps = Eigen::Vector3d::Zero();
+  /// When the start comes from a static alignment: what its gyrocompass measured and assumed.
+  /// The bank over the heading (filter/heading_hypotheses.hpp) gives each heading on the whole
+  /// circle the gyro bias the static span's mean rate then implies and weighs it by how likely
+  /// that bias is under the prior: the gyrocompass's exact posterior, which is far from Gaussian
+  /// where the bias is as large as the horizontal Earth rate.
+  struct StaticGyrocompass {
+    Eigen::Vector3d mean_rate_radps = Eigen::Vector3d::Zero();   ///< static span, body axes
+    Eigen::Vector3d bias_mean_radps = Eigen::Vector3d::Zero();   ///< prior before the span
+    Eigen::Vector3d bias_sigma_radps = Eigen::Vector3d::Zero();  ///< core + augmented shares
   };
-  std::optional<GyroBiasPrior> alignment_gyro_bias_prior;
+  std::optional<StaticGyrocompass> static_gyrocompass;
 
   // Initial estimates of the sensor biases (the navigator starts from these, not from zero):
   // a run started from an alignment hands over its bias estimates here, and a run config's

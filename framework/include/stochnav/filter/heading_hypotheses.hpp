@@ -8,7 +8,7 @@
 // section 4). Each hypothesis starts with a heading sigma small enough for the first-order model
 // (plus the second-order term, filter/second_order_attitude.hpp) to hold.
 //
-// The split after a static alignment (FilterOptions::alignment_gyro_bias_prior set): headings
+// The split after a static alignment (FilterOptions::static_gyrocompass set): headings
 // over the whole circle, 2 s_c apart (s_c: FilterOptions::heading_hypothesis_sigma_rad). With
 // m the static span's mean rate, hypothesis i turns the aligned attitude by d_i about the
 // vertical and carries the gyro bias the span then implies, b_i = m - C_bn(d_i) w_ie, exactly;
