@@ -141,16 +141,27 @@ FitResult make_result(const GmwmData& data, const GmwmProblem& problem, const So
     a.col(static_cast<Eigen::Index>(i)) = a_all.col(static_cast<Eigen::Index>(free[i]));
   }
   const Eigen::MatrixXd information = a.transpose() * a;
+  // Pseudo-inverse: a direction the data do not determine (a singular value below 1e-12 of the
+  // largest) leaves the parameters with a share of it undetermined (NaN), the others keep theirs.
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(information, Eigen::ComputeFullU |
                                                                Eigen::ComputeFullV);
   const auto& singular = svd.singularValues();
-  const bool singular_information =
-      singular.size() > 0 && !(singular.minCoeff() > 1e-12 * singular.maxCoeff());
   const auto p = static_cast<Eigen::Index>(problem.parameter_count);
   result.log_covariance = Eigen::MatrixXd::Zero(p, p);
-  if (!singular_information && !free.empty()) {
-    const Eigen::MatrixXd inverse = svd.solve(Eigen::MatrixXd::Identity(
-        information.rows(), information.cols()));
+  std::vector<bool> undetermined(problem.parameter_count, false);
+  if (!free.empty()) {
+    const double threshold = 1e-12 * singular.maxCoeff();
+    Eigen::MatrixXd inverse = Eigen::MatrixXd::Zero(information.rows(), information.cols());
+    for (Eigen::Index i = 0; i < singular.size(); ++i) {
+      const auto v = svd.matrixV().col(i);
+      if (singular[i] > threshold) {
+        inverse += v * v.transpose() / singular[i];
+        continue;
+      }
+      for (Eigen::Index m = 0; m < v.size(); ++m) {
+        if (std::abs(v[m]) > 0.1) undetermined[free[static_cast<std::size_t>(m)]] = true;
+      }
+    }
     for (std::size_t i = 0; i < free.size(); ++i) {
       for (std::size_t m = 0; m < free.size(); ++m) {
         result.log_covariance(static_cast<Eigen::Index>(free[i]),
@@ -170,10 +181,9 @@ FitResult make_result(const GmwmData& data, const GmwmProblem& problem, const So
       set_parameter_value(term, i, value);
       const auto kk = static_cast<Eigen::Index>(k);
       const bool held = problem.fixed_log[k].has_value();
-      const double sd = held ? 0.0
-                             : (singular_information ? std::nan("")
-                                                     : value * std::sqrt(result.log_covariance(
-                                                                   kk, kk)));
+      const double sd = held             ? 0.0
+                         : undetermined[k] ? std::nan("")
+                                           : value * std::sqrt(result.log_covariance(kk, kk));
       set_parameter_value(sigma, i, sd);
       if (held) continue;
       const double margin = 1e-6 * (problem.upper_log[k] - problem.lower_log[k]);

@@ -31,7 +31,7 @@ GmwmProblem make_gmwm_problem(const GmwmData& data, const GmwmOptions& options) 
     if (type == TermType::kGaussMarkov) {
       problem.lower_log.push_back(0.5 * std::log(1e-12 * wv_min));
       problem.upper_log.push_back(0.5 * std::log(1e6 * wv_max));
-      problem.lower_log.push_back(std::log(problem.tau0_s / 100.0));
+      problem.lower_log.push_back(std::log(kGmwmMinCorrelationTimeSamples * problem.tau0_s));
       problem.upper_log.push_back(std::log(10.0 * data.scale_s.back()));
       problem.parameter_count += 2;
       continue;

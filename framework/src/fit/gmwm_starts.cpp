@@ -131,7 +131,7 @@ class StartSearch {
 
  private:
   std::vector<double> correlation_time_grid(std::size_t terms) const {
-    const double low = problem_.tau0_s / 16.0;
+    const double low = kGmwmMinCorrelationTimeSamples * problem_.tau0_s;
     const double high = problem_.scale_s.back();
     const double octaves = std::log2(high / low);
     for (double per_octave = 4.0;; per_octave /= 2.0) {

@@ -14,11 +14,11 @@
 // Parameters: the natural logarithm of each coefficient (Q, N, B, K, |R|, Gauss-Markov sigma
 // and tau_c): positive by construction (the package's log sigma^2 and transformed phi, in the
 // units of DESIGN.md), bounded to a wide box around the data's scale (tau_c to
-// [tau0 / 100, 10 tau_J]).
+// [tau0 / 4, 10 tau_J]: kGmwmMinCorrelationTimeSamples).
 //
 // Starting values: every term's wavelet variance is linear in its variance coefficient (Q^2,
 // N^2, B^2, K^2, R^2, sigma^2) once the Gauss-Markov correlation times are set. So for every
-// combination of correlation times on a grid over the scales (tau0 / 16 .. tau_J, two or more
+// combination of correlation times on a grid over the scales (tau0 / 4 .. tau_J, two or more
 // per octave, tau_c ascending across repeated Gauss-Markov terms, none equal), the variances
 // come from a non-negative weighted least-squares solve (exact, by enumeration of the active
 // set), and the `starts` best combinations, with distinct correlation times, start Ceres; the
@@ -83,6 +83,12 @@ FitResult fit_gmwm(const GmwmData& data, const GmwmOptions& options);
 /// A drift (rate_ramp) is told from a random walk by the curvature of the top octaves of the
 /// wavelet variance (slope 2 against 1): it needs at least this many scales (512 samples).
 inline constexpr std::size_t kGmwmRampMinScales = 8;
+
+/// The shortest Gauss-Markov correlation time searched, in sampling intervals. Below about one
+/// interval a Gauss-Markov term of interval means is white noise plus a small negative
+/// tau^-2 part: it and the white noise trade off along a flat valley of the objective, so the
+/// fit would push the white noise to zero. The bound keeps the term a resolvable correlation.
+inline constexpr double kGmwmMinCorrelationTimeSamples = 0.25;
 
 /// Fits every candidate term list (each with `common`'s starts and iteration limit; controls
 /// are not used) and returns them ranked by WIC, best first: FitResult::ranking of the first
