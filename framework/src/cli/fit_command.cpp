@@ -65,7 +65,8 @@ void refuse_gmwm_options(const FitArguments& arguments) {
       {!arguments.candidates.empty(), "--candidates"},
       {!arguments.start.empty(), "--start"},
       {!arguments.fix.empty(), "--fix"},
-      {!arguments.bound.empty(), "--bound"}};
+      {!arguments.bound.empty(), "--bound"},
+      {arguments.gauss_markov_sampling != "mean", "--gauss-markov-sampling"}};
   for (const auto& [given, name] : gmwm_only) {
     if (given) {
       throw ConfigError(std::string(name) + " is a GMWM option; add --method gmwm");
@@ -186,6 +187,10 @@ void add_fit_command(CLI::App& app) {
   command->add_option("--candidates", arguments->candidates,
                       "gmwm: models \"a+b;a+b+c\" ranked by WIC (\"ranking\" in the JSON); the "
                       "best is written");
+  command->add_option("--gauss-markov-sampling", arguments->gauss_markov_sampling,
+                      "gmwm: mean (samples are interval means, as sim/ makes them) or point (a "
+                      "discrete AR1, the R gmwm package's)")
+      ->capture_default_str();
   command->add_option("--start", arguments->start,
                       "gmwm: starting values TERM[#K].PARAM=V,... in reporting units "
                       "(gauss_markov.tau_c=20)");

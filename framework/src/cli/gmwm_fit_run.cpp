@@ -17,24 +17,28 @@ namespace {
 
 void refuse_avar_options(const FitArguments& arguments) {
   if (arguments.window > 0 || arguments.step > 0) {
-    throw ConfigError("--window/--step: windowed fits are Allan-variance fits; drop them or use "
-                      "--method avar");
+    throw ConfigError(
+        "--window/--step: windowed fits are Allan-variance fits; drop them or use "
+        "--method avar");
   }
   if (arguments.terms_given == !arguments.candidates.empty()) {
-    throw ConfigError("--method gmwm: give the model with --terms (e.g. angle_random_walk,"
-                      "gauss_markov,rate_random_walk) or several with --candidates \"a+b;a+b+c\", "
-                      "not both");
+    throw ConfigError(
+        "--method gmwm: give the model with --terms (e.g. angle_random_walk,"
+        "gauss_markov,rate_random_walk) or several with --candidates \"a+b;a+b+c\", "
+        "not both");
   }
   if (!arguments.wv_table.empty() && !arguments.input.path.empty()) {
     throw ConfigError("--wv-table and --input: give one of them");
   }
   if (arguments.wv_table.empty() && arguments.input.path.empty()) {
-    throw ConfigError("--method gmwm: give the record (--input F) or its wavelet variance "
-                      "(--wv-table F.csv)");
+    throw ConfigError(
+        "--method gmwm: give the record (--input F) or its wavelet variance "
+        "(--wv-table F.csv)");
   }
   if (!arguments.wv_table.empty() && arguments.robust) {
-    throw ConfigError("--robust with --wv-table: the table is already computed; compute a robust "
-                      "one with `stochnav wv --robust --format csv` from the record");
+    throw ConfigError(
+        "--robust with --wv-table: the table is already computed; compute a robust "
+        "one with `stochnav wv --robust --format csv` from the record");
   }
 }
 
@@ -50,18 +54,28 @@ GmwmData record_wavelet_variance(const FitArguments& arguments, Record& record) 
   }
   const std::string source = record.source + " [" + record.column + "]";
   if (wavelet_variance_levels(rate.size()) < 3) {
-    throw InputError(fmt::format("{}: {} samples give fewer than 3 wavelet-variance scales; "
-                                 "GMWM needs 16 samples or more",
-                                 source, rate.size()));
+    throw InputError(
+        fmt::format("{}: {} samples give fewer than 3 wavelet-variance scales; "
+                    "GMWM needs 16 samples or more",
+                    source, rate.size()));
   }
   if (std::all_of(rate.begin(), rate.end(), [&](double y) { return y == rate.front(); })) {
-    throw InputError(source + ": the rate is constant (every sample the same); its wavelet "
-                              "variance is zero; check --column");
+    throw InputError(source +
+                     ": the rate is constant (every sample the same); its wavelet "
+                     "variance is zero; check --column");
   }
   const auto levels = arguments.robust ? robust_haar_wavelet_variance(rate, record.rate_hz)
                                        : haar_wavelet_variance(rate, record.rate_hz);
   record.values.assign(rate.size(), 0.0);  // only the count is reported
   return gmwm_data_from_levels(levels, record.unit, record.rate_hz, source);
+}
+
+GaussMarkovSampling parse_gauss_markov_sampling(const std::string& text) {
+  if (text == "mean") return GaussMarkovSampling::kIntervalMean;
+  if (text == "point") return GaussMarkovSampling::kPoint;
+  throw ConfigError("--gauss-markov-sampling '" + text +
+                    "': use mean (samples are interval "
+                    "means) or point (a discrete AR1)");
 }
 
 std::vector<std::vector<TermType>> parse_candidates(const std::string& text) {
@@ -72,7 +86,8 @@ std::vector<std::vector<TermType>> parse_candidates(const std::string& text) {
       item += text[i] == '+' ? ',' : text[i];
       continue;
     }
-    if (!item.empty()) candidates.push_back(parse_fit_terms(split_comma_list(item), "--candidates"));
+    if (!item.empty())
+      candidates.push_back(parse_fit_terms(split_comma_list(item), "--candidates"));
     item.clear();
   }
   if (candidates.empty()) {
@@ -87,6 +102,10 @@ void run_gmwm_fit(const FitArguments& arguments) {
   const OutputFormat format = parse_format(arguments.format);
   refuse_avar_options(arguments);
   GmwmOptions options;
+  // A given term the data leave on its search bound is dropped, named in the report (as the
+  // Allan fit does); a candidate of --candidates likewise.
+  options.drop_terms_at_bound = true;
+  options.gauss_markov_sampling = parse_gauss_markov_sampling(arguments.gauss_markov_sampling);
   std::vector<std::vector<TermType>> candidates;
   if (arguments.terms_given) {
     options.terms = parse_fit_terms(split_comma_list(arguments.terms), "--terms");
@@ -117,9 +136,10 @@ void run_gmwm_fit(const FitArguments& arguments) {
   const FitResult fit = candidates.empty() ? fit_gmwm(data, options)
                                            : rank_gmwm_models(data, candidates, options).front();
   if (fit.diagnostics.failed() && !arguments.keep_failed) {
-    throw InputError(fmt::format("{}: GMWM fit failed: {}; choose other --terms, or give "
-                                 "--keep-failed to write the failed fit (flagged)",
-                                 data.source, fit.diagnostics.failure()));
+    throw InputError(
+        fmt::format("{}: GMWM fit failed: {}; choose other --terms, or give "
+                    "--keep-failed to write the failed fit (flagged)",
+                    data.source, fit.diagnostics.failure()));
   }
   write_output(arguments.output, format_fit(fit, record, format));
 }

@@ -56,7 +56,9 @@ json fit_result_to_json(const FitResult& result) {
     for (const auto& entry : result.ranking) {
       ranking.push_back({{"terms", term_names(entry.terms)},
                          {"wic", number_or_null(entry.wic)},
-                         {"objective", number_or_null(entry.objective)}});
+                         {"objective", number_or_null(entry.objective)},
+                         {"dropped_terms", entry.dropped_terms},
+                         {"failed", entry.failed}});
     }
     document["ranking"] = std::move(ranking);
   }
@@ -91,6 +93,8 @@ json fit_result_to_json(const FitResult& result) {
     document["diagnostics"].erase("slope_readoffs");  // read off an Allan curve: not made here
     // The objective is the J-test statistic (fit/gmwm_fit.hpp): chi-square with dof degrees.
     document["diagnostics"]["objective"] = number_or_null(d.cost);
+    document["diagnostics"]["gauss_markov_sampling"] =
+        std::string(gauss_markov_sampling_name(d.gauss_markov_sampling));
     document["diagnostics"]["j_test"] = {
         {"statistic", number_or_null(d.chi_square)},
         {"dof", d.points > d.parameters ? d.points - d.parameters : 0},

@@ -19,6 +19,7 @@ GmwmProblem make_gmwm_problem(const GmwmData& data, const GmwmOptions& options) 
   problem.scale_s = data.scale_s;
   problem.wv = data.wv;
   problem.tau0_s = 1.0 / data.rate_hz;
+  problem.sampling = options.gauss_markov_sampling;
   // V_jj from the 95 % interval's width, (hi - lo) = 2 z sd for a symmetric interval.
   const double z = boost::math::quantile(boost::math::normal(), 0.975);
   for (std::size_t j = 0; j < data.wv.size(); ++j) {
@@ -40,7 +41,8 @@ GmwmProblem make_gmwm_problem(const GmwmData& data, const GmwmOptions& options) 
     double v_max = 0.0;
     const double unit = 1.0;
     for (std::size_t j = 0; j < data.wv.size(); ++j) {
-      v_max = std::max(v_max, data.wv[j] / term_wavelet_variance(type, &unit, data.scale_s[j]));
+      v_max = std::max(v_max, data.wv[j] / term_wavelet_variance(type, &unit, data.scale_s[j],
+                                                                 problem.tau0_s, problem.sampling));
     }
     problem.lower_log.push_back(0.5 * std::log(1e-12 * v_max));
     problem.upper_log.push_back(0.5 * std::log(1e4 * v_max));
@@ -63,12 +65,8 @@ double gmwm_objective(const GmwmProblem& problem, const std::vector<double>& log
   for (std::size_t k = 0; k < natural.size(); ++k) natural[k] = std::exp(log_parameters[k]);
   double sum = 0.0;
   for (std::size_t j = 0; j < problem.scale_s.size(); ++j) {
-    double model = 0.0;
-    for (std::size_t t = 0; t < problem.terms.size(); ++t) {
-      model += term_wavelet_variance(problem.terms[t], &natural[problem.offset[t]],
-                                     problem.scale_s[j]);
-    }
-    const double r = (problem.wv[j] - model) * problem.sqrt_weight[j];
+    const double r = (problem.wv[j] - problem.model_wavelet_variance(natural.data(), j)) *
+                     problem.sqrt_weight[j];
     sum += r * r;
   }
   return sum;

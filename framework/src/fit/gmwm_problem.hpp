@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "stochnav/fit/gmwm_fit.hpp"
+#include "stochnav/fit/implied_wavelet_variance.hpp"
 
 namespace stochnav::gmwm_detail {
 
@@ -23,6 +24,17 @@ struct GmwmProblem {
   std::vector<std::optional<double>> fixed_log;  ///< held values
   std::vector<std::optional<double>> start_log;  ///< given starts
   double tau0_s = 0.0;
+  GaussMarkovSampling sampling = GaussMarkovSampling::kIntervalMean;
+
+  /// The implied wavelet variance at scale j of the terms with natural parameters `natural`.
+  template <typename T>
+  T model_wavelet_variance(const T* natural, std::size_t j) const {
+    T sum(0.0);
+    for (std::size_t t = 0; t < terms.size(); ++t) {
+      sum += term_wavelet_variance(terms[t], natural + offset[t], scale_s[j], tau0_s, sampling);
+    }
+    return sum;
+  }
 
   /// Flat parameters that are fitted (not fixed).
   std::size_t free_count() const;

@@ -114,8 +114,8 @@ class StartSearch {
       if (p.fixed_log[k]) log[k] = *p.fixed_log[k];
       // Strictly inside the box: Ceres refuses a start on a bound.
       const double margin = 1e-6 * (p.upper_log[k] - p.lower_log[k]);
-      if (!p.fixed_log[k]) log[k] = std::clamp(log[k], p.lower_log[k] + margin,
-                                               p.upper_log[k] - margin);
+      if (!p.fixed_log[k])
+        log[k] = std::clamp(log[k], p.lower_log[k] + margin, p.upper_log[k] - margin);
     }
     return log;
   }
@@ -138,8 +138,8 @@ class StartSearch {
       const auto points = static_cast<std::size_t>(std::floor(octaves * per_octave)) + 1;
       double combinations = 1.0;
       for (std::size_t i = 0; i < terms; ++i) {
-        combinations *= static_cast<double>(points - std::min(points, i)) /
-                        static_cast<double>(i + 1);
+        combinations *=
+            static_cast<double>(points - std::min(points, i)) / static_cast<double>(i + 1);
       }
       if (combinations <= kMaxGridCombinations || per_octave <= 0.5) {
         std::vector<double> grid(points);
@@ -174,7 +174,8 @@ class StartSearch {
         const std::size_t k = p.offset[t];
         double parameters[2] = {1.0, 0.0};
         if (p.terms[t] == TermType::kGaussMarkov) parameters[1] = std::exp(tau_log(candidate, t));
-        const double unit_wv = term_wavelet_variance(p.terms[t], parameters, p.scale_s[jj]);
+        const double unit_wv =
+            term_wavelet_variance(p.terms[t], parameters, p.scale_s[jj], p.tau0_s, p.sampling);
         if (p.fixed_log[k]) {
           fixed_part += std::exp(2.0 * *p.fixed_log[k]) * unit_wv;
         } else {

@@ -47,19 +47,22 @@ class ControlParser {
       const auto dot = item.find('.');
       const auto equals = item.find('=');
       if (dot == std::string::npos || equals == std::string::npos || equals < dot) {
-        throw ConfigError(fmt::format("{} '{}': write TERM.PARAM={} (e.g. "
-                                      "gauss_markov.tau_c={})",
-                                      option, item, kind == ControlKind::kBound ? "LOW:HIGH" : "VALUE",
-                                      kind == ControlKind::kBound ? "1:100" : "20"));
+        throw ConfigError(
+            fmt::format("{} '{}': write TERM.PARAM={} (e.g. "
+                        "gauss_markov.tau_c={})",
+                        option, item, kind == ControlKind::kBound ? "LOW:HIGH" : "VALUE",
+                        kind == ControlKind::kBound ? "1:100" : "20"));
       }
       std::string term_name(trim(std::string_view(item).substr(0, dot)));
       const std::string parameter(trim(std::string_view(item).substr(dot + 1, equals - dot - 1)));
       const std::string_view value_text = std::string_view(item).substr(equals + 1);
       std::size_t occurrence = 0;
       if (const auto hash = term_name.find('#'); hash != std::string::npos) {
-        occurrence = static_cast<std::size_t>(parse_value(term_name.substr(hash + 1), option, item));
+        occurrence =
+            static_cast<std::size_t>(parse_value(term_name.substr(hash + 1), option, item));
         term_name.resize(hash);
-        if (occurrence < 1) throw ConfigError(fmt::format("{} '{}': #K counts from 1", option, item));
+        if (occurrence < 1)
+          throw ConfigError(fmt::format("{} '{}': #K counts from 1", option, item));
         --occurrence;
       } else {
         occurrence = mentions[term_name + "." + parameter]++;
@@ -109,9 +112,10 @@ class ControlParser {
       throw ConfigError(fmt::format("{} '{}': {} has no parameter '{}'; it has {}", option, item,
                                     term_name, parameter, names));
     }
-    throw ConfigError(fmt::format("{} '{}': the model has {} {} term(s); name a term of --terms "
-                                  "(TERM#K picks the K-th of a repeated one)",
-                                  option, item, seen, term_name));
+    throw ConfigError(
+        fmt::format("{} '{}': the model has {} {} term(s); name a term of --terms "
+                    "(TERM#K picks the K-th of a repeated one)",
+                    option, item, seen, term_name));
   }
 
   std::span<const TermType> terms_;
@@ -121,9 +125,8 @@ class ControlParser {
 
 }  // namespace
 
-std::vector<ParameterControl> parse_parameter_controls(std::span<const TermType> terms,
-                                                       Unit unit, std::string_view start,
-                                                       std::string_view fix,
+std::vector<ParameterControl> parse_parameter_controls(std::span<const TermType> terms, Unit unit,
+                                                       std::string_view start, std::string_view fix,
                                                        std::string_view bound) {
   ControlParser parser(terms, unit);
   parser.add(ControlKind::kStart, start);

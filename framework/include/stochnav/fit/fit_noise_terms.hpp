@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "stochnav/fit/fit_data.hpp"
+#include "stochnav/fit/implied_wavelet_variance.hpp"
 #include "stochnav/fit/slope_readoffs.hpp"
 #include "stochnav/model/noise_model.hpp"
 
@@ -99,6 +100,8 @@ struct SelectionStep {
 struct FitDiagnostics {
   /// kGmwm: cost and chi_square are the GMWM objective, criterion_value the WIC, loss kNone.
   FitMethod method = FitMethod::kAvar;
+  /// How the Gauss-Markov terms were taken to be sampled (the Allan fit: always interval means).
+  GaussMarkovSampling gauss_markov_sampling = GaussMarkovSampling::kIntervalMean;
   double cost = 0.0;        ///< final Ceres cost, 1/2 sum rho(r_i^2)
   double chi_square = 0.0;  ///< sum r_i^2 (no robust loss)
   std::size_t points = 0;
@@ -147,6 +150,10 @@ struct RankedModel {
   std::vector<TermType> terms;  ///< as given in the candidate
   double wic = 0.0;             ///< Wavelet Information Criterion (lower is better)
   double objective = 0.0;       ///< the GMWM objective at the optimum
+  /// Terms dropped from the candidate (a parameter on its search bound, GmwmOptions::
+  /// drop_terms_at_bound): wic and objective are those of the candidate without them.
+  std::vector<std::string> dropped_terms;
+  bool failed = false;  ///< the candidate's fit failed (FitDiagnostics::failed)
 };
 
 struct FitResult {

@@ -47,6 +47,7 @@
 
 #include "stochnav/fit/fit_noise_terms.hpp"
 #include "stochnav/fit/gmwm_data.hpp"
+#include "stochnav/fit/implied_wavelet_variance.hpp"
 
 namespace stochnav {
 
@@ -68,6 +69,15 @@ struct GmwmOptions {
   std::vector<ParameterControl> controls;
   std::size_t starts = 4;   ///< best grid starts optimised, >= 1
   int max_iterations = 200;  ///< Ceres iterations per start, >= 1
+  /// How the record samples a Gauss-Markov term (fit/implied_wavelet_variance.hpp): kPoint is
+  /// the discrete AR1 of the `gmwm` package, kIntervalMean the convention of sim/ and of the
+  /// Allan fit. They differ only for tau_c within a few sampling intervals.
+  GaussMarkovSampling gauss_markov_sampling = GaussMarkovSampling::kIntervalMean;
+  /// A term left with a parameter on its search bound is a failed term: true drops it and
+  /// refits without it (repeatedly, while a term is left that is not on a bound; controls of a
+  /// dropped term go with it), naming it in FitDiagnostics::dropped_terms and warnings, as the
+  /// Allan fit's FitOptions::drop_terms_at_bound does; false (default) keeps it (at_bound).
+  bool drop_terms_at_bound = false;
 
   /// Empty when valid; otherwise the reason (a term without a GMWM form, a control out of
   /// range, two Gauss-Markov terms starting or fixed at the same tau_c: unidentifiable).
@@ -90,10 +100,11 @@ inline constexpr std::size_t kGmwmRampMinScales = 8;
 /// fit would push the white noise to zero. The bound keeps the term a resolvable correlation.
 inline constexpr double kGmwmMinCorrelationTimeSamples = 0.25;
 
-/// Fits every candidate term list (each with `common`'s starts and iteration limit; controls
-/// are not used) and returns them ranked by WIC, best first: FitResult::ranking of the first
-/// holds the whole ranking. Candidates that cannot be fitted (too few scales) throw as
-/// fit_gmwm does.
+/// Fits every candidate term list (each with `common`'s starts, iteration limit, sampling and
+/// drop_terms_at_bound; controls are not used) and returns them ranked by WIC, best first:
+/// FitResult::ranking of the first holds the whole ranking, each entry with the candidate's
+/// terms as given (and those dropped from it). Candidates that cannot be fitted (too few
+/// scales) throw as fit_gmwm does.
 std::vector<FitResult> rank_gmwm_models(const GmwmData& data,
                                         std::span<const std::vector<TermType>> candidates,
                                         const GmwmOptions& common);
