@@ -153,12 +153,16 @@ TEST(GmwmFit, PointSampledGaussMarkovNumeratorIsContinuousAtTheSeriesSwitch) {
   }
 }
 
+/// White noise + AR1 (tau_c 0.5 s) + random walk at 100 Hz, plain units.
+NoiseModel white_ar1_walk() {
+  return {Unit::kPlain,
+          100.0,
+          {AngleRandomWalkTerm{1e-3}, GaussMarkovTerm{2e-3, 0.5}, RateRandomWalkTerm{2e-5}}};
+}
+
 TEST(GmwmFit, WhiteNoiseAr1RandomWalkHasCoverageAndSmallBiasOverSeeds) {
   // White + AR1 (tau_c 0.5 s) + random walk at 100 Hz, 2^18 samples (44 min), 40 seeds.
-  const NoiseModel truth{
-      Unit::kPlain,
-      100.0,
-      {AngleRandomWalkTerm{1e-3}, GaussMarkovTerm{2e-3, 0.5}, RateRandomWalkTerm{2e-5}}};
+  const NoiseModel truth = white_ar1_walk();
   const auto stats = simulate_and_fit(truth, std::size_t{1} << 18, 40);
   const char* names[] = {"N", "GM sigma", "GM tau_c", "K"};
   for (std::size_t i = 0; i < stats.coverage.size(); ++i) {
@@ -362,10 +366,7 @@ TEST(GmwmFit, FixedCorrelationTimeIsHeldAndStartsSteer) {
 }
 
 TEST(GmwmFit, RankingPrefersTheTrueModelByWic) {
-  const NoiseModel truth{
-      Unit::kPlain,
-      100.0,
-      {AngleRandomWalkTerm{1e-3}, GaussMarkovTerm{2e-3, 0.5}, RateRandomWalkTerm{2e-5}}};
+  const NoiseModel truth = white_ar1_walk();
   const GmwmData data = simulated_wavelet_variance(truth, std::size_t{1} << 18, 11);
   const std::vector<std::vector<TermType>> candidates = {
       {TermType::kAngleRandomWalk, TermType::kRateRandomWalk},

@@ -9,8 +9,6 @@
 #include "stochnav/fit/fit_option_names.hpp"
 #include "stochnav/fit/gmwm_fit.hpp"
 #include "stochnav/fit/parameter_control_names.hpp"
-#include "stochnav/stats/robust_wavelet_variance.hpp"
-#include "stochnav/stats/wavelet_variance.hpp"
 
 namespace stochnav::cli {
 namespace {
@@ -52,30 +50,10 @@ GmwmData record_wavelet_variance(const FitArguments& arguments, Record& record) 
     }
     if (!rate.empty()) rate.pop_back();
   }
-  const std::string source = record.source + " [" + record.column + "]";
-  if (wavelet_variance_levels(rate.size()) < 3) {
-    throw InputError(
-        fmt::format("{}: {} samples give fewer than 3 wavelet-variance scales; "
-                    "GMWM needs 16 samples or more",
-                    source, rate.size()));
-  }
-  if (std::all_of(rate.begin(), rate.end(), [&](double y) { return y == rate.front(); })) {
-    throw InputError(source +
-                     ": the rate is constant (every sample the same); its wavelet "
-                     "variance is zero; check --column");
-  }
-  const auto levels = arguments.robust ? robust_haar_wavelet_variance(rate, record.rate_hz)
-                                       : haar_wavelet_variance(rate, record.rate_hz);
+  GmwmData data = gmwm_data_from_rate(rate, record.rate_hz, record.unit, arguments.robust,
+                                      record.source + " [" + record.column + "]");
   record.values.assign(rate.size(), 0.0);  // only the count is reported
-  return gmwm_data_from_levels(levels, record.unit, record.rate_hz, source);
-}
-
-GaussMarkovSampling parse_gauss_markov_sampling(const std::string& text) {
-  if (text == "mean") return GaussMarkovSampling::kIntervalMean;
-  if (text == "point") return GaussMarkovSampling::kPoint;
-  throw ConfigError("--gauss-markov-sampling '" + text +
-                    "': use mean (samples are interval "
-                    "means) or point (a discrete AR1)");
+  return data;
 }
 
 std::vector<std::vector<TermType>> parse_candidates(const std::string& text) {
@@ -105,7 +83,8 @@ void run_gmwm_fit(const FitArguments& arguments) {
   // A given term the data leave on its search bound is dropped, named in the report (as the
   // Allan fit does); a candidate of --candidates likewise.
   options.drop_terms_at_bound = true;
-  options.gauss_markov_sampling = parse_gauss_markov_sampling(arguments.gauss_markov_sampling);
+  options.gauss_markov_sampling =
+      parse_gauss_markov_sampling(arguments.gauss_markov_sampling, "--gauss-markov-sampling");
   std::vector<std::vector<TermType>> candidates;
   if (arguments.terms_given) {
     options.terms = parse_fit_terms(split_comma_list(arguments.terms), "--terms");

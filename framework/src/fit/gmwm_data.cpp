@@ -10,6 +10,7 @@
 #include "stochnav/core/errors.hpp"
 #include "stochnav/io/line_reader.hpp"
 #include "stochnav/io/text_cells.hpp"
+#include "stochnav/stats/robust_wavelet_variance.hpp"
 
 namespace stochnav {
 
@@ -19,16 +20,18 @@ std::string validate(const GmwmData& data) {
     return data.source + ": scale_s, wv, wv_lo and wv_hi differ in length";
   }
   if (n < 3) {
-    return fmt::format("{}: {} wavelet-variance scale(s); GMWM needs at least 3 (a record of 16 "
-                       "samples or more)",
-                       data.source, n);
+    return fmt::format(
+        "{}: {} wavelet-variance scale(s); GMWM needs at least 3 (a record of 16 "
+        "samples or more)",
+        data.source, n);
   }
   if (!(data.rate_hz > 0.0) || !std::isfinite(data.rate_hz)) {
     return data.source + ": the sampling rate is not > 0; give --rate";
   }
   if (std::all_of(data.wv.begin(), data.wv.end(), [](double v) { return v == 0.0; })) {
-    return data.source + ": the wavelet variance is zero at every scale (a constant record); "
-                         "check --column";
+    return data.source +
+           ": the wavelet variance is zero at every scale (a constant record); "
+           "check --column";
   }
   for (std::size_t j = 0; j < n; ++j) {
     const bool ok = std::isfinite(data.scale_s[j]) && data.scale_s[j] > 0.0 &&
@@ -36,13 +39,31 @@ std::string validate(const GmwmData& data) {
                     std::isfinite(data.wv_hi[j]) && data.wv[j] > 0.0 &&
                     data.wv_lo[j] <= data.wv[j] && data.wv_hi[j] > data.wv[j];
     if (!ok) {
-      return fmt::format("{}: scale {} (scale_s {:g}): need ascending scales > 0 and 0 < wv <= "
-                         "wv_hi with wv_lo <= wv (got wv {:g}, interval [{:g}, {:g}])",
-                         data.source, j + 1, data.scale_s[j], data.wv[j], data.wv_lo[j],
-                         data.wv_hi[j]);
+      return fmt::format(
+          "{}: scale {} (scale_s {:g}): need ascending scales > 0 and 0 < wv <= "
+          "wv_hi with wv_lo <= wv (got wv {:g}, interval [{:g}, {:g}])",
+          data.source, j + 1, data.scale_s[j], data.wv[j], data.wv_lo[j], data.wv_hi[j]);
     }
   }
   return {};
+}
+
+GmwmData gmwm_data_from_rate(std::span<const double> rate, double rate_hz, Unit unit, bool robust,
+                             const std::string& source) {
+  if (wavelet_variance_levels(rate.size()) < 3) {
+    throw InputError(
+        fmt::format("{}: {} samples give fewer than 3 wavelet-variance scales; "
+                    "GMWM needs 16 samples or more",
+                    source, rate.size()));
+  }
+  if (std::all_of(rate.begin(), rate.end(), [&](double y) { return y == rate.front(); })) {
+    throw InputError(source +
+                     ": the rate is constant (every sample the same); its wavelet "
+                     "variance is zero; check --column");
+  }
+  const auto levels =
+      robust ? robust_haar_wavelet_variance(rate, rate_hz) : haar_wavelet_variance(rate, rate_hz);
+  return gmwm_data_from_levels(levels, unit, rate_hz, source);
 }
 
 GmwmData gmwm_data_from_levels(std::span<const WaveletVariancePoint> levels, Unit unit,
@@ -83,8 +104,8 @@ std::optional<std::size_t> column_index(const std::vector<std::string>& header,
 
 }  // namespace
 
-GmwmData read_wavelet_variance_table(const std::string& path, const std::string& channel,
-                                     Unit unit, double rate_hz) {
+GmwmData read_wavelet_variance_table(const std::string& path, const std::string& channel, Unit unit,
+                                     double rate_hz) {
   LineReader lines(path);
   std::string_view line;
   std::vector<std::string_view> cells;
@@ -114,8 +135,8 @@ GmwmData read_wavelet_variance_table(const std::string& path, const std::string&
     if (trim(line).empty() || trim(line).front() == '#') continue;
     split_cells(line, ',', cells);
     if (cells.size() < needed) {
-      throw InputError(fmt::format("{}:{}: {} cells, the header has {}", path,
-                                   lines.line_number(), cells.size(), header.size()));
+      throw InputError(fmt::format("{}:{}: {} cells, the header has {}", path, lines.line_number(),
+                                   cells.size(), header.size()));
     }
     if (channel_column) {
       const std::string name(unquoted(cells[*channel_column]));
@@ -146,8 +167,8 @@ GmwmData read_wavelet_variance_table(const std::string& path, const std::string&
                                  path, channels.size(), names));
   }
   if (!channel.empty() && channel_column && !channels.contains(channel)) {
-    throw InputError(fmt::format("{}: no channel '{}' in the table; it has {}", path, channel,
-                                 names));
+    throw InputError(
+        fmt::format("{}: no channel '{}' in the table; it has {}", path, channel, names));
   }
   if (rate_hz > 0.0) data.rate_hz = rate_hz;
   if (!(data.rate_hz > 0.0)) {

@@ -33,6 +33,12 @@ std::string validate(const GmwmData& data);
 GmwmData gmwm_data_from_levels(std::span<const WaveletVariancePoint> levels, Unit unit,
                                double rate_hz, std::string source);
 
+/// The classical (or, `robust`, the robust) Haar wavelet variance of rate samples in `unit` at
+/// rate_hz, as GmwmData. Throws InputError (one line starting with `source`) for fewer than 16
+/// samples (under 3 scales) or a constant record.
+GmwmData gmwm_data_from_rate(std::span<const double> rate, double rate_hz, Unit unit, bool robust,
+                             const std::string& source);
+
 /// Reads a wavelet-variance table: CSV with a header naming `scale_s`, `wv` and the interval as
 /// `ci_low`, `ci_high` (the `wv` package's tables) or `wv_lo`, `wv_hi` (`stochnav wv --format
 /// csv`); text cells may be quoted. With a `channel` column, `channel` selects the rows (it must
@@ -40,7 +46,7 @@ GmwmData gmwm_data_from_levels(std::span<const WaveletVariancePoint> levels, Uni
 /// unless rate_hz > 0 is given, otherwise rate_hz (> 0) is required. Values are in `unit`
 /// squared. Throws InputError (one line: file, line or column, how to fix) for a missing file
 /// or column, an unknown channel, a bad cell.
-GmwmData read_wavelet_variance_table(const std::string& path, const std::string& channel,
-                                     Unit unit, double rate_hz);
+GmwmData read_wavelet_variance_table(const std::string& path, const std::string& channel, Unit unit,
+                                     double rate_hz);
 
 }  // namespace stochnav

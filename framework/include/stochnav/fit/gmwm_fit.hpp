@@ -14,7 +14,11 @@
 // Parameters: the natural logarithm of each coefficient (Q, N, B, K, |R|, Gauss-Markov sigma
 // and tau_c): positive by construction (the package's log sigma^2 and transformed phi, in the
 // units of DESIGN.md), bounded to a wide box around the data's scale (tau_c to
-// [tau0 / 4, 10 tau_J]: kGmwmMinCorrelationTimeSamples).
+// [tau0 / 4, 10 tau_J]: kGmwmMinCorrelationTimeSamples). A Gauss-Markov term's wavelet variance
+// is that of interval means of the process (default) or of its point samples, the package's
+// discrete AR1 (GmwmOptions::gauss_markov_sampling; they differ for tau_c within a few tau0).
+// A parameter left on its bound marks its term failed: GmwmOptions::drop_terms_at_bound drops
+// such terms and refits, as the Allan fit does.
 //
 // Starting values: every term's wavelet variance is linear in its variance coefficient (Q^2,
 // N^2, B^2, K^2, R^2, sigma^2) once the Gauss-Markov correlation times are set. So for every
@@ -94,10 +98,11 @@ FitResult fit_gmwm(const GmwmData& data, const GmwmOptions& options);
 /// wavelet variance (slope 2 against 1): it needs at least this many scales (512 samples).
 inline constexpr std::size_t kGmwmRampMinScales = 8;
 
-/// The shortest Gauss-Markov correlation time searched, in sampling intervals. Below about one
-/// interval a Gauss-Markov term of interval means is white noise plus a small negative
-/// tau^-2 part: it and the white noise trade off along a flat valley of the objective, so the
-/// fit would push the white noise to zero. The bound keeps the term a resolvable correlation.
+/// The shortest Gauss-Markov correlation time searched, in sampling intervals. Below it a
+/// Gauss-Markov term is white noise for the wavelet variance (interval means: density
+/// 2 sigma^2 tau_c and a lag-1 correlation of about tau_c / (2 tau0); point samples: phi < 0.02)
+/// and trades off with a white-noise term along a flat valley of the objective. On the ADIS16405
+/// gyro the optimum is at 0.26 tau0, inside the bound (docs/gmwm.md).
 inline constexpr double kGmwmMinCorrelationTimeSamples = 0.25;
 
 /// Fits every candidate term list (each with `common`'s starts, iteration limit, sampling and
