@@ -365,6 +365,25 @@ TEST(GmwmFit, FixedCorrelationTimeIsHeldAndStartsSteer) {
   EXPECT_EQ(fit.diagnostics.parameters, 2u);
 }
 
+TEST(GmwmFit, TermOnItsBoundIsDroppedWithItsControlsAndTheRestRemapped) {
+  // Pure white noise fitted with a random walk first: K goes to its lower bound. Dropped, the
+  // white-noise term moves from index 1 to 0 and its fixed N must follow it.
+  const GmwmData data = white_noise_data(std::size_t{1} << 16);
+  GmwmOptions options{.terms = {TermType::kRateRandomWalk, TermType::kAngleRandomWalk},
+                      .controls = {{.term = 1, .parameter = 0, .fixed = 1.1e-3}}};
+  const FitResult kept = fit_gmwm(data, options);
+  EXPECT_EQ(kept.diagnostics.at_bound, std::vector<std::string>{"rate_random_walk.K"});
+  EXPECT_TRUE(kept.diagnostics.dropped_terms.empty());
+  options.drop_terms_at_bound = true;
+  const FitResult dropped = fit_gmwm(data, options);
+  ASSERT_EQ(dropped.model.terms.size(), 1u);
+  EXPECT_DOUBLE_EQ(std::get<AngleRandomWalkTerm>(dropped.model.terms[0]).n, 1.1e-3);
+  ASSERT_EQ(dropped.diagnostics.dropped_terms.size(), 1u);
+  EXPECT_EQ(dropped.diagnostics.dropped_terms[0],
+            "rate_random_walk (rate_random_walk.K on its search bound)");
+  EXPECT_TRUE(dropped.diagnostics.at_bound.empty());
+}
+
 TEST(GmwmFit, RankingPrefersTheTrueModelByWic) {
   const NoiseModel truth = white_ar1_walk();
   const GmwmData data = simulated_wavelet_variance(truth, std::size_t{1} << 18, 11);

@@ -61,10 +61,9 @@ std::string readoff_rows(const FitResult& fit, bool csv) {
     const double value = to_reported(quantity, row.dimension, row.readoff.value);
     const std::string unit = reported_unit_name(quantity, row.dimension);
     out += csv ? fmt::format("slope_readoff,{},{},{:.6g},,{}\n", row.term, row.name, value, unit)
-               : fmt::format(
-                     "  {:<18} {:<2} = {:<12.5g} {:<16} (line touches the curve at tau = "
-                     "{:.4g} s)\n",
-                     row.term, row.name, value, unit, row.readoff.tau_s);
+               : fmt::format("  {:<18} {:<2} = {:<12.5g} {:<16} (line touches the curve at tau = "
+                             "{:.4g} s)\n",
+                             row.term, row.name, value, unit, row.readoff.tau_s);
   }
   return out;
 }
@@ -82,14 +81,13 @@ std::string format_fit(const FitResult& fit, const Record& record, OutputFormat 
     return fit.diagnostics.method == FitMethod::kAvar ? out + readoff_rows(fit, true) : out;
   }
   const auto& d = fit.diagnostics;
-  std::string out =
-      fmt::format("# noise-term fit of {} [{}] ({} samples at {} Hz, unit {})\n", record.source,
-                  record.column, record.values.size(), record.rate_hz, unit_name(record.unit));
+  std::string out = fmt::format(
+      "# noise-term fit of {} [{}] ({} samples at {} Hz, unit {})\n", record.source, record.column,
+      record.values.size(), record.rate_hz, unit_name(record.unit));
   if (d.method == FitMethod::kGmwm) {
-    out += fmt::format(
-        "# GMWM on the Haar wavelet variance: {} scales, {} parameters; objective "
-        "{:.4g} (J-test p = {:.3g}); WIC {:.4g}\n",
-        d.points, d.parameters, d.cost, d.chi_square_p_value(), d.criterion_value);
+    out += fmt::format("# GMWM on the Haar wavelet variance: {} scales, {} parameters; objective "
+                       "{:.4g} (J-test p = {:.3g}); WIC {:.4g}\n",
+                       d.points, d.parameters, d.cost, d.chi_square_p_value(), d.criterion_value);
     out += fmt::format("# Gauss-Markov terms sampled as {}\n",
                        d.gauss_markov_sampling == GaussMarkovSampling::kPoint
                            ? "point samples (discrete AR1, phi = exp(-tau0 / tau_c))"
@@ -99,18 +97,17 @@ std::string format_fit(const FitResult& fit, const Record& record, OutputFormat 
       for (TermType type : model.terms) {
         names += (names.empty() ? "" : "+") + std::string(term_type_name(type));
       }
-      out += fmt::format("#   rank: {:<60} WIC {:<12.5g} objective {:.5g}{}{}\n", names, model.wic,
-                         model.objective, model.failed ? " FAILED" : "",
+      out += fmt::format("#   rank: {:<60} WIC {:<12.5g} objective {:.5g}{}{}\n", names,
+                         model.wic, model.objective, model.failed ? " FAILED" : "",
                          model.dropped_terms.empty() ? "" : " (dropped a term on its bound)");
     }
   } else {
-    out += fmt::format(
-        "# terms {}; robust loss {} (scale {}); {} points, {} parameters; "
-        "chi-square {:.3g}; {} {:.4g}\n",
-        d.automatic ? fmt::format("chosen by {}", criterion_name(d.criterion))
-                    : std::string("given by --terms"),
-        robust_loss_name(d.loss), d.loss_scale, d.points, d.parameters, d.chi_square,
-        criterion_name(d.criterion), d.criterion_value);
+    out += fmt::format("# terms {}; robust loss {} (scale {}); {} points, {} parameters; "
+                       "chi-square {:.3g}; {} {:.4g}\n",
+                       d.automatic ? fmt::format("chosen by {}", criterion_name(d.criterion))
+                                   : std::string("given by --terms"),
+                       robust_loss_name(d.loss), d.loss_scale, d.points, d.parameters,
+                       d.chi_square, criterion_name(d.criterion), d.criterion_value);
   }
   for (const auto& p : parameters) {
     out += fmt::format("  {:<18} {:<12} = {:<12.5g} +/- {:<10.3g} {}\n", p.term, p.name, p.value,
@@ -132,11 +129,8 @@ std::string format_windowed_fit(const std::vector<double>& time_s,
   for (const auto& fit : fits) rows.push_back(reported_parameters(fit));
   const auto& columns = rows.front();
   if (format == OutputFormat::kJson) {
-    nlohmann::json out = {{"units", unit_name(record.unit)},
-                          {"window", davar.window},
-                          {"step", davar.step},
-                          {"t", time_s},
-                          {"terms", nlohmann::json::array()}};
+    nlohmann::json out = {{"units", unit_name(record.unit)}, {"window", davar.window},
+                          {"step", davar.step}, {"t", time_s}, {"terms", nlohmann::json::array()}};
     for (std::size_t c = 0; c < columns.size(); ++c) {
       if (c == 0 || columns[c].term != columns[c - 1].term) {
         out["terms"].push_back({{"type", columns[c].term}});
@@ -146,8 +140,9 @@ std::string format_windowed_fit(const std::vector<double>& time_s,
       term[columns[c].name + "_sigma"] = nlohmann::json::array();
       for (const auto& row : rows) {
         term[columns[c].name].push_back(row[c].value);
-        term[columns[c].name + "_sigma"].push_back(
-            std::isfinite(row[c].sigma) ? nlohmann::json(row[c].sigma) : nlohmann::json());
+        term[columns[c].name + "_sigma"].push_back(std::isfinite(row[c].sigma)
+                                                       ? nlohmann::json(row[c].sigma)
+                                                       : nlohmann::json());
       }
     }
     // Added beside the series (issue #26): whether each window's fit failed, and why.
@@ -160,9 +155,8 @@ std::string format_windowed_fit(const std::vector<double>& time_s,
     return out.dump(1) + "\n";
   }
   const bool csv = format == OutputFormat::kCsv;
-  std::string out = csv ? "t"
-                        : fmt::format("# windowed fit: window {} step {} samples\n#{:>11}",
-                                      davar.window, davar.step, "t_s");
+  std::string out = csv ? "t" : fmt::format("# windowed fit: window {} step {} samples\n#{:>11}",
+                                            davar.window, davar.step, "t_s");
   for (const auto& c : columns) {
     const std::string name = c.name + "[" + c.unit + "]";
     out += csv ? fmt::format(",{},{}_sigma", c.name, c.name)

@@ -152,13 +152,15 @@ FitResult make_result(const GmwmData& data, const GmwmProblem& problem, const So
   const Eigen::MatrixXd information = a.transpose() * a;
   // Pseudo-inverse: a direction the data do not determine (a singular value below 1e-12 of the
   // largest) leaves the parameters with a share of it undetermined (NaN), the others keep theirs.
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(information,
-                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const auto& singular = svd.singularValues();
+  // With every parameter held (--fix on all) there is nothing to decompose (Eigen's SVD of an
+  // empty matrix crashes).
   const auto p = static_cast<Eigen::Index>(problem.parameter_count);
   result.log_covariance = Eigen::MatrixXd::Zero(p, p);
   std::vector<bool> undetermined(problem.parameter_count, false);
   if (!free.empty()) {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(information,
+                                                Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const auto& singular = svd.singularValues();
     const double threshold = 1e-12 * singular.maxCoeff();
     Eigen::MatrixXd inverse = Eigen::MatrixXd::Zero(information.rows(), information.cols());
     for (Eigen::Index i = 0; i < singular.size(); ++i) {
