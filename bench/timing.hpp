@@ -1,10 +1,14 @@
 #pragma once
 // Wall-clock timing for the benchmark programs: best of several runs.
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <functional>
 #include <limits>
+#include <string>
 
 namespace stochnav::bench {
 
@@ -18,6 +22,17 @@ inline double best_seconds(const std::function<void()>& work, int repeats = 3) {
     best = std::min(best, elapsed.count());
   }
   return best;
+}
+
+/// Seconds of the whole process `'cli' arguments` (best of `repeats`), output discarded; a
+/// non-zero exit is reported on standard output.
+inline double cli_seconds(const std::string& cli, const std::string& arguments, int repeats = 3) {
+  const std::string command = "'" + cli + "' " + arguments + " > /dev/null";
+  return best_seconds(
+      [&] {
+        if (std::system(command.c_str()) != 0) fmt::print("failed: {}\n", command);
+      },
+      repeats);
 }
 
 }  // namespace stochnav::bench

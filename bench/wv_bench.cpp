@@ -18,20 +18,12 @@
 
 namespace {
 
-using stochnav::bench::best_seconds;
 using stochnav::bench::gyro_like_record;
 using stochnav::bench::write_csv_record;
 using stochnav::bench::write_float64_record;
 
-/// Seconds of `stochnav <arguments>` (best of `repeats`), output discarded.
 double cli_seconds(const std::string& arguments, int repeats = 3) {
-  const std::string command =
-      std::string("'") + STOCHNAV_CLI_PATH + "' " + arguments + " > /dev/null";
-  return best_seconds(
-      [&] {
-        if (std::system(command.c_str()) != 0) fmt::print("failed: {}\n", command);
-      },
-      repeats);
+  return stochnav::bench::cli_seconds(STOCHNAV_CLI_PATH, arguments, repeats);
 }
 
 void compare(const std::string& what, const std::string& input) {

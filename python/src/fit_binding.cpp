@@ -13,6 +13,8 @@
 #include "stochnav/fit/fit_noise_terms.hpp"
 #include "stochnav/fit/fit_option_names.hpp"
 #include "stochnav/fit/fit_result_json.hpp"
+#include "stochnav/fit/gmwm_data.hpp"
+#include "stochnav/fit/gmwm_fit.hpp"
 #include "stochnav/model/reporting_units.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/phase.hpp"
@@ -30,20 +32,81 @@ std::vector<TermType> terms_argument(const py::object& terms) {
     try {
       for (const auto& item : terms) names.push_back(py::str(item).cast<std::string>());
     } catch (const py::error_already_set&) {
-      throw ConfigError("terms: expected a list of term names (or None), e.g. "
-                        "[\"angle_random_walk\", \"rate_random_walk\"]");
+      throw ConfigError(
+          "terms: expected a list of term names (or None), e.g. "
+          "[\"angle_random_walk\", \"rate_random_walk\"]");
     }
   }
   return parse_fit_terms(names, "terms");
 }
 
+PythonNoiseModel model_of(FitResult result) {
+  PythonNoiseModel model;
+  model.document = fit_result_to_json(result);
+  model.model = std::move(result.model);
+  model.sigma = std::move(result.sigma);
+  return model;
+}
+
+void refuse_failed(const FitResult& result, bool keep_failed) {
+  if (result.diagnostics.failed() && !keep_failed) {
+    throw InputError(
+        fmt::format("x: fit failed: {}; choose other terms, or pass "
+                    "keep_failed=True to get the failed fit (flagged: .failed)",
+                    result.diagnostics.failure()));
+  }
+}
+
+/// method="gmwm": the library calls of `stochnav fit --method gmwm --terms ...` on an array.
+PythonNoiseModel fit_by_gmwm(const py::object& x, double rate, const py::object& terms,
+                             const std::string& data, const std::string& unit, bool robust,
+                             const std::string& gauss_markov_sampling, bool keep_failed) {
+  if (terms.is_none()) {
+    throw ConfigError(
+        "terms: method=\"gmwm\" needs the terms, e.g. terms=[\"angle_random_walk\", "
+        "\"gauss_markov\", \"rate_random_walk\"]");
+  }
+  GmwmOptions options;
+  options.terms = terms_argument(terms);
+  options.drop_terms_at_bound = true;  // as the CLI
+  options.gauss_markov_sampling =
+      parse_gauss_markov_sampling(gauss_markov_sampling, "gauss_markov_sampling");
+  if (const auto problem = options.validate(); !problem.empty()) throw ConfigError(problem);
+  const DataKind kind = data_kind_argument(data);
+  const double rate_hz = rate_argument(rate);
+  const Unit signal_unit = unit_argument(unit);
+  const SampleArray samples(x, "x");
+  FitResult result;
+  {
+    py::gil_scoped_release release;
+    samples.check_finite();
+    std::vector<double> values(samples.values().begin(), samples.values().end());
+    if (kind == DataKind::kPhase) {
+      for (std::size_t i = 0; i + 1 < values.size(); ++i) {
+        values[i] = (values[i + 1] - values[i]) * rate_hz;
+      }
+      if (!values.empty()) values.pop_back();
+    }
+    result = fit_gmwm(gmwm_data_from_rate(values, rate_hz, signal_unit, robust, "x"), options);
+  }
+  refuse_failed(result, keep_failed);
+  return model_of(std::move(result));
+}
+
 PythonNoiseModel fit(const py::object& x, double rate, const py::object& terms,
                      const std::string& method, const std::string& data, const std::string& unit,
-                     const std::string& taus, const std::string& loss,
-                     const std::string& criterion, bool keep_failed) {
+                     const std::string& taus, const std::string& loss, const std::string& criterion,
+                     bool keep_failed, bool robust, const std::string& gauss_markov_sampling) {
+  if (method == "gmwm") {
+    return fit_by_gmwm(x, rate, terms, data, unit, robust, gauss_markov_sampling, keep_failed);
+  }
   if (method != "avar") {
-    throw ConfigError("method '" + method + "': this stochnav fits the Allan variance only; use "
-                      "method=\"avar\" (GMWM estimation is not built in yet)");
+    throw ConfigError("method '" + method +
+                      "': use \"avar\" (the Allan variance) or \"gmwm\" "
+                      "(the Haar wavelet variance)");
+  }
+  if (robust || gauss_markov_sampling != "mean") {
+    throw ConfigError("robust, gauss_markov_sampling: GMWM options; pass method=\"gmwm\"");
   }
   FitOptions options;
   if (!terms.is_none()) options.terms = terms_argument(terms);
@@ -77,16 +140,8 @@ PythonNoiseModel fit(const py::object& x, double rate, const py::object& terms,
     result = fit_noise_terms(
         fit_data_from_deviations(Deviation::kOadev, points, signal_unit, rate_hz), options);
   }
-  if (result.diagnostics.failed() && !keep_failed) {
-    throw InputError(fmt::format("x: fit failed: {}; choose other terms, or pass "
-                                 "keep_failed=True to get the failed fit (flagged: .failed)",
-                                 result.diagnostics.failure()));
-  }
-  PythonNoiseModel model;
-  model.document = fit_result_to_json(result);
-  model.model = std::move(result.model);
-  model.sigma = std::move(result.sigma);
-  return model;
+  refuse_failed(result, keep_failed);
+  return model_of(std::move(result));
 }
 
 // One line per term of the vocabulary: its parameters in a gyro's reporting units (deg/h).
@@ -108,11 +163,14 @@ std::string term_vocabulary() {
 }
 
 std::string fit_doc() {
-  return R"(Fit the IEEE 952 noise terms to the record's overlapping Allan variance (Ceres).
+  return R"(Fit the IEEE 952 noise terms to the record's overlapping Allan variance (Ceres), or by
+GMWM to its Haar wavelet variance (method="gmwm").
 
 The library calls of `stochnav fit` on an array: OADEV at the taus, then a robust least-squares
 fit in the log domain weighted by the estimator's covariance, terms chosen by an information
-criterion unless given; each parameter with its 1-sigma uncertainty.
+criterion unless given; each parameter with its 1-sigma uncertainty. method="gmwm": those of
+`stochnav fit --method gmwm --terms ...` (docs/gmwm.md); terms are required, taus, loss and
+criterion are not used.
 
 Parameters
 ----------
@@ -128,7 +186,8 @@ terms : list of str, str or None
     (accelerometers: m/s in place of deg; plain data: the signal's own units):)" +
          term_vocabulary() + R"(
 method : str
-    "avar" (the only method built in).
+    "avar" (default) or "gmwm". Both drop a given term left on its search bound and refit
+    (.diagnostics["dropped_terms"]).
 data : str
     "rate" or "phase".
 unit : str
@@ -142,6 +201,11 @@ criterion : str
 keep_failed : bool
     Return a failed fit (a term on its search bound, an undetermined parameter, or a
     chi-square the terms cannot explain) flagged by .failed instead of raising InputError.
+robust : bool
+    method="gmwm": fit the robust wavelet variance (records with outliers).
+gauss_markov_sampling : str
+    method="gmwm": "mean" (samples are interval means, default) or "point" (a discrete AR1,
+    the R gmwm package's).
 
 Returns
 -------
@@ -157,8 +221,9 @@ void bind_fit(py::module_& module) {
   static const std::string doc = fit_doc();
   module.def("fit", &fit, py::arg("x"), py::arg("rate"), py::arg("terms") = py::none(),
              py::arg("method") = "avar", py::arg("data") = "rate", py::arg("unit") = "plain",
-             py::arg("taus") = "octave", py::arg("loss") = "huber",
-             py::arg("criterion") = "bic", py::arg("keep_failed") = false, doc.c_str());
+             py::arg("taus") = "octave", py::arg("loss") = "huber", py::arg("criterion") = "bic",
+             py::arg("keep_failed") = false, py::arg("robust") = false,
+             py::arg("gauss_markov_sampling") = "mean", doc.c_str());
 }
 
 }  // namespace stochnav::python

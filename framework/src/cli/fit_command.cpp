@@ -8,7 +8,9 @@
 
 #include "command_support.hpp"
 #include "commands.hpp"
+#include "fit_arguments.hpp"
 #include "fit_report.hpp"
+#include "gmwm_fit_run.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/fit/fit_data.hpp"
 #include "stochnav/fit/fit_option_names.hpp"
@@ -24,19 +26,6 @@
 namespace stochnav::cli {
 namespace {
 
-struct FitArguments {
-  InputArguments input;
-  std::string terms;
-  std::string taus = "octave";
-  std::string loss = "huber";
-  std::string criterion = "bic";
-  std::size_t window = 0;
-  std::size_t step = 0;
-  std::string format = "table";
-  std::string output;
-  bool terms_given = false;  ///< --terms was on the command line (even empty)
-  bool keep_failed = false;
-};
 
 FitOptions fit_options(const FitArguments& arguments) {
   FitOptions options;
@@ -68,7 +57,33 @@ FitResult fit_window(const std::vector<double>& adev_row, const DavarResult& dav
                          options);
 }
 
+/// Options only a GMWM fit takes: exit 2 naming the option rather than ignoring it.
+void refuse_gmwm_options(const FitArguments& arguments) {
+  const std::pair<bool, const char*> gmwm_only[] = {
+      {arguments.robust, "--robust"},
+      {!arguments.wv_table.empty(), "--wv-table"},
+      {!arguments.candidates.empty(), "--candidates"},
+      {!arguments.start.empty(), "--start"},
+      {!arguments.fix.empty(), "--fix"},
+      {!arguments.bound.empty(), "--bound"},
+      {arguments.gauss_markov_sampling != "mean", "--gauss-markov-sampling"}};
+  for (const auto& [given, name] : gmwm_only) {
+    if (given) {
+      throw ConfigError(std::string(name) + " is a GMWM option; add --method gmwm");
+    }
+  }
+  if (arguments.input.path.empty()) throw ConfigError("--input is required");
+}
+
 void run_fit(const FitArguments& arguments) {
+  if (arguments.method == "gmwm") {
+    run_gmwm_fit(arguments);
+    return;
+  }
+  if (arguments.method != "avar") {
+    throw ConfigError("--method '" + arguments.method + "': use avar or gmwm");
+  }
+  refuse_gmwm_options(arguments);
   const OutputFormat format = parse_format(arguments.format);
   FitOptions options = fit_options(arguments);
   const bool windowed = arguments.window > 0 || arguments.step > 0;
@@ -154,8 +169,35 @@ void run_fit(const FitArguments& arguments) {
 
 void add_fit_command(CLI::App& app) {
   auto arguments = std::make_shared<FitArguments>();
-  CLI::App* command = app.add_subcommand("fit", "Fit the IEEE 952 noise terms to the Allan variance");
+  CLI::App* command = app.add_subcommand(
+      "fit", "Fit the IEEE 952 noise terms to the Allan variance (--method avar) or by GMWM to "
+             "the Haar wavelet variance (--method gmwm)");
   add_input_options(*command, arguments->input);
+  // A GMWM fit may read a wavelet-variance table instead (checked in run_fit).
+  command->get_option("--input")->required(false);
+  command->add_option("--method", arguments->method,
+                      "avar (Allan variance, robust log fit) or gmwm (wavelet variance, GMM)")
+      ->capture_default_str();
+  command->add_flag("--robust", arguments->robust,
+                    "gmwm: fit the robust wavelet variance (wv --robust), for records with "
+                    "outliers");
+  command->add_option("--wv-table", arguments->wv_table,
+                      "gmwm: fit a wavelet-variance CSV (scale_s, wv, ci_low/wv_lo, "
+                      "ci_high/wv_hi; --column picks a channel, --unit its unit)");
+  command->add_option("--candidates", arguments->candidates,
+                      "gmwm: models \"a+b;a+b+c\" ranked by WIC (\"ranking\" in the JSON); the "
+                      "best is written");
+  command->add_option("--gauss-markov-sampling", arguments->gauss_markov_sampling,
+                      "gmwm: mean (samples are interval means, as sim/ makes them) or point (a "
+                      "discrete AR1, the R gmwm package's)")
+      ->capture_default_str();
+  command->add_option("--start", arguments->start,
+                      "gmwm: starting values TERM[#K].PARAM=V,... in reporting units "
+                      "(gauss_markov.tau_c=20)");
+  command->add_option("--fix", arguments->fix,
+                      "gmwm: parameters held TERM[#K].PARAM=V,... (gauss_markov#2.tau_c=300)");
+  command->add_option("--bound", arguments->bound,
+                      "gmwm: search ranges TERM[#K].PARAM=LOW:HIGH,...");
   command->add_option("--terms", arguments->terms,
                       "Comma-separated terms (default: chosen by the information criterion)");
   command->add_flag("--keep-failed", arguments->keep_failed,

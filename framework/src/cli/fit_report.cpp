@@ -78,23 +78,44 @@ std::string format_fit(const FitResult& fit, const Record& record, OutputFormat 
     for (const auto& p : parameters) {
       out += fmt::format("fit,{},{},{:.6g},{:.3g},{}\n", p.term, p.name, p.value, p.sigma, p.unit);
     }
-    return out + readoff_rows(fit, true);
+    return fit.diagnostics.method == FitMethod::kAvar ? out + readoff_rows(fit, true) : out;
   }
   const auto& d = fit.diagnostics;
   std::string out = fmt::format(
       "# noise-term fit of {} [{}] ({} samples at {} Hz, unit {})\n", record.source, record.column,
       record.values.size(), record.rate_hz, unit_name(record.unit));
-  out += fmt::format("# terms {}; robust loss {} (scale {}); {} points, {} parameters; "
-                     "chi-square {:.3g}; {} {:.4g}\n",
-                     d.automatic ? fmt::format("chosen by {}", criterion_name(d.criterion))
-                                 : std::string("given by --terms"),
-                     robust_loss_name(d.loss), d.loss_scale, d.points, d.parameters, d.chi_square,
-                     criterion_name(d.criterion), d.criterion_value);
+  if (d.method == FitMethod::kGmwm) {
+    out += fmt::format("# GMWM on the Haar wavelet variance: {} scales, {} parameters; objective "
+                       "{:.4g} (J-test p = {:.3g}); WIC {:.4g}\n",
+                       d.points, d.parameters, d.cost, d.chi_square_p_value(), d.criterion_value);
+    out += fmt::format("# Gauss-Markov terms sampled as {}\n",
+                       d.gauss_markov_sampling == GaussMarkovSampling::kPoint
+                           ? "point samples (discrete AR1, phi = exp(-tau0 / tau_c))"
+                           : "interval means");
+    for (const auto& model : fit.ranking) {
+      std::string names;
+      for (TermType type : model.terms) {
+        names += (names.empty() ? "" : "+") + std::string(term_type_name(type));
+      }
+      out += fmt::format("#   rank: {:<60} WIC {:<12.5g} objective {:.5g}{}{}\n", names,
+                         model.wic, model.objective, model.failed ? " FAILED" : "",
+                         model.dropped_terms.empty() ? "" : " (dropped a term on its bound)");
+    }
+  } else {
+    out += fmt::format("# terms {}; robust loss {} (scale {}); {} points, {} parameters; "
+                       "chi-square {:.3g}; {} {:.4g}\n",
+                       d.automatic ? fmt::format("chosen by {}", criterion_name(d.criterion))
+                                   : std::string("given by --terms"),
+                       robust_loss_name(d.loss), d.loss_scale, d.points, d.parameters,
+                       d.chi_square, criterion_name(d.criterion), d.criterion_value);
+  }
   for (const auto& p : parameters) {
     out += fmt::format("  {:<18} {:<12} = {:<12.5g} +/- {:<10.3g} {}\n", p.term, p.name, p.value,
                        p.sigma, p.unit);
   }
-  out += "# IEEE 952 slope read-offs (cross-check):\n" + readoff_rows(fit, false);
+  if (d.method == FitMethod::kAvar) {
+    out += "# IEEE 952 slope read-offs (cross-check):\n" + readoff_rows(fit, false);
+  }
   for (const auto& warning : d.warnings) out += "# warning: " + warning + "\n";
   for (const auto& term : d.dropped_terms) out += "# dropped term: " + term + "\n";
   if (d.failed()) out += "# FIT FAILED: " + d.failure() + "\n";

@@ -428,4 +428,8 @@ std::string_view criterion_name(InformationCriterion criterion) {
   return criterion == InformationCriterion::kAic ? "aic" : "bic";
 }
 
+std::string_view fit_method_name(FitMethod method) {
+  return method == FitMethod::kGmwm ? "gmwm" : "avar";
+}
+
 }  // namespace stochnav

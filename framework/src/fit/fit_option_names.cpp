@@ -1,5 +1,7 @@
 #include "stochnav/fit/fit_option_names.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <sstream>
 
@@ -57,6 +59,15 @@ InformationCriterion parse_information_criterion(std::string_view text, std::str
   if (text == "bic") return InformationCriterion::kBic;
   if (text == "aic") return InformationCriterion::kAic;
   throw ConfigError(std::string(option) + " '" + std::string(text) + "': use bic or aic");
+}
+
+GaussMarkovSampling parse_gauss_markov_sampling(std::string_view text, std::string_view option) {
+  if (text == "mean") return GaussMarkovSampling::kIntervalMean;
+  if (text == "point") return GaussMarkovSampling::kPoint;
+  throw ConfigError(
+      fmt::format("{} '{}': use mean (samples are interval means) or point (a "
+                  "discrete AR1, the R gmwm package's)",
+                  option, text));
 }
 
 }  // namespace stochnav

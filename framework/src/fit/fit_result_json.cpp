@@ -49,12 +49,25 @@ json fit_result_to_json(const FitResult& result) {
                          {"accepted", step.accepted}});
   }
   const auto& r = d.readoffs;
+  const bool gmwm = d.method == FitMethod::kGmwm;
+  document["method"] = std::string(fit_method_name(d.method));
+  if (!result.ranking.empty()) {
+    json ranking = json::array();
+    for (const auto& entry : result.ranking) {
+      ranking.push_back({{"terms", term_names(entry.terms)},
+                         {"wic", number_or_null(entry.wic)},
+                         {"objective", number_or_null(entry.objective)},
+                         {"dropped_terms", entry.dropped_terms},
+                         {"failed", entry.failed}});
+    }
+    document["ranking"] = std::move(ranking);
+  }
   document["diagnostics"] = {
       {"cost", number_or_null(d.cost)},
       {"chi_square", number_or_null(d.chi_square)},
       {"points", d.points},
       {"parameters", d.parameters},
-      {"criterion", std::string(criterion_name(d.criterion))},
+      {"criterion", gmwm ? std::string("wic") : std::string(criterion_name(d.criterion))},
       {"criterion_value", number_or_null(d.criterion_value)},
       {"loss", std::string(robust_loss_name(d.loss))},
       {"loss_scale", d.loss_scale},
@@ -76,6 +89,17 @@ json fit_result_to_json(const FitResult& result) {
       {"at_bound", d.at_bound},
       {"undetermined", d.undetermined},
   };
+  if (gmwm) {
+    document["diagnostics"].erase("slope_readoffs");  // read off an Allan curve: not made here
+    // The objective is the J-test statistic (fit/gmwm_fit.hpp): chi-square with dof degrees.
+    document["diagnostics"]["objective"] = number_or_null(d.cost);
+    document["diagnostics"]["gauss_markov_sampling"] =
+        std::string(gauss_markov_sampling_name(d.gauss_markov_sampling));
+    document["diagnostics"]["j_test"] = {
+        {"statistic", number_or_null(d.chi_square)},
+        {"dof", d.points > d.parameters ? d.points - d.parameters : 0},
+        {"p_value", number_or_null(d.chi_square_p_value())}};
+  }
   return document;
 }
 

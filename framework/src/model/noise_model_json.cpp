@@ -222,8 +222,22 @@ NoiseModel noise_model_from_json(const json& value, std::string_view pointer_pre
       require_object(entry, root + "/diagnostics", "the diagnostics object of a fit result");
       continue;
     }
+    // What `stochnav fit` writes beside the model: how it was fitted, and the GMWM ranking.
+    if (key == "method") {
+      if (!entry.is_string()) {
+        fail(root + "/method", type_problem(entry, "a string"), "a fit's method, avar or gmwm");
+      }
+      continue;
+    }
+    if (key == "ranking") {
+      if (!entry.is_array()) {
+        fail(root + "/ranking", type_problem(entry, "an array"), "a GMWM fit's model ranking");
+      }
+      continue;
+    }
     fail(root + "/" + pointer_token(key), "is an unknown key",
-         "only \"units\", \"rate_hz\", \"terms\" (and \"diagnostics\" from a fit)");
+         "only \"units\", \"rate_hz\", \"terms\" (and \"method\", \"diagnostics\", "
+         "\"ranking\" from a fit)");
   }
 
   NoiseModel model;

@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "stochnav/fit/fit_data.hpp"
+#include "stochnav/fit/implied_wavelet_variance.hpp"
 #include "stochnav/fit/slope_readoffs.hpp"
 #include "stochnav/model/noise_model.hpp"
 
@@ -55,6 +56,9 @@ namespace stochnav {
 
 enum class RobustLoss { kNone, kHuber, kCauchy };
 enum class InformationCriterion { kAic, kBic };
+/// How a fit was made: to the Allan variance (this header) or by GMWM to the Haar wavelet
+/// variance (fit/gmwm_fit.hpp).
+enum class FitMethod { kAvar, kGmwm };
 
 struct FitOptions {
   /// Terms to fit, in any order (repeats allowed, e.g. two Gauss-Markov terms). Empty: choose
@@ -94,6 +98,10 @@ struct SelectionStep {
 };
 
 struct FitDiagnostics {
+  /// kGmwm: cost and chi_square are the GMWM objective, criterion_value the WIC, loss kNone.
+  FitMethod method = FitMethod::kAvar;
+  /// How the Gauss-Markov terms were taken to be sampled (the Allan fit: always interval means).
+  GaussMarkovSampling gauss_markov_sampling = GaussMarkovSampling::kIntervalMean;
   double cost = 0.0;        ///< final Ceres cost, 1/2 sum rho(r_i^2)
   double chi_square = 0.0;  ///< sum r_i^2 (no robust loss)
   std::size_t points = 0;
@@ -137,6 +145,17 @@ struct FitDiagnostics {
 /// A fit whose chi-square has an upper-tail probability below this has failed.
 inline constexpr double kFailedFitPValue = 1e-6;
 
+/// One model of a GMWM ranking (fit/gmwm_fit.hpp: rank_gmwm_models).
+struct RankedModel {
+  std::vector<TermType> terms;  ///< as given in the candidate
+  double wic = 0.0;             ///< Wavelet Information Criterion (lower is better)
+  double objective = 0.0;       ///< the GMWM objective at the optimum
+  /// Terms dropped from the candidate (a parameter on its search bound, GmwmOptions::
+  /// drop_terms_at_bound): wic and objective are those of the candidate without them.
+  std::vector<std::string> dropped_terms;
+  bool failed = false;  ///< the candidate's fit failed (FitDiagnostics::failed)
+};
+
 struct FitResult {
   /// The fitted terms in TermType order (natural units), unit and rate_hz from the data.
   NoiseModel model;
@@ -146,6 +165,8 @@ struct FitResult {
   /// Covariance of the natural logs of all fitted parameters, in model order.
   Eigen::MatrixXd log_covariance;
   FitDiagnostics diagnostics;
+  /// Candidate models ranked by WIC, best first (this fit is the first); empty unless ranked.
+  std::vector<RankedModel> ranking;
 };
 
 /// Fits the noise terms to `data`. Throws ConfigError when the data (validate(data)) or the
@@ -156,5 +177,7 @@ FitResult fit_noise_terms(const FitData& data, const FitOptions& options = {});
 /// "none", "huber", "cauchy"; "aic", "bic".
 std::string_view robust_loss_name(RobustLoss loss);
 std::string_view criterion_name(InformationCriterion criterion);
+/// "avar", "gmwm".
+std::string_view fit_method_name(FitMethod method);
 
 }  // namespace stochnav

@@ -30,4 +30,8 @@ RobustLoss parse_robust_loss(std::string_view text, std::string_view option);
 /// "bic" or "aic"; otherwise ConfigError "<option> 'x': use bic or aic".
 InformationCriterion parse_information_criterion(std::string_view text, std::string_view option);
 
+/// "mean" or "point" (fit/implied_wavelet_variance.hpp); otherwise ConfigError
+/// "<option> 'x': use mean (...) or point (...)".
+GaussMarkovSampling parse_gauss_markov_sampling(std::string_view text, std::string_view option);
+
 }  // namespace stochnav

@@ -15,6 +15,11 @@
 //      "warnings": [], "failed": false, "failure": "", "dropped_terms": [], "at_bound": [],
 //      "undetermined": []}}
 //
+// Every fit also carries "method": "avar" | "gmwm". A GMWM fit (fit/gmwm_fit.hpp) has criterion
+// "wic", loss "none", and in "diagnostics" "objective" and "j_test": {"statistic", "dof",
+// "p_value"}; a ranked one a top-level "ranking": [{"terms": [...], "wic": x, "objective": y}],
+// best first.
+//
 // "failed" flags a failed fit (FitDiagnostics::failed: a parameter on its search bound, one
 // without an uncertainty, or a chi-square the terms cannot explain) and "failure" says why;
 // `stochnav fit` writes such a result only with --keep-failed, and `simulate noise` refuses a
