@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -225,6 +227,35 @@ TEST(HeadingHypotheses, TheAlignedBankIsTheGyrocompassPosteriorAndCoversTheTruth
   // Binomial 3-sigma bands for 300 draws: 95 % +- 3.8 %, 50 % +- 8.7 %.
   EXPECT_NEAR(central_95 / double(kDraws), 0.95, 0.038);
   EXPECT_NEAR(central_50 / double(kDraws), 0.50, 0.087);
+}
+
+// Stepped: the weights stay a distribution and the mixture covariance a covariance while the
+// hypotheses are reweighed, dropped and merged (30 s at rest at 80 N, the bias the start
+// implies in the truth).
+TEST(HeadingHypotheses, SteppedTheMixtureStaysAProperDistribution) {
+  const double bias = 1.0 * kDeg / 3600.0;
+  const Eigen::Vector3d gyro_bias(0.2 * bias, -0.2 * bias, bias);
+  const AlignedAt80N start = aligned_at_80n(gyro_bias, 1.3 * kDeg / 3600.0);
+  HeadingHypotheses bank(start.aligned, start.options, white_noise_plugins(start.truth, 3),
+                         [&] { return white_noise_plugins(start.truth, 3); });
+  const std::size_t initial = bank.hypotheses();
+  ASSERT_GT(initial, 5u);
+  StaticImu imu(start.truth, {.gyro_arw = 0.01 * kDeg / 60.0, .accel_vrw = 0.01 / 60.0,
+                              .gyro_bias = gyro_bias},
+                100.0, 5);
+  for (int k = 0; k < 3000; ++k) {
+    bank.step(imu.next());
+    if (k % 500 != 499) continue;
+    double total = 0.0;
+    for (std::size_t i = 0; i < bank.hypotheses(); ++i) total += bank.weight(i);
+    EXPECT_NEAR(total, 1.0, 1e-12) << k;
+    const Eigen::MatrixXd& p = bank.covariance();
+    EXPECT_LT((p - p.transpose()).norm(), 1e-12 * p.norm()) << k;
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(p.topLeftCorner(15, 15));
+    EXPECT_GT(eigen.eigenvalues().minCoeff(), -1e-12 * eigen.eigenvalues().maxCoeff()) << k;
+    EXPECT_TRUE(bank.state().q_nb.coeffs().allFinite()) << k;
+  }
+  EXPECT_LE(bank.hypotheses(), initial);
 }
 
 }  // namespace
