@@ -22,8 +22,8 @@ void apply_core_correction(const Eigen::Ref<const Eigen::VectorXd>& correction,
   state.height_m -= dr.z();
   state.v_n -= correction.segment<3>(core::kVelocity);
   // C_est = (I - [phi x]) C_true, so C_true = Rot(phi) C_est to first order.
-  state.q_nb =
-      (quaternion_from_rotation_vector(correction.segment<3>(core::kAttitude)) * state.q_nb).normalized();
+  const Eigen::Vector3d phi = correction.segment<3>(core::kAttitude);
+  state.q_nb = (quaternion_from_rotation_vector(phi) * state.q_nb).normalized();
   estimate.accel_bias_b -= correction.segment<3>(core::kAccelBias);
   estimate.gyro_bias_b -= correction.segment<3>(core::kGyroBias);
 }

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <utility>
 
+#include "stochnav/filter/core_correction.hpp"
 #include "stochnav/filter/core_covariance.hpp"
 #include "stochnav/filter/second_order_attitude.hpp"
 #include "stochnav/ins/earth.hpp"
@@ -488,21 +489,12 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
 }
 
 void MwdNavigator::feed_back(const Eigen::VectorXd& correction) {
-  NavState state = ins_.state();
-  const EarthRadii radii = earth_radii(state.latitude_rad);
-  const Eigen::Vector3d dr = correction.segment<3>(cs::kPosition);
-  state.latitude_rad -= dr.y() / (radii.meridian_m + state.height_m);
-  state.longitude_rad -=
-      dr.x() / ((radii.transverse_m + state.height_m) * std::cos(state.latitude_rad));
-  state.height_m -= dr.z();
-  state.v_n -= correction.segment<3>(cs::kVelocity);
-  // C_est = (I - [phi x]) C_true, so C_true = Rot(phi) C_est to first order.
-  const Eigen::Vector3d phi = correction.segment<3>(cs::kAttitude);
-  state.q_nb = (quaternion_from_rotation_vector(phi) * state.q_nb).normalized();
-  ins_.set_state(state);
-  c_nb_ = state.q_nb.toRotationMatrix();
-  accel_bias_b_ -= correction.segment<3>(cs::kAccelBias);
-  gyro_bias_b_ -= correction.segment<3>(cs::kGyroBias);
+  CoreEstimate estimate{ins_.state(), accel_bias_b_, gyro_bias_b_};
+  apply_core_correction(correction, estimate);
+  ins_.set_state(estimate.state);
+  c_nb_ = estimate.state.q_nb.toRotationMatrix();
+  accel_bias_b_ = estimate.accel_bias_b;
+  gyro_bias_b_ = estimate.gyro_bias_b;
   for (ScaleFactorBlock* block : {&gyro_scale_, &accel_scale_}) {
     if (block->offset >= 0) block->estimate -= correction.segment<3>(block->offset);
   }
