@@ -128,6 +128,13 @@ TEST(SurveyListing, VerticalSectionProjectsOntoTheChosenAzimuth) {
   EXPECT_NEAR(listing[1].vertical_section_m, 10.0, 1e-9);
   // Projected onto the last closure: the first station's 50 m at 53.13 - 126.87 deg apart.
   EXPECT_NEAR(listing[0].vertical_section_m, (-6.0 * 30.0 + 8.0 * 40.0) / 10.0, 1e-9);
+  // A tie-on attitude sets the default, unless it is vertical (its azimuth then arbitrary).
+  EXPECT_NEAR(vertical_section_azimuth_deg(stations, tie_on_at(1000.0, SurveyDirection{5.0, -20.0}),
+                                           options),
+              340.0, 1e-12);
+  EXPECT_NEAR(vertical_section_azimuth_deg(stations, tie_on_at(1000.0, SurveyDirection{0.5, 200.0}),
+                                           options),
+              listing[1].closure_azimuth_deg, 1e-12);
   // West of the reference: a closure azimuth in [0, 360).
   const auto west =
       survey_listing({station_at(1100.0, 40.0, 10.0, 0.0, -5.0)}, tie_on_at(1000.0), {});

@@ -11,6 +11,8 @@ namespace stochnav {
 namespace {
 
 constexpr double kRateLengthM = 30.0;  ///< the listing's rates are per 30 m of MD
+/// Within this of vertical (deg) the tie-on's azimuth does not set the vertical section.
+constexpr double kNearVerticalDeg = 1.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Azimuth (deg, [0, 360)) of a horizontal vector from true north, NaN for the zero vector.
@@ -67,7 +69,10 @@ double vertical_section_azimuth_deg(const std::vector<SurveyStation>& stations,
                                     const SurveyTieOn& tie_on,
                                     const SurveyListingOptions& options) {
   if (options.vertical_section_azimuth_deg) return *options.vertical_section_azimuth_deg;
-  if (tie_on.direction) {
+  // A vertical tie-on's azimuth is arbitrary (the MWD convention puts the heading in the
+  // toolface there): it does not choose the plane.
+  if (tie_on.direction && std::abs(std::sin(tie_on.direction->inclination_deg * kRadPerDeg)) >=
+                              std::sin(kNearVerticalDeg * kRadPerDeg)) {
     const double azimuth = std::fmod(tie_on.direction->azimuth_deg, 360.0);
     return azimuth < 0.0 ? azimuth + 360.0 : azimuth;
   }

@@ -33,9 +33,9 @@
 //                        Both NaN without a datum (SurveyListingOptions::datum_elevation_m).
 //
 // The vertical-section azimuth, when not given, is the tie-on's azimuth (the planned direction
-// at the start) when the tie-on's attitude is known, else the closure azimuth of the last
-// station (the plane through the well reference and the end of the well; 0 when that closure
-// is 0).
+// at the start) when the tie-on's attitude is known and more than 1 deg from vertical, else the
+// closure azimuth of the last station (the plane through the well reference and the end of the
+// well; 0 when that closure is 0).
 
 #include <Eigen/Core>
 #include <optional>
@@ -79,7 +79,8 @@ double ellipse_scale(double confidence);
 HorizontalEllipse horizontal_ellipse(const Eigen::Matrix2d& covariance_ne_m2, double confidence);
 
 /// The vertical-section azimuth used for these stations (deg): the option, else the tie-on's
-/// azimuth, else the last station's closure azimuth (0 without stations or closure).
+/// azimuth (more than 1 deg from vertical), else the last station's closure azimuth (0 without
+/// stations or closure).
 double vertical_section_azimuth_deg(const std::vector<SurveyStation>& stations,
                                     const SurveyTieOn& tie_on, const SurveyListingOptions& options);
 
