@@ -352,7 +352,7 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
   const std::vector<std::string> header = csv_cells(header_line);
   std::vector<std::vector<std::string>> rows;
   for (std::string line; std::getline(survey, line);) rows.push_back(csv_cells(line));
-  ASSERT_GE(rows.size(), 3u);
+  ASSERT_GE(rows.size(), 2u);
   const auto cell = [&](std::size_t row, const std::string& name) {
     const auto at = std::find(header.begin(), header.end(), name);
     if (at == header.end() || rows[row].size() != header.size()) {

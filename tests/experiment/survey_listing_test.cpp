@@ -89,10 +89,15 @@ TEST(SurveyListing, BuildTurnAndDoglegFollowTheClosedForm) {
 TEST(SurveyListing, FirstStationRatesFromAKnownTieOn) {
   const std::vector<SurveyStation> stations = {station_at(1010.0, 2.0, 45.0)};
   const auto listing = survey_listing(stations, tie_on_at(1000.0, SurveyDirection{0.0, 45.0}), {});
-  // A kick-off from vertical: DLS = build = 2 deg over 10 m = 6 deg / 30 m.
+  // A kick-off from vertical: DLS = build = 2 deg over 10 m = 6 deg / 30 m; no turn from a
+  // vertical tie-on (its azimuth is undefined).
   EXPECT_NEAR(listing[0].dls_deg_30m, 6.0, 1e-9);
   EXPECT_NEAR(listing[0].build_deg_30m, 6.0, 1e-9);
-  EXPECT_NEAR(listing[0].turn_deg_30m, 0.0, 1e-12);
+  EXPECT_TRUE(std::isnan(listing[0].turn_deg_30m));
+  const auto from_a_hold = survey_listing({station_at(1010.0, 32.0, 47.0)},
+                                          tie_on_at(1000.0, SurveyDirection{30.0, 45.0}), {});
+  EXPECT_NEAR(from_a_hold[0].build_deg_30m, 6.0, 1e-9);
+  EXPECT_NEAR(from_a_hold[0].turn_deg_30m, 6.0, 1e-9);
 }
 
 TEST(SurveyListing, TurnWrapsThroughNorthAndBackwardsDepthHasNoRates) {
@@ -107,6 +112,18 @@ TEST(SurveyListing, TurnWrapsThroughNorthAndBackwardsDepthHasNoRates) {
     EXPECT_TRUE(std::isnan(listing[k].build_deg_30m)) << k;
     EXPECT_TRUE(std::isnan(listing[k].turn_deg_30m)) << k;
   }
+}
+
+TEST(SurveyListing, NoTurnRateNearVertical) {
+  const std::vector<SurveyStation> stations = {station_at(1030.0, 0.5, 10.0),
+                                               station_at(1060.0, 0.9, 200.0),
+                                               station_at(1090.0, 1.5, 210.0)};
+  const auto listing = survey_listing(stations, tie_on_at(1000.0), {});
+  EXPECT_TRUE(std::isnan(listing[1].turn_deg_30m));
+  EXPECT_TRUE(std::isnan(listing[2].turn_deg_30m));  // from a near-vertical station
+  EXPECT_NEAR(listing[1].build_deg_30m, 0.4, 1e-9);
+  EXPECT_TRUE(std::isfinite(listing[1].dls_deg_30m));  // the dogleg is defined at any attitude
+  EXPECT_GT(listing[1].dls_deg_30m, 0.5);
 }
 
 TEST(SurveyListing, VerticalSectionProjectsOntoTheChosenAzimuth) {

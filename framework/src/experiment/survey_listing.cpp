@@ -11,9 +11,15 @@ namespace stochnav {
 namespace {
 
 constexpr double kRateLengthM = 30.0;  ///< the listing's rates are per 30 m of MD
-/// Within this of vertical (deg) the tie-on's azimuth does not set the vertical section.
+/// Within this of vertical (deg) the azimuth is undefined: no turn rate, and the tie-on's does
+/// not set the vertical section.
 constexpr double kNearVerticalDeg = 1.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// Whether an inclination (deg) is within kNearVerticalDeg of vertical (up or down).
+bool near_vertical(double inclination_deg) {
+  return std::abs(std::sin(inclination_deg * kRadPerDeg)) < std::sin(kNearVerticalDeg * kRadPerDeg);
+}
 
 /// Azimuth (deg, [0, 360)) of a horizontal vector from true north, NaN for the zero vector.
 double azimuth_deg_of(double north, double east) {
@@ -39,8 +45,11 @@ void set_rates(StationListing& listing, double previous_inclination_deg,
                             kDegPerRad;
   listing.dls_deg_30m = dogleg_deg * per_30m;
   listing.build_deg_30m = (station.inclination_deg - previous_inclination_deg) * per_30m;
+  // Near vertical the azimuth is undefined (a tiny tilt swings it through any angle): no turn.
   listing.turn_deg_30m =
-      std::remainder(station.azimuth_deg - previous_azimuth_deg, 360.0) * per_30m;
+      near_vertical(previous_inclination_deg) || near_vertical(station.inclination_deg)
+          ? kNaN
+          : std::remainder(station.azimuth_deg - previous_azimuth_deg, 360.0) * per_30m;
 }
 
 }  // namespace
@@ -71,8 +80,7 @@ double vertical_section_azimuth_deg(const std::vector<SurveyStation>& stations,
   if (options.vertical_section_azimuth_deg) return *options.vertical_section_azimuth_deg;
   // A vertical tie-on's azimuth is arbitrary (the MWD convention puts the heading in the
   // toolface there): it does not choose the plane.
-  if (tie_on.direction && std::abs(std::sin(tie_on.direction->inclination_deg * kRadPerDeg)) >=
-                              std::sin(kNearVerticalDeg * kRadPerDeg)) {
+  if (tie_on.direction && !near_vertical(tie_on.direction->inclination_deg)) {
     const double azimuth = std::fmod(tie_on.direction->azimuth_deg, 360.0);
     return azimuth < 0.0 ? azimuth + 360.0 : azimuth;
   }

@@ -9,8 +9,11 @@
 //   turn_deg_30m         (A - A_previous, wrapped to (-180, 180]) / dMD * 30 m: azimuth rate,
 //                        positive turning right (clockwise from above)
 //                        The three rates are NaN on the first station when the tie-on's
-//                        attitude is not known (SurveyTieOn::direction), and on any station
-//                        whose MD does not exceed the previous one (dMD <= 0).
+//                        attitude is not known (SurveyTieOn::direction: a configured initial
+//                        attitude, or the truth's at a start from truth), and on any station
+//                        whose MD does not exceed the previous one (dMD <= 0); the turn rate
+//                        also where either station is within 1 deg of vertical (the azimuth
+//                        undefined there).
 //   closure_m            horizontal distance from the well reference (the tie-on's north/east,
 //                        the origin of north_m/east_m) to the station: hypot(north, east) (m)
 //   closure_azimuth_deg  its direction from true north, clockwise, [0, 360) (deg); NaN at a
