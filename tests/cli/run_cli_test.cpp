@@ -2,8 +2,11 @@
 // alignment), --data, a deliberate initial error that the filter removes, the self-consistency
 // report, and every kind of bad run input: exit code 2, one line, no output folder.
 
+#include "run_cli.hpp"
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,7 +15,6 @@
 #include <string>
 #include <vector>
 
-#include "run_cli.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
 #include "stochnav/io/psins_imu.hpp"
 #include "temp_dir.hpp"
@@ -317,6 +319,70 @@ TEST_F(RunCli, ARunReplacesAnEarlierRunsFilesWhole) {
   EXPECT_TRUE(fs::exists(kept)) << "a file no run writes was removed";
 }
 
+// Splits a CSV row into its cells.
+std::vector<std::string> csv_cells(const std::string& row) {
+  std::vector<std::string> cells;
+  std::stringstream in(row);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  return cells;
+}
+
+TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
+  nlohmann::json config = recording_config();
+  config["survey"] = {{"vertical_section_azimuth_deg", 90},
+                      {"ellipse_confidence", 0.95},
+                      {"datum_elevation_m", 30}};
+  const fs::path out = dir_->path() / "out_listing";
+  const auto result =
+      run_cli("run '" + write_config("listing.json", config) + "' --out '" + out.string() +
+                  "' --data '" + (dir_->path() / "recording").string() + "' --no-plot",
+              dir_->path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  std::stringstream survey(read(out / "survey.csv"));
+  std::string header_line;
+  std::getline(survey, header_line);
+  // DESIGN.md's columns, the QC's, then the listing's.
+  EXPECT_TRUE(header_line.starts_with("t_s,md_m,inclination_deg,azimuth_deg,toolface_deg,tvd_m,"))
+      << header_line;
+  EXPECT_TRUE(header_line.ends_with(
+      ",qc_azimuth_sigmas,qc_flag,dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,"
+      "closure_azimuth_deg,vertical_section_m,ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,"
+      "ellipse_semi_minor_m,ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m"))
+      << header_line;
+  const std::vector<std::string> header = csv_cells(header_line);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(survey, line);) rows.push_back(csv_cells(line));
+  ASSERT_GE(rows.size(), 2u);
+  const auto cell = [&](std::size_t row, const std::string& name) {
+    const auto at = std::find(header.begin(), header.end(), name);
+    if (at == header.end() || rows[row].size() != header.size()) {
+      ADD_FAILURE() << "no cell " << name << " in row " << row;
+      return std::nan("");
+    }
+    return std::stod(rows[row][static_cast<std::size_t>(at - header.begin())]);
+  };
+  // An aligned start: the tie-on's attitude is not configured, so the first station has no rates.
+  EXPECT_TRUE(std::isnan(cell(0, "dls_deg_30m")));
+  const std::size_t r = rows.size() - 1;
+  EXPECT_TRUE(std::isfinite(cell(r, "dls_deg_30m")));
+  EXPECT_GE(cell(r, "dls_deg_30m"), 0.0);
+  EXPECT_NEAR(cell(r, "closure_m"), std::hypot(cell(r, "north_m"), cell(r, "east_m")), 1e-6);
+  EXPECT_NEAR(cell(r, "vertical_section_m"), cell(r, "east_m"), 1e-6);  // azimuth 90: east
+  // Datum 30 m above MSL, tie-on height -300 m: 330 m below the datum.
+  EXPECT_NEAR(cell(r, "tvd_below_datum_m"), 330.0 + cell(r, "tvd_m"), 1e-5);
+  EXPECT_NEAR(cell(r, "tvdss_m"), 300.0 + cell(r, "tvd_m"), 1e-5);
+  EXPECT_GE(cell(r, "ellipse_semi_major_m"), cell(r, "ellipse_semi_minor_m"));
+  EXPECT_GT(cell(r, "ellipse_semi_minor_m"), 0.0);
+  // The 95 % ellipse is 2.4477 sigma: its axes bracket the north and east sigmas scaled so.
+  EXPECT_GE(cell(r, "ellipse_semi_major_m") * (1 + 1e-6),
+            2.4477 * std::max(cell(r, "north_sigma_m"), cell(r, "east_sigma_m")));
+  EXPECT_LE(cell(r, "ellipse_semi_minor_m") * (1 - 1e-6),
+            2.4478 * std::min(cell(r, "north_sigma_m"), cell(r, "east_sigma_m")));
+  EXPECT_TRUE(std::isfinite(cell(r, "ne_m2")));
+  EXPECT_TRUE(std::isfinite(cell(r, "nv_m2")));
+  EXPECT_TRUE(std::isfinite(cell(r, "ev_m2")));
+}
+
 class BadRun : public RunCli, public ::testing::WithParamInterface<BadRunCase> {};
 
 TEST_P(BadRun, ExitCodeTwoOneLineNoOutput) {
@@ -353,6 +419,24 @@ INSTANTIATE_TEST_SUITE_P(
                    "/filter/max_consecutive_rejections: found 2.5; expected an integer >= 0"},
         BadRunCase{"unknown_filter_key", R"({"filter": {"gate_lockout": 3}})", "",
                    "/filter/gate_lockout: unknown key"},
+        BadRunCase{"survey_azimuth_360", R"({"survey": {"vertical_section_azimuth_deg": 360}})", "",
+                   "/survey/vertical_section_azimuth_deg: 360"},
+        BadRunCase{"survey_azimuth_negative",
+                   R"({"survey": {"vertical_section_azimuth_deg": -0.5}})", "",
+                   "/survey/vertical_section_azimuth_deg: -0.5"},
+        BadRunCase{"survey_confidence_one", R"({"survey": {"ellipse_confidence": 1}})", "",
+                   "/survey/ellipse_confidence: 1"},
+        BadRunCase{"survey_confidence_zero", R"({"survey": {"ellipse_confidence": 0}})", "",
+                   "/survey/ellipse_confidence: 0"},
+        BadRunCase{"survey_datum_text", R"({"survey": {"datum_elevation_m": "RKB"}})", "",
+                   "/survey/datum_elevation_m"},
+        BadRunCase{"survey_datum_far", R"({"survey": {"datum_elevation_m": 20000}})", "",
+                   "/survey/datum_elevation_m: 20000"},
+        BadRunCase{"survey_tie_on_tvd_without_datum", R"({"survey": {"tie_on_tvd_m": 100}})", "",
+                   "/survey/tie_on_tvd_m: given without datum_elevation_m"},
+        BadRunCase{"survey_unknown_key", R"({"survey": {"vs_azimuth_deg": 10}})", "",
+                   "/survey/vs_azimuth_deg: unknown key"},
+        BadRunCase{"survey_not_object", R"({"survey": 3})", "", "/survey: not an object"},
         BadRunCase{"open_loop", R"({"filter": {"feedback": "open_loop"}})", "",
                    "/filter/feedback: found \"open_loop\"; the navigator has one mode"}),
     [](const ::testing::TestParamInfo<BadRunCase>& case_info) { return case_info.param.name; });

@@ -405,6 +405,11 @@ constexpr const char* kSurveyHeader =
     "qc_azimuth_sigma_deg,qc_gravity_total_m_s2,qc_gravity_model_m_s2,qc_gravity_sigma_m_s2,"
     "qc_earth_rate_total_deg_h,qc_earth_rate_sigma_deg_h,qc_inclination_sigmas,"
     "qc_azimuth_sigmas,qc_flag";
+// survey.csv only: the listing's (experiment/survey_listing.hpp), after the QC's.
+constexpr const char* kListingColumns =
+    ",dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,closure_azimuth_deg,vertical_section_m,"
+    "ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,ellipse_semi_minor_m,ellipse_azimuth_deg,"
+    "tvd_below_datum_m,tvdss_m";
 
 // The first `count` cells of a CSV row.
 std::string first_cells(const std::string& row, int count) {
@@ -428,7 +433,7 @@ TEST(SurveyFiles, AppearOnlyOnCommit) {
 
   const auto survey = read_lines(dir.path() / "survey.csv");
   ASSERT_EQ(survey.size(), 4u);
-  EXPECT_EQ(survey[0], kSurveyHeader);
+  EXPECT_EQ(survey[0], std::string(kSurveyHeader) + kListingColumns);
   // The near-vertical first station has no azimuth sigma.
   EXPECT_NE(first_cells(survey[1], 13).find(",nan,"), std::string::npos) << survey[1];
   EXPECT_EQ(first_cells(survey[2], 13).find("nan"), std::string::npos) << survey[2];

@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "run_files.hpp"
+#include "stochnav/core/angles.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/progress_bar.hpp"
 #include "stochnav/experiment/aid_epochs.hpp"
@@ -321,6 +322,15 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   if (config.initial_state && config.initial_state->tie_on.measured_depth_m) {
     tie_on.measured_depth_m = *config.initial_state->tie_on.measured_depth_m;
   }
+  if (config.initial_state && config.initial_state->attitude) {
+    tie_on.direction = SurveyDirection{config.initial_state->attitude->inclination_deg,
+                                       config.initial_state->attitude->azimuth_deg};
+  } else if (!config.initial_state) {
+    // Started from truth: the tie-on's attitude is the truth's.
+    const MwdAttitude tie_on_attitude = mwd_from_quaternion(tie_on_state.q_nb);
+    tie_on.direction = SurveyDirection{tie_on_attitude.inclination_rad * kDegPerRad,
+                                       tie_on_attitude.azimuth_rad * kDegPerRad};
+  }
   SurveyRecorder survey(
       tie_on, station_qc_budget(config, tie_on_state, *plugins.gyro, *plugins.accel, initial.t_s));
   StaticSpan since_aid_epoch;  // raw increments since the last aid epoch
@@ -422,7 +432,12 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   result.aid_rows = aid_epochs.summary_json();
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  if (files) files->commit(result, options.plot, survey, tie_on);
+  if (files) {
+    const SurveyListingOptions listing{config.survey.vertical_section_azimuth_deg,
+                                       config.survey.ellipse_confidence,
+                                       config.survey.datum_elevation_m, config.survey.tie_on_tvd_m};
+    files->commit(result, options.plot, survey, tie_on, listing);
+  }
   return result;
 }
 

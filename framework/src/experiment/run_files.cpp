@@ -174,7 +174,7 @@ void remove_previous_run(const std::filesystem::path& out_dir) {
 }  // namespace
 
 void RunFiles::commit(const NavigationRunResult& result, bool plot, const SurveyRecorder& survey,
-                      const SurveyTieOn& tie_on) {
+                      const SurveyTieOn& tie_on, const SurveyListingOptions& listing) {
   remove_previous_run(out_dir_);
   const std::filesystem::path plot_path = out_dir_ / "errors.png";
   if (plot && result.has_truth && result.error_series.size() > 1) {
@@ -187,7 +187,7 @@ void RunFiles::commit(const NavigationRunResult& result, bool plot, const Survey
     }
   }
   std::vector<std::unique_ptr<PendingFile>> survey_files =
-      write_survey_files(survey, tie_on, out_dir_, plot);
+      write_survey_files(survey, tie_on, out_dir_, plot, listing);
   // metrics.json last: its presence says the run completed.
   nav_.commit();
   biases_.commit();

@@ -50,7 +50,7 @@ class RunFiles final {
   /// metrics.json, errors.png (when `plot` and gnuplot is present), the survey files
   /// (experiment/survey.hpp), then every file renamed into place.
   void commit(const NavigationRunResult& result, bool plot, const SurveyRecorder& survey,
-              const SurveyTieOn& tie_on);
+              const SurveyTieOn& tie_on, const SurveyListingOptions& listing);
 
  private:
   OutputFolder folder_;  // first: created before the files, removed after them on failure

@@ -98,6 +98,11 @@ SurveyStation SurveyRecorder::station_candidate(const NavState& state,
   station.tvd_sigma_m = std::sqrt(covariance(2, 2));
   station.horizontal_covariance_m2 << covariance(1, 1), covariance(1, 0), covariance(0, 1),
       covariance(0, 0);
+  // ENU -> (north, east, down): N = E_1, E = E_0, down = -U.
+  Eigen::Matrix3d enu_to_nev;
+  enu_to_nev << 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, -1.0;
+  station.position_covariance_nev_m2 =
+      enu_to_nev * covariance.topLeftCorner<3, 3>() * enu_to_nev.transpose();
   return station;
 }
 

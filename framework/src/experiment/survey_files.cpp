@@ -6,11 +6,13 @@
 #include <cerrno>
 #include <cmath>
 #include <iterator>
+#include <span>
 #include <string>
 #include <string_view>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/experiment/survey.hpp"
+#include "stochnav/experiment/survey_listing.hpp"
 #include "stochnav/report/gnuplot.hpp"
 #include "survey_plot.hpp"
 
@@ -26,6 +28,11 @@ constexpr std::string_view kSurveyHeader =
     "qc_azimuth_sigma_deg,qc_gravity_total_m_s2,qc_gravity_model_m_s2,qc_gravity_sigma_m_s2,"
     "qc_earth_rate_total_deg_h,qc_earth_rate_sigma_deg_h,qc_inclination_sigmas,"
     "qc_azimuth_sigmas,qc_flag";
+/// The listing's columns (experiment/survey_listing.hpp), after the QC's in survey.csv only.
+constexpr std::string_view kListingHeader =
+    ",dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,closure_azimuth_deg,vertical_section_m,"
+    "ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,ellipse_semi_minor_m,ellipse_azimuth_deg,"
+    "tvd_below_datum_m,tvdss_m";
 constexpr std::string_view kWellPathHeader = "source,md_m,north_m,east_m,tvd_m";
 
 /// A CSV number: 9 significant digits (0.01 mm at 1 km, 1 ms at 200 h); any NaN as "nan" (the
@@ -35,9 +42,21 @@ std::string csv_number(double value) {
   return fmt::format("{:.9g}", value);
 }
 
-std::string stations_csv(const std::vector<SurveyStation>& stations) {
-  std::string csv = std::string(kSurveyHeader) + '\n';
-  for (const SurveyStation& s : stations) {
+void append_cells(std::string& csv, std::span<const double> cells, bool leading_comma) {
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (i > 0 || leading_comma) csv += ',';
+    csv += csv_number(cells[i]);
+  }
+}
+
+/// The stations' rows; with `listing` (one per station) its columns after the QC's.
+std::string stations_csv(const std::vector<SurveyStation>& stations,
+                         const std::vector<StationListing>* listing = nullptr) {
+  std::string csv = std::string(kSurveyHeader);
+  if (listing != nullptr) csv += kListingHeader;
+  csv += '\n';
+  for (std::size_t row = 0; row < stations.size(); ++row) {
+    const SurveyStation& s = stations[row];
     const double columns[] = {s.t_s,
                               s.md_m,
                               s.inclination_deg,
@@ -64,9 +83,24 @@ std::string stations_csv(const std::vector<SurveyStation>& stations) {
                               s.qc.inclination_difference_sigmas,
                               s.qc.azimuth_difference_sigmas,
                               s.qc.checked ? (s.qc.flagged ? 1.0 : 0.0) : std::nan("")};
-    for (std::size_t i = 0; i < std::size(columns); ++i) {
-      if (i > 0) csv += ',';
-      csv += csv_number(columns[i]);
+    append_cells(csv, columns, false);
+    if (listing != nullptr) {
+      const StationListing& l = (*listing)[row];
+      const double listing_columns[] = {l.dls_deg_30m,
+                                        l.build_deg_30m,
+                                        l.turn_deg_30m,
+                                        l.closure_m,
+                                        l.closure_azimuth_deg,
+                                        l.vertical_section_m,
+                                        l.ne_m2,
+                                        l.nv_m2,
+                                        l.ev_m2,
+                                        l.ellipse_semi_major_m,
+                                        l.ellipse_semi_minor_m,
+                                        l.ellipse_azimuth_deg,
+                                        l.tvd_below_datum_m,
+                                        l.tvdss_m};
+      append_cells(csv, listing_columns, true);
     }
     csv += '\n';
   }
@@ -118,11 +152,15 @@ std::unique_ptr<PendingFile> pending_survey_plot(
 std::vector<std::unique_ptr<PendingFile>> write_survey_files(const SurveyRecorder& recorder,
                                                              const SurveyTieOn& tie_on,
                                                              const std::filesystem::path& out_dir,
-                                                             bool plot) {
+                                                             bool plot,
+                                                             const SurveyListingOptions& listing) {
   const std::vector<WellPathPoint> minimum_curvature_stations =
       minimum_curvature_path(recorder.stations(), tie_on.measured_depth_m);
   std::vector<std::unique_ptr<PendingFile>> files;
-  files.push_back(pending_text_file(out_dir / "survey.csv", stations_csv(recorder.stations())));
+  const std::vector<StationListing> listing_rows =
+      survey_listing(recorder.stations(), tie_on, listing);
+  files.push_back(
+      pending_text_file(out_dir / "survey.csv", stations_csv(recorder.stations(), &listing_rows)));
   if (!recorder.station_errors().empty()) {
     files.push_back(
         pending_text_file(out_dir / "survey_errors.csv", stations_csv(recorder.station_errors())));

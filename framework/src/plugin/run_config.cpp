@@ -250,6 +250,41 @@ InitialErrorConfig parse_initial_error(const nlohmann::json& json, const std::st
   return error;
 }
 
+SurveyConfig parse_survey(const nlohmann::json& json, const std::string& pointer) {
+  ParamReader reader(json, pointer);
+  SurveyConfig survey;
+  if (reader.has("vertical_section_azimuth_deg")) {
+    const double azimuth = reader.number("vertical_section_azimuth_deg", Bound::kAny, "deg");
+    if (!(azimuth >= 0.0 && azimuth < 360.0)) {
+      throw ConfigError(reader.pointer("vertical_section_azimuth_deg") + ": " +
+                        std::to_string(azimuth) +
+                        " deg is out of range; expected an azimuth from true north in [0, 360)");
+    }
+    survey.vertical_section_azimuth_deg = azimuth;
+  }
+  if (reader.has("ellipse_confidence")) {
+    const double confidence = reader.number("ellipse_confidence", Bound::kAny, "");
+    if (!(confidence > 0.0 && confidence < 1.0)) {
+      throw ConfigError(reader.pointer("ellipse_confidence") + ": " + std::to_string(confidence) +
+                        " is out of range; expected a probability in (0, 1), e.g. 0.95");
+    }
+    survey.ellipse_confidence = confidence;
+  }
+  if (reader.has("datum_elevation_m")) {
+    survey.datum_elevation_m = number_in(reader, "datum_elevation_m", -10000.0, 10000.0, "m");
+  }
+  if (reader.has("tie_on_tvd_m")) {
+    if (!survey.datum_elevation_m) {
+      throw ConfigError(reader.pointer("tie_on_tvd_m") +
+                        ": given without datum_elevation_m; add \"datum_elevation_m\" (the "
+                        "depth datum's elevation above mean sea level, m)");
+    }
+    survey.tie_on_tvd_m = number_in(reader, "tie_on_tvd_m", -20000.0, 20000.0, "m");
+  }
+  reader.finish();
+  return survey;
+}
+
 }  // namespace
 
 NoiseSection parse_noise_section(const nlohmann::json& json, const std::string& pointer,
@@ -411,6 +446,9 @@ RunConfig parse_run_config(const nlohmann::json& document, const fs::path& confi
     config.output.covariance = reader.boolean_or("covariance", config.output.covariance);
     config.output.nees = reader.boolean_or("nees", config.output.nees);
     reader.finish();
+  }
+  if (const auto& survey = object_at(root, "survey", false); !survey.is_null()) {
+    config.survey = parse_survey(survey, root.pointer("survey"));
   }
   root.finish();
   return config;

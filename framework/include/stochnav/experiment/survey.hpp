@@ -23,7 +23,8 @@
 // at the first one, which is taken to be at the tie-on); position jitter while stationary
 // lengthens it slightly.
 //
-// survey_errors.csv has the columns of survey.csv, read differently: the angle and position
+// survey_errors.csv has the columns of survey.csv up to the QC's (not the listing's), read
+// differently: the angle and position
 // columns are estimate - truth (angles wrapped to (-180, 180] deg; azimuth and toolface NaN,
 // written `nan`, where the true hole is within 1 deg of vertical, as navigation_errors), while
 // t_s and md_m are the station's (the key of the row, not errors) and the *_sigma_* columns are
@@ -52,12 +53,33 @@
 
 namespace stochnav {
 
+/// The hole's direction at a point (deg; inclination from vertical down, azimuth from true
+/// north).
+struct SurveyDirection {
+  double inclination_deg = 0.0;
+  double azimuth_deg = 0.0;
+};
+
 /// Where the well's local frame starts: the tie-on point (a known position on the well path).
 struct SurveyTieOn {
   double latitude_rad = 0.0;      ///< geodetic latitude (rad)
   double longitude_rad = 0.0;     ///< longitude (rad)
   double height_m = 0.0;          ///< ellipsoidal height (m)
   double measured_depth_m = 0.0;  ///< MD of the tie-on point (m)
+  /// The hole's direction at the tie-on when known (a configured initial attitude): the
+  /// listing's first DLS/build/turn and default vertical-section azimuth
+  /// (experiment/survey_listing.hpp). Not used by minimum_curvature_path.
+  std::optional<SurveyDirection> direction;
+};
+
+/// The references of the listing columns of survey.csv (experiment/survey_listing.hpp; the run
+/// config's "survey" section, plugin/run_config.hpp).
+struct SurveyListingOptions {
+  std::optional<double> vertical_section_azimuth_deg;  ///< deg from true north, [0, 360)
+  double ellipse_confidence = 0.95;                    ///< probability inside the ellipse, (0, 1)
+  std::optional<double> datum_elevation_m;             ///< depth datum's elevation above MSL (m)
+  /// The tie-on's TVD below the datum (m); absent: datum_elevation_m - tie_on.height_m.
+  std::optional<double> tie_on_tvd_m;
 };
 
 /// One survey station: exactly the columns of survey.csv, in that order.
@@ -77,6 +99,8 @@ struct SurveyStation {
   double tvd_sigma_m = 0.0;
   /// Horizontal position covariance [[NN, NE], [NE, EE]] (m^2): the 2-sigma ellipse of the plot.
   Eigen::Matrix2d horizontal_covariance_m2 = Eigen::Matrix2d::Zero();
+  /// Position covariance in (north, east, vertical down) (m^2), 3 x 3, from the filter's.
+  Eigen::Matrix3d position_covariance_nev_m2 = Eigen::Matrix3d::Zero();
   /// The QC of the station from its connection's static data alone (experiment/station_qc.hpp):
   /// the survey.csv columns after the DESIGN.md ones.
   StationQc qc;
@@ -159,8 +183,10 @@ class SurveyRecorder final {
 /// Writes the survey files into temporary files beside their final paths in out_dir and
 /// returns them uncommitted: the caller renames them into place (PendingFile::commit) together
 /// with the run's other files, so a failed run leaves none of them.
-///   survey.csv          the stations (header exactly as DESIGN.md)
-///   survey_errors.csv   the stations' errors (same columns), only when there are any
+///   survey.csv          the stations (header as DESIGN.md, then the QC columns, then the
+///                       listing's of experiment/survey_listing.hpp under `listing`)
+///   survey_errors.csv   the stations' errors (DESIGN.md's and the QC columns, not the
+///                       listing's), only when there are any
 ///   well_path.csv       md_m, north/east/tvd by minimum curvature at the stations, and the INS
 ///                       path's points (column "source": minimum_curvature | ins)
 ///   survey.png          plan view and vertical section, 2-sigma horizontal ellipses at the
@@ -169,9 +195,8 @@ class SurveyRecorder final {
 ///                       the +/-2-sigma TVD bars are magnified by the factor in the title (1, 2
 ///                       or 5 x 10^k) so that the largest ellipse spans about 3 % of the plan.
 /// Throws InputError when a file cannot be written or gnuplot fails.
-std::vector<std::unique_ptr<PendingFile>> write_survey_files(const SurveyRecorder& recorder,
-                                                             const SurveyTieOn& tie_on,
-                                                             const std::filesystem::path& out_dir,
-                                                             bool plot);
+std::vector<std::unique_ptr<PendingFile>> write_survey_files(
+    const SurveyRecorder& recorder, const SurveyTieOn& tie_on, const std::filesystem::path& out_dir,
+    bool plot, const SurveyListingOptions& listing = {});
 
 }  // namespace stochnav

@@ -35,7 +35,11 @@
 //     "initial_error": {"position_m": [e, n, u], "velocity_m_s": [e, n, u],
 //                       "attitude_deg": [about E, N, U], "gyro_bias_deg_h": [x, y, z],
 //                       "accel_bias_m_s2": [x, y, z], "draw_seed": K},   // all optional
-//     "output": {"decimation": 100, "covariance": true, "nees": true}
+//     "output": {"decimation": 100, "covariance": true, "nees": true},
+//     "survey": {"vertical_section_azimuth_deg": 45,   // [0, 360); default: see SurveyConfig
+//                "ellipse_confidence": 0.95,           // (0, 1), the horizontal ellipse's
+//                "datum_elevation_m": 30,              // depth datum above MSL (m), optional
+//                "tie_on_tvd_m": 1200}                 // tie-on TVD below the datum, optional
 //   }
 // Three-axis values accept a number (all axes) or [x, y, z]. With "fit", the noise model is
 // fitted to the calibration record by the plugin's fitter (params then hold its fit options).
@@ -180,6 +184,24 @@ struct OutputConfig {
   bool nees = true;              ///< "nees": write NEES against truth (when there is truth)
 };
 
+/// "survey": the references of the survey listing (survey.csv's columns after the QC's;
+/// experiment/survey_listing.hpp). Every key optional.
+struct SurveyConfig {
+  /// "vertical_section_azimuth_deg" (deg from true north), [0, 360). Absent: the tie-on's
+  /// azimuth when known ("initial_state/attitude", or truth's at a start from truth) and more
+  /// than 1 deg from vertical, else the closure azimuth of the last station.
+  std::optional<double> vertical_section_azimuth_deg;
+  /// "ellipse_confidence": the probability inside the horizontal error ellipse, (0, 1).
+  double ellipse_confidence = 0.95;
+  /// "datum_elevation_m" (m): elevation of the depth datum (e.g. the rotary kelly bushing)
+  /// above mean sea level, finite, |E| <= 10000. Absent: no datum columns (NaN).
+  std::optional<double> datum_elevation_m;
+  /// "tie_on_tvd_m" (m): the tie-on's TVD below the depth datum, finite, |T| <= 20000; only
+  /// with datum_elevation_m. Absent: datum_elevation_m - the tie-on's height_m (the ellipsoidal
+  /// height taken as the elevation above MSL: the geoid undulation, tens of metres, ignored).
+  std::optional<double> tie_on_tvd_m;
+};
+
 struct RunConfig {
   std::filesystem::path config_dir;  ///< folder of the config file (relative paths, plugins)
   DataConfig data;                   ///< "data", required (or --data)
@@ -189,6 +211,7 @@ struct RunConfig {
   std::optional<InitialStateConfig> initial_state;  ///< "initial_state"
   std::optional<InitialErrorConfig> initial_error;  ///< "initial_error"
   OutputConfig output;               ///< "output", default {}
+  SurveyConfig survey;               ///< "survey", default {}
 };
 
 /// Validates a whole run config. `config_dir` resolves relative paths. Checks that the data

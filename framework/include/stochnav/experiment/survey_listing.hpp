@@ -1,0 +1,95 @@
+#pragma once
+// The columns of a field survey listing derived from the stations (survey.csv after the QC
+// columns, in this order; DESIGN.md keeps the earlier ones):
+//
+//   dls_deg_30m          dogleg severity (deg / 30 m MD): the minimum-curvature dogleg between
+//                        the previous station (the tie-on for the first) and this one, over the
+//                        MD step, times 30 m
+//   build_deg_30m        (I - I_previous) / dMD * 30 m: inclination rate, positive building
+//   turn_deg_30m         (A - A_previous, wrapped to (-180, 180]) / dMD * 30 m: azimuth rate,
+//                        positive turning right (clockwise from above)
+//                        The three rates are NaN on the first station when the tie-on's
+//                        attitude is not known (SurveyTieOn::direction: a configured initial
+//                        attitude, or the truth's at a start from truth), and on any station
+//                        whose MD does not exceed the previous one (dMD <= 0); the turn rate
+//                        also where either station is within 1 deg of vertical (the azimuth
+//                        undefined there).
+//   closure_m            horizontal distance from the well reference (the tie-on's north/east,
+//                        the origin of north_m/east_m) to the station: hypot(north, east) (m)
+//   closure_azimuth_deg  its direction from true north, clockwise, [0, 360) (deg); NaN at a
+//                        closure of exactly 0
+//   vertical_section_m   the horizontal displacement projected onto the vertical-section
+//                        azimuth VSA: north cos(VSA) + east sin(VSA) (m), origin the tie-on
+//   ne_m2, nv_m2, ev_m2  position covariances (m^2) in (north, east, vertical DOWN) from the
+//                        filter's covariance (nn, ee, vv are the squared *_sigma_m columns)
+//   ellipse_semi_major_m, ellipse_semi_minor_m
+//                        the horizontal error ellipse holding the position with probability
+//                        `ellipse_confidence` (default 0.95): sqrt(eigenvalues of the NE
+//                        covariance) times k = sqrt(chi2_2(p)) = sqrt(-2 ln(1 - p))
+//                        (2.4477 at 0.95; 1 is the 39.3 % 1-sigma ellipse) (m)
+//   ellipse_azimuth_deg  the semi-major axis' direction from true north, clockwise, [0, 180)
+//                        (deg); 0 for a circle
+//   tvd_below_datum_m    TVD below the depth datum (e.g. RKB), POSITIVE DOWN (m):
+//                        tie-on TVD below the datum + tvd_m
+//   tvdss_m              TVD below mean sea level (subsea), POSITIVE DOWN (negative above
+//                        MSL): tvd_below_datum_m - datum_elevation_m (m)
+//                        Both NaN without a datum (SurveyListingOptions::datum_elevation_m).
+//
+// The vertical-section azimuth, when not given, is the tie-on's azimuth (the planned direction
+// at the start) when the tie-on's attitude is known and more than 1 deg from vertical, else the
+// closure azimuth of the last station (the plane through the well reference and the end of the
+// well; 0 when that closure is 0).
+
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "stochnav/experiment/survey.hpp"
+
+namespace stochnav {
+
+/// The derived columns of one station (see above for each).
+struct StationListing {
+  double dls_deg_30m = 0.0;
+  double build_deg_30m = 0.0;
+  double turn_deg_30m = 0.0;
+  double closure_m = 0.0;
+  double closure_azimuth_deg = 0.0;
+  double vertical_section_m = 0.0;
+  double ne_m2 = 0.0;
+  double nv_m2 = 0.0;
+  double ev_m2 = 0.0;
+  double ellipse_semi_major_m = 0.0;
+  double ellipse_semi_minor_m = 0.0;
+  double ellipse_azimuth_deg = 0.0;
+  double tvd_below_datum_m = 0.0;
+  double tvdss_m = 0.0;
+};
+
+/// A horizontal error ellipse: semi-axes (m) and the major axis' azimuth, [0, 180) deg.
+struct HorizontalEllipse {
+  double semi_major_m = 0.0;
+  double semi_minor_m = 0.0;
+  double azimuth_deg = 0.0;
+};
+
+/// k = sqrt(-2 ln(1 - confidence)): the 2-D Gaussian's radius (in sigmas) holding the
+/// probability `confidence`, in (0, 1). 2.4477 at 0.95.
+double ellipse_scale(double confidence);
+
+/// The ellipse of a (north, east) covariance [[NN, NE], [NE, EE]] (m^2, symmetric positive
+/// semi-definite; a rounding-negative eigenvalue counts as 0) at `confidence`.
+HorizontalEllipse horizontal_ellipse(const Eigen::Matrix2d& covariance_ne_m2, double confidence);
+
+/// The vertical-section azimuth used for these stations (deg): the option, else the tie-on's
+/// azimuth (more than 1 deg from vertical), else the last station's closure azimuth (0 without
+/// stations or closure).
+double vertical_section_azimuth_deg(const std::vector<SurveyStation>& stations,
+                                    const SurveyTieOn& tie_on, const SurveyListingOptions& options);
+
+/// The derived columns of every station, in order (one per station).
+std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& stations,
+                                           const SurveyTieOn& tie_on,
+                                           const SurveyListingOptions& options);
+
+}  // namespace stochnav
