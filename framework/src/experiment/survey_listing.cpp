@@ -14,7 +14,7 @@ constexpr double kRateLengthM = 30.0;  ///< the listing's rates are per 30 m of 
 /// Within this of vertical (deg) the azimuth is undefined: no turn rate, and the tie-on's does
 /// not set the vertical section.
 constexpr double kNearVerticalDeg = 1.0;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
 
 /// Whether an inclination (deg) is within kNearVerticalDeg of vertical (up or down).
 bool near_vertical(double inclination_deg) {
@@ -23,7 +23,7 @@ bool near_vertical(double inclination_deg) {
 
 /// Azimuth (deg, [0, 360)) of a horizontal vector from true north, NaN for the zero vector.
 double azimuth_deg_of(double north, double east) {
-  if (north == 0.0 && east == 0.0) return kNaN;
+  if (north == 0.0 && east == 0.0) return kUndefined;
   double azimuth = std::atan2(east, north) * kDegPerRad;
   if (azimuth < 0.0) azimuth += 360.0;
   return azimuth >= 360.0 ? 0.0 : azimuth;
@@ -34,7 +34,7 @@ double azimuth_deg_of(double north, double east) {
 void set_rates(StationListing& listing, double previous_inclination_deg,
                double previous_azimuth_deg, const SurveyStation& station, double md_step_m) {
   if (!(md_step_m > 0.0)) {
-    listing.dls_deg_30m = listing.build_deg_30m = listing.turn_deg_30m = kNaN;
+    listing.dls_deg_30m = listing.build_deg_30m = listing.turn_deg_30m = kUndefined;
     return;
   }
   const double per_30m = kRateLengthM / md_step_m;
@@ -48,7 +48,7 @@ void set_rates(StationListing& listing, double previous_inclination_deg,
   // Near vertical the azimuth is undefined (a tiny tilt swings it through any angle): no turn.
   listing.turn_deg_30m =
       near_vertical(previous_inclination_deg) || near_vertical(station.inclination_deg)
-          ? kNaN
+          ? kUndefined
           : std::remainder(station.azimuth_deg - previous_azimuth_deg, 360.0) * per_30m;
 }
 
@@ -109,7 +109,7 @@ std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& sta
       set_rates(row, tie_on.direction->inclination_deg, tie_on.direction->azimuth_deg, s,
                 s.md_m - tie_on.measured_depth_m);
     } else {
-      row.dls_deg_30m = row.build_deg_30m = row.turn_deg_30m = kNaN;
+      row.dls_deg_30m = row.build_deg_30m = row.turn_deg_30m = kUndefined;
     }
     row.closure_m = std::hypot(s.north_m, s.east_m);
     row.closure_azimuth_deg = azimuth_deg_of(s.north_m, s.east_m);
@@ -128,7 +128,7 @@ std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& sta
       row.tvd_below_datum_m = *tie_on_tvd_below_datum_m + s.tvd_m;
       row.tvdss_m = row.tvd_below_datum_m - *options.datum_elevation_m;
     } else {
-      row.tvd_below_datum_m = row.tvdss_m = kNaN;
+      row.tvd_below_datum_m = row.tvdss_m = kUndefined;
     }
   }
   return listing;

@@ -42,14 +42,14 @@ ceres::CostFunction* make_cost(const GmwmProblem& problem) {
   return cost;
 }
 
-struct Solution {
+struct GmwmSolution {
   std::vector<double> log_parameters;
   double objective = std::numeric_limits<double>::infinity();
   int iterations = 0;
   bool converged = false;
 };
 
-Solution solve_from(const GmwmProblem& problem, std::vector<double> start, int max_iterations) {
+GmwmSolution solve_from(const GmwmProblem& problem, std::vector<double> start, int max_iterations) {
   ceres::Problem ceres_problem;
   double* block = start.data();
   ceres_problem.AddResidualBlock(make_cost(problem), nullptr, block);
@@ -77,7 +77,7 @@ Solution solve_from(const GmwmProblem& problem, std::vector<double> start, int m
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &ceres_problem, &summary);
-  Solution solution;
+  GmwmSolution solution;
   solution.objective = 2.0 * summary.final_cost;
   solution.iterations = static_cast<int>(summary.iterations.size());
   solution.converged = summary.termination_type == ceres::CONVERGENCE;
@@ -136,7 +136,7 @@ std::string check_fit_size(const GmwmData& data, const GmwmOptions& options,
 }
 
 /// The model, uncertainties and diagnostics of the best solution.
-FitResult make_result(const GmwmData& data, const GmwmProblem& problem, const Solution& best) {
+FitResult make_result(const GmwmData& data, const GmwmProblem& problem, const GmwmSolution& best) {
   FitResult result;
   result.model.unit = data.unit;
   result.model.rate_hz = data.rate_hz;
@@ -286,9 +286,9 @@ FitResult fit_gmwm_once(const GmwmData& data, const GmwmOptions& options,
   if (const auto reason = check_fit_size(data, options, problem); !reason.empty()) {
     throw ConfigError(reason);
   }
-  Solution best;
+  GmwmSolution best;
   for (auto& start : gmwm_detail::gmwm_starting_points(problem, options.starts)) {
-    Solution solution = solve_from(problem, std::move(start), options.max_iterations);
+    GmwmSolution solution = solve_from(problem, std::move(start), options.max_iterations);
     if (solution.objective < best.objective) best = std::move(solution);
   }
   FitResult result = make_result(data, problem, best);
