@@ -62,7 +62,8 @@ TEST(CoreCorrection, DifferenceFedBackGivesTheReference) {
   estimate.state.height_m += 4.0;
   estimate.state.v_n += Eigen::Vector3d(0.1, -0.2, 0.05);
   estimate.state.q_nb =
-      Eigen::Quaterniond(Eigen::AngleAxisd(40.0 * kDeg, Eigen::Vector3d(0.1, 0.2, 1.0).normalized())) *
+      Eigen::Quaterniond(
+          Eigen::AngleAxisd(40.0 * kDeg, Eigen::Vector3d(0.1, 0.2, 1.0).normalized())) *
       estimate.state.q_nb;
   estimate.gyro_bias_b += Eigen::Vector3d(3e-6, 0.0, -1e-6);
   estimate.accel_bias_b -= Eigen::Vector3d(0.0, 2e-4, 0.0);

@@ -370,8 +370,8 @@ FilterConfig parse_filter_section(const nlohmann::json& json, const std::string&
       reader.number_or("second_order_attitude_correlation_s",
                        out.second_order_attitude_correlation_s, Bound::kNonNegative, "s");
   out.heading_hypothesis_sigma_rad =
-      reader.number_or("heading_hypothesis_sigma_deg", out.heading_hypothesis_sigma_rad * kDegPerRad,
-                       Bound::kNonNegative, "deg") /
+      reader.number_or("heading_hypothesis_sigma_deg",
+                       out.heading_hypothesis_sigma_rad * kDegPerRad, Bound::kNonNegative, "deg") /
       kDegPerRad;
   if (reader.has("max_consecutive_rejections")) {
     const std::uint64_t count = non_negative_integer(reader, "max_consecutive_rejections");
