@@ -37,6 +37,16 @@ SurveyTieOn tie_on_at(double md_m, std::optional<SurveyDirection> direction = st
 }
 
 /// Stations on a straight hold at (I, A) from a tie-on at MD 1000 m (N/E/TVD from the tie-on).
+// A tool `depth_m` straight below the tie-on, inclined 30 deg towards azimuth 60.
+NavState below_tie_on(const SurveyTieOn& tie_on, double depth_m) {
+  NavState state;
+  state.latitude_rad = tie_on.latitude_rad;
+  state.longitude_rad = tie_on.longitude_rad;
+  state.height_m = tie_on.height_m - depth_m;
+  state.q_nb = quaternion_from_mwd({30.0 * kRadPerDeg, 0.0, 60.0 * kRadPerDeg});
+  return state;
+}
+
 std::vector<SurveyStation> straight_hold(double inclination_deg, double azimuth_deg) {
   std::vector<SurveyStation> stations;
   const double i = inclination_deg * kRadPerDeg;
@@ -208,11 +218,7 @@ TEST(SurveyListing, CovarianceColumnsAreNorthEastDown) {
   // The recorder's covariance is ENU; the listing's NEV has V positive down.
   const SurveyTieOn tie_on = tie_on_at(1000.0);
   SurveyRecorder recorder(tie_on);
-  NavState state;
-  state.latitude_rad = tie_on.latitude_rad;
-  state.longitude_rad = tie_on.longitude_rad;
-  state.height_m = tie_on.height_m - 50.0;
-  state.q_nb = quaternion_from_mwd({30.0 * kRadPerDeg, 0.0, 60.0 * kRadPerDeg});
+  NavState state = below_tie_on(tie_on, 50.0);
   Eigen::Matrix<double, 9, 9> p = Eigen::Matrix<double, 9, 9>::Identity() * 1e-6;
   p(0, 0) = 4.0;              // E
   p(1, 1) = 9.0;              // N
@@ -276,11 +282,7 @@ std::vector<std::string> split(const std::string& row) {
 TEST(SurveyListing, SurveyCsvCarriesTheColumnsAfterTheQc) {
   const SurveyTieOn tie_on = tie_on_at(1000.0, SurveyDirection{30.0, 60.0});
   SurveyRecorder recorder(tie_on);
-  NavState state;
-  state.latitude_rad = tie_on.latitude_rad;
-  state.longitude_rad = tie_on.longitude_rad;
-  state.height_m = tie_on.height_m - 20.0;
-  state.q_nb = quaternion_from_mwd({30.0 * kRadPerDeg, 0.0, 60.0 * kRadPerDeg});
+  NavState state = below_tie_on(tie_on, 20.0);
   Eigen::Matrix<double, 9, 9> p = Eigen::Matrix<double, 9, 9>::Identity() * 1e-6;
   p(0, 0) = 4.0;
   p(1, 1) = 9.0;

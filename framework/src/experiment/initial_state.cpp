@@ -121,6 +121,8 @@ void check_static_span(std::span<const ImuIncrement> span, const plugin::Alignme
   }
 }
 
+namespace {
+
 // The 1-sigma of a sensor's bias at the start, per body axis: the core bias state's and the
 // augmented states' share of the sensor error, diag(M P0_aug M^T) (a flicker bank of 0.5 deg/h
 // adds 1.1 deg/h to a core 0.7).
@@ -135,6 +137,8 @@ Eigen::Vector3d start_bias_sigma(const Eigen::Vector3d& core_sigma,
   const Eigen::Vector3d augmented = (map * p0 * map.transpose()).diagonal();
   return (core_sigma.array().square() + augmented.array()).sqrt();
 }
+
+}  // namespace
 
 AlignedStart align_at_rest(std::span<const ImuIncrement> span, const NavState& site,
                            const plugin::AlignmentConfig& config, const FilterOptions& options,
