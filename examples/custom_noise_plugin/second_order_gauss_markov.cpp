@@ -20,6 +20,7 @@
 #include <memory>
 
 #include "stochnav/plugin/noise_model_plugin.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 #include "stochnav/plugin/tabulated_noise_model.hpp"
 
 namespace {
@@ -139,3 +140,5 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make(
 STOCHNAV_NOISE_PLUGIN("second_order_gauss_markov",
                       "second-order (critically damped) Gauss-Markov error, 2 states per axis",
                       make, ::stochnav::plugin::fit_not_supported)
+// Optional: the params reference `stochnav plugins doc` prints, from the same table.
+STOCHNAV_PLUGIN_DOCUMENTATION(kTable)

@@ -8,6 +8,9 @@
 //   embed_runtime RUN_CONFIG.json      the noise models and the filter section (with its
 //                                      initial error, if any) of a run config (plugins found in
 //                                      the config's folder, $STOCHNAV_PLUGIN_PATH, the package)
+//   --align SECONDS                    the host's first SECONDS go to a streaming static
+//                                      alignment (experiment/streaming_aligner.hpp) and the
+//                                      filter starts from its attitude and biases, not from truth
 //   --check                            exit 1 unless every augmented block keeps its stationary
 //                                      covariance, the filter stays healthy (P positive
 //                                      definite, no rejected update) and the navigation errors
@@ -15,7 +18,9 @@
 //
 // The host's IMU: a static hour at 100 Hz at 30 deg latitude, body axes = ENU, measuring Earth
 // rate and gravity exactly plus white noise (gyro 0.05 deg/sqrt(h), accel 0.02 m/s/sqrt(h)),
-// with a static-position aid at 1 Hz.
+// with a static-position aid at 1 Hz. At the end it prints every sensor-error block's estimate
+// by name (MwdNavigator::block_estimate) and judges the errors by the covariance at that epoch
+// (covariance_now()).
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -28,6 +33,7 @@
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/experiment/initial_state.hpp"
+#include "stochnav/experiment/streaming_aligner.hpp"
 #include "stochnav/filter/mwd_navigator.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/model/noise_model.hpp"
@@ -89,10 +95,13 @@ double stationarity_error(const sp::NoiseModelPlugin& model, double dt, int step
 int run(int argc, char** argv) {
   std::string config_path;
   bool check = false;
+  double align_s = 0.0;
   for (int i = 1; i < argc; ++i) {
     const std::string argument = argv[i];
     if (argument == "--check") {
       check = true;
+    } else if (argument == "--align" && i + 1 < argc) {
+      align_s = std::stod(argv[++i]);
     } else {
       config_path = argument;
     }
@@ -133,31 +142,61 @@ int run(int argc, char** argv) {
                                        {{"sigma_position_m", 0.01}, {"sigma_velocity_mps", 0.001}},
                                        aid_context, "/aids/0/plugin");
 
-  // The config's filter section and initial error as `stochnav run` applies them; without a
-  // config the documented defaults (P propagated every 0.1 s) from the true state.
-  const stochnav::FilterStart start =
-      config ? stochnav::filter_start(*config, truth, config->filter.options)
-             : stochnav::FilterStart{truth, stochnav::FilterOptions{}};
-  stochnav::MwdNavigator navigator(start.estimate, *plugins.gyro, *plugins.accel, {aid.get()},
-                                   start.options);
   std::mt19937_64 rng(42);
   std::normal_distribution<double> normal;
-  const long epochs = std::lround(duration_s * rate_hz);
-  for (long k = 1; k <= epochs; ++k) {
+  long k = 0;  // the host's epoch counter
+  const auto next_epoch = [&] {
     stochnav::ImuIncrement increment;
-    increment.t_s = static_cast<double>(k) * dt;
+    increment.t_s = static_cast<double>(++k) * dt;
     increment.dt_s = dt;
     for (int i = 0; i < 3; ++i) {
       increment.delta_theta_b[i] = omega_ib_b[i] * dt + gyro_sigma * normal(rng);
       increment.delta_v_b[i] = f_ib_b[i] * dt + accel_sigma * normal(rng);
     }
-    navigator.step(increment);
+    return increment;
+  };
+
+  // The start: the true state, or a static alignment over the host's first align_s seconds.
+  // Then the config's filter section and initial error as `stochnav run` applies them; without
+  // a config the documented defaults (P propagated every 0.1 s).
+  stochnav::NavState start_state = truth;
+  stochnav::FilterOptions start_options =
+      config ? config->filter.options : stochnav::FilterOptions{};
+  if (align_s > 0.0) {
+    sp::AlignmentConfig alignment;
+    alignment.static_s = align_s;
+    stochnav::StreamingAligner aligner(alignment, 0.0);
+    while (!aligner.feed(next_epoch())) {
+    }
+    start_state.t_s = aligner.end_time_s();
+    const stochnav::AlignedStart aligned =
+        aligner.align(start_state, start_options, *plugins.gyro, *plugins.accel);
+    start_state = aligned.state;
+    start_options = aligned.options;
+    std::printf("aligned over %.0f s: heading sigma %.3f deg\n", aligner.collected_s(),
+                aligned.options.attitude_sigma_rad.z() * 180.0 / std::numbers::pi);
+  }
+  const stochnav::FilterStart start =
+      config ? stochnav::filter_start(*config, start_state, start_options)
+             : stochnav::FilterStart{start_state, start_options};
+  stochnav::MwdNavigator navigator(start.estimate, *plugins.gyro, *plugins.accel, {aid.get()},
+                                   start.options);
+  const long epochs = std::lround(duration_s * rate_hz);
+  while (k < epochs) navigator.step(next_epoch());
+
+  // Every sensor-error block by name: biases, scale factors, the models' augmented states.
+  for (const sp::StateBlock& block : navigator.layout().blocks()) {
+    if (block.name == "position" || block.name == "velocity" || block.name == "attitude") continue;
+    const Eigen::VectorXd estimate = navigator.block_estimate(block.name);
+    const Eigen::VectorXd sigma = navigator.block_covariance(block.name).diagonal().cwiseSqrt();
+    std::printf("%-28s %2d states, first %+.3e +/- %.3e (SI)\n", block.name.c_str(), block.size,
+                block.size > 0 ? estimate[0] : 0.0, block.size > 0 ? sigma[0] : 0.0);
   }
 
-  // Errors against the static truth, with the filter's own sigmas.
+  // Errors against the static truth, with the filter's own sigmas at this epoch.
   namespace cs = sp::core_state;
   const stochnav::NavState& estimate = navigator.state();
-  const Eigen::MatrixXd& p = navigator.covariance();
+  const Eigen::MatrixXd& p = navigator.covariance_now();
   // The filter's attitude error phi (ENU, rad): C_nb_est = (I - [phi x]) C_nb_true, so
   // C_nb_true C_nb_est^T = I + [phi x], a rotation by +phi (filter/error_dynamics.hpp).
   const Eigen::Quaterniond dq = truth.q_nb * estimate.q_nb.conjugate();

@@ -17,6 +17,7 @@
 
 #include "stochnav/ins/mwd_attitude.hpp"
 #include "stochnav/io/psins_imu.hpp"
+#include "csv_columns.hpp"
 #include "temp_dir.hpp"
 
 namespace stochnav {
@@ -151,6 +152,54 @@ TEST_F(RunCli, RecordingWithoutTruthStartsFromTheAlignment) {
                                    360.0);
   EXPECT_NEAR(heading, 60.0, 3.0 * metrics["initial"]["attitude_sigma_deg"][2].get<double>() + 0.5);
   EXPECT_NE(result.out.find("no truth"), std::string::npos) << result.out;
+}
+
+// states.csv: every sensor-error state beyond position, velocity and attitude, named with its
+// unit, with a _sigma twin, on nav.csv's epochs: here the biases, both scale-factor blocks and a
+// gyro Gauss-Markov block (its three states and the sensor error they make).
+TEST_F(RunCli, StatesFileHoldsEverySensorErrorStateWithItsSigma) {
+  nlohmann::json config = recording_config();
+  config["noise"]["gyro"] = {{"plugin", "gauss_markov"},
+                             {"params", {{"sigma", 0.5}, {"tau_c", 300}, {"N", 0.005}}}};
+  config["filter"] = {{"scale_factor_sigma_ppm", {{"gyro", 100}, {"accel", 100}}}};
+  const fs::path out = dir_->path() / "out_states";
+  const auto result = run_cli("run '" + write_config("states.json", config) + "' --out '" +
+                                  out.string() + "' --data '" +
+                                  (dir_->path() / "recording").string() + "'",
+                              dir_->path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const std::string text = read(out / "states.csv");
+  const std::string header = text.substr(0, text.find('\n'));
+  std::vector<std::string> estimates;
+  for (const char* stem : {"accel_bias_%_m_s2", "gyro_bias_%_deg_h", "gyro_scale_factor_%_ppm",
+                           "accel_scale_factor_%_ppm", "gyro.gauss_markov_error_%_deg_h"}) {
+    for (const char* axis : {"x", "y", "z"}) {
+      std::string name = stem;
+      name.replace(name.find('%'), 1, axis);
+      estimates.push_back(name);
+    }
+  }
+  for (const char* state : {"gyro.gauss_markov_0_si", "gyro.gauss_markov_1_si",
+                            "gyro.gauss_markov_2_si"}) {
+    estimates.emplace_back(state);
+  }
+  const testing::CsvColumns columns = testing::read_csv_columns((out / "states.csv").string());
+  EXPECT_EQ(columns.size(), 1 + 2 * estimates.size()) << header;
+  const testing::CsvColumns nav = testing::read_csv_columns((out / "nav.csv").string());
+  ASSERT_TRUE(columns.contains("t")) << header;
+  EXPECT_EQ(columns.at("t"), nav.at("t")) << "decimated like nav.csv";
+  for (const std::string& name : estimates) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(columns.contains(name) && columns.contains(name + "_sigma")) << header;
+    const std::vector<double>& sigma = columns.at(name + "_sigma");
+    EXPECT_TRUE(std::all_of(sigma.begin(), sigma.end(), [](double s) { return s > 0.0; }));
+  }
+  // The Gauss-Markov sensor error is its states in deg/h (M = I): 0.5 deg/h a priori.
+  const double rad_per_s_in_deg_h = 180.0 / M_PI * 3600.0;
+  const double error_x = columns.at("gyro.gauss_markov_error_x_deg_h").back();
+  EXPECT_NEAR(error_x, columns.at("gyro.gauss_markov_0_si").back() * rad_per_s_in_deg_h,
+              1e-5 * std::max(1.0, std::abs(error_x)));
+  EXPECT_LE(columns.at("gyro.gauss_markov_error_x_deg_h_sigma").front(), 0.5 + 1e-9);
 }
 
 TEST_F(RunCli, RecordingWithoutTruthFlagsAnOverconfidentModelByItsInnovations) {

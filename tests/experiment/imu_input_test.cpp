@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "shared_imu_records.hpp"
+#include "records/shared_imu_records.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/experiment/background_imu_reader.hpp"
 #include "stochnav/experiment/imu_record.hpp"

@@ -16,7 +16,7 @@
 #include "stochnav/core/angles.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
-#include "survey_plot.hpp"
+#include "survey/survey_plot.hpp"
 #include "temp_dir.hpp"
 
 namespace stochnav {

@@ -41,6 +41,12 @@ run(COMMAND ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK_DIR}/stag
 file(RENAME "${WORK_DIR}/staging" "${WORK_DIR}/prefix")
 set(prefix "${WORK_DIR}/prefix")
 set(stochnav "${prefix}/bin/stochnav")
+# The documentation is installed with the package, its relative links intact.
+foreach(doc README.md docs/user-guide.md docs/config-reference.md docs/sdk.md plugins/README.md)
+  if(NOT EXISTS "${prefix}/share/doc/stochnav/${doc}")
+    message(FATAL_ERROR "the package lacks share/doc/stochnav/${doc}")
+  endif()
+endforeach()
 # No build-tree paths may leak into the installed tool's search.
 set(clean_env "--unset=STOCHNAV_PLUGIN_PATH")
 
@@ -83,6 +89,11 @@ expect_match("${shown}" "gyro.second_order_gauss_markov +offset +15 +size 6")
 # The embedding program: the demo (fit from simulated data), then the custom plugin's config.
 run(COMMAND "${WORK_DIR}/embed_runtime/embed_runtime" --check ENV ${clean_env} OUTPUT demo)
 expect_match("${demo}" "gauss_markov \\(gyro\\)")
+expect_match("${demo}" "gyro.gauss_markov +3 states")
+# The host's first 600 s aligned by the streaming aligner, the filter started from its result.
+run(COMMAND "${WORK_DIR}/embed_runtime/embed_runtime" --align 600 --check ENV ${clean_env}
+    OUTPUT aligned)
+expect_match("${aligned}" "aligned over 600 s: heading sigma")
 run(COMMAND "${WORK_DIR}/embed_runtime/embed_runtime" "${WORK_DIR}/custom_noise_plugin/run.json"
             --check ENV ${clean_env} OUTPUT custom)
 expect_match("${custom}" "second_order_gauss_markov \\(gyro\\)")

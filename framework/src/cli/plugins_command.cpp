@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "plugins_doc.hpp"
 #include "standard_output.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/io/json_document.hpp"
@@ -184,6 +185,7 @@ void add_plugins_command(CLI::App& app) {
   show->add_option("--data", arguments->data,
                    "Recording folder replacing the config's \"data\" (as for run)");
   show->callback([arguments] { run_show(*arguments); });
+  add_plugins_doc_command(*command);
 }
 
 }  // namespace stochnav::cli

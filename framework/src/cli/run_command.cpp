@@ -38,7 +38,7 @@ void print_summary(const NavigationRunResult& result, const std::string& out) {
   if (!result.consistency_line.empty()) text += result.consistency_line + '\n';
   for (const std::string& warning : result.warnings) text += warning + '\n';
   text += fmt::format("{} survey station(s)\n", result.survey_stations);
-  text += "wrote " + out + "/{nav,biases,covariance,innovations" +
+  text += "wrote " + out + "/{nav,biases,covariance,states,innovations" +
           (result.has_truth ? ",errors" : "") + ",survey}.csv, metrics.json" +
           (result.error_series.size() > 1 ? ", errors.png" : "") + '\n';
   write_standard_output(text);

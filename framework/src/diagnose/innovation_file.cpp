@@ -1,4 +1,4 @@
-// Reading a run's innovations.csv (experiment/run_files.cpp writes it):
+// Reading a run's innovations.csv (experiment/run/run_files.cpp writes it):
 //   t,aid,type,accepted,nis,z0..z5,sigma0..sigma5   (unused components empty; nis may be nan)
 
 #include <fmt/format.h>

@@ -18,6 +18,7 @@ namespace {
 constexpr const char* kInfoAlias = "stochnav_plugin_info";
 constexpr const char* kNoiseFactoryAlias = "stochnav_noise_factory";
 constexpr const char* kNoiseFitterAlias = "stochnav_noise_fitter";
+constexpr const char* kDocumentationAlias = "stochnav_plugin_documentation";
 constexpr const char* kAidFactoryAlias = "stochnav_aid_factory";
 constexpr std::string_view kFilePrefix = "stochnav_";
 
@@ -332,6 +333,14 @@ std::shared_ptr<AidPlugin> PluginRegistry::create_aid(std::string_view type,
   auto object = run_factory(plugin.descriptor, context.params_pointer,
                             [&] { return factory(params, context); });
   return hold_library(std::move(object), plugin.library);
+}
+
+std::optional<PluginDocumentation> PluginRegistry::documentation(PluginKind kind,
+                                                                 std::string_view type,
+                                                                 Quantity quantity) const {
+  const LoadedPlugin& plugin = impl_->find(kind, type, "plugins doc");
+  if (!plugin.library->has(kDocumentationAlias)) return std::nullopt;
+  return plugin.library->get_alias<PluginDocumentationFunction>(kDocumentationAlias)(quantity);
 }
 
 }  // namespace stochnav::plugin

@@ -43,6 +43,7 @@
 #include "stochnav/plugin/noise_model_plugin.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 #include "stochnav/plugin/tabulated_noise_model.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 
 namespace {
 
@@ -206,3 +207,4 @@ STOCHNAV_NOISE_PLUGIN("adaptive",
                       "white noise level estimated on line from the innovations (Sage-Husa, "
                       "fading memory)",
                       make_adaptive, fit_adaptive)
+STOCHNAV_PLUGIN_DOCUMENTATION_WITH_FIT(kAdaptiveTable, kAdaptiveTable.without("N_initial"))

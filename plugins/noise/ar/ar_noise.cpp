@@ -17,6 +17,7 @@
 #include "stochnav/core/errors.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
 #include "stochnav/plugin/params.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 
 namespace {
 
@@ -76,3 +77,4 @@ STOCHNAV_NOISE_PLUGIN("ar",
                       "covariance interval, as augmented states; Burg/Yule-Walker fit, order by "
                       "BIC/AIC",
                       make_ar, fit_ar)
+STOCHNAV_PLUGIN_DOCUMENTATION_WITH_FIT(an::model_table(Kind::kAr), kArFitTable)

@@ -19,6 +19,7 @@
 #include "stochnav/core/errors.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
 #include "stochnav/plugin/params.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 
 namespace {
 
@@ -79,3 +80,4 @@ STOCHNAV_NOISE_PLUGIN("arma",
                       "covariance interval, as augmented states; conditional ML fit with Ceres, "
                       "orders by BIC/AIC",
                       make_arma, fit_arma)
+STOCHNAV_PLUGIN_DOCUMENTATION_WITH_FIT(an::model_table(Kind::kArma), kArmaFitTable)

@@ -35,6 +35,7 @@
 #include "stochnav/plugin/calibration_fit.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
 #include "stochnav/plugin/tabulated_noise_model.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 
 namespace {
 
@@ -254,3 +255,4 @@ STOCHNAV_NOISE_PLUGIN("augmented",
                       "composite noise model as shaping-filter states (Gauss-Markov, flicker bank, "
                       "ramp, sinusoid) plus white noise and bias random walk",
                       make_augmented, fit_augmented)
+STOCHNAV_PLUGIN_DOCUMENTATION_WITH_FIT(kAugmentedTable, kAugmentedFitTable)

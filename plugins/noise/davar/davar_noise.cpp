@@ -72,6 +72,7 @@
 #include "stochnav/plugin/calibration_fit.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
 #include "stochnav/plugin/tabulated_noise_model.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 #include "windowed_term_fit.hpp"
 
 namespace {
@@ -336,3 +337,4 @@ STOCHNAV_NOISE_PLUGIN("davar",
                       "time-varying white noise N(t) from windowed Allan-variance fits (DAVAR, "
                       "offline or causal)",
                       make_davar, fit_davar)
+STOCHNAV_PLUGIN_DOCUMENTATION_WITH_FIT(kDavarTable, kDavarFitTable)

@@ -22,6 +22,7 @@
 #include "stochnav/plugin/calibration_fit.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
 #include "stochnav/plugin/tabulated_noise_model.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 
 namespace {
 
@@ -162,3 +163,4 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_gauss_markov(
 STOCHNAV_NOISE_PLUGIN("gauss_markov",
                       "first-order Gauss-Markov sensor error per axis as 3 augmented states",
                       make_gauss_markov, fit_gauss_markov)
+STOCHNAV_PLUGIN_DOCUMENTATION_WITH_FIT(kGaussMarkovTable, kGaussMarkovFitTable)

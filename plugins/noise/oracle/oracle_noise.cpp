@@ -37,6 +37,7 @@
 #include "stochnav/model/sensor_shaping.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
 #include "stochnav/plugin/tabulated_noise_model.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 #include "white_noise_schedule.hpp"
 
 namespace {
@@ -269,3 +270,4 @@ STOCHNAV_NOISE_PLUGIN("oracle",
                       "the true noise of a simulated scenario (scenario.json): time-varying white "
                       "noise as scheduled, coloured terms as the simulator's shaping states",
                       make_oracle, stochnav::plugin::fit_not_supported)
+STOCHNAV_PLUGIN_DOCUMENTATION(kOracleTable)

@@ -17,6 +17,7 @@
 #include "stochnav/plugin/calibration_fit.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
 #include "stochnav/plugin/tabulated_noise_model.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 
 namespace {
 
@@ -91,3 +92,4 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_white(
 STOCHNAV_NOISE_PLUGIN("white",
                       "constant white sensor noise per axis (N), optional bias random walk (K)",
                       make_white, fit_white)
+STOCHNAV_PLUGIN_DOCUMENTATION_WITH_FIT(kWhiteTable, kWhiteFitTable)

@@ -9,6 +9,9 @@
 //                    azimuth (deg)                                       every `decimation` epochs
 //   biases.csv       t, accel bias x y z (m/s^2), gyro bias x y z (deg/h)      same epochs
 //   covariance.csv   t, 1-sigma of the 15 core states (m, m/s, deg, m/s^2, deg/h) (output.covariance)
+//   states.csv       t, every sensor-error state (biases, scale factors, the noise models'
+//                    augmented states and the sensor error they make) and its 1-sigma, units
+//                    in the names (experiment/run/states_file.hpp)             same epochs
 //   innovations.csv  t, aid, type, accepted, nis, z_i and sigma_i (aid units), every update
 //   errors.csv       (only with truth) t, the nine errors of experiment/navigation_errors.hpp, the filter's 1-sigma
 //                    of each (<metric>_sigma; the MWD angles' by linearising them about the

@@ -32,6 +32,7 @@
 
 #include <Eigen/Core>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "stochnav/filter/block_diagonal_matrix.hpp"
@@ -85,6 +86,22 @@ class MwdNavigator final {
   /// P of the error state (n x n), propagated up to the last covariance interval or update.
   const Eigen::MatrixXd& covariance() const { return filter_.covariance(); }
   const plugin::StateLayout& layout() const { return layout_; }
+  /// The estimate of a sensor-error block of layout(), by its name: "accel_bias" (body,
+  /// m/s^2), "gyro_bias" (body, rad/s), "gyro_scale_factor", "accel_scale_factor"
+  /// (dimensionless, per body axis), "gyro.<type>", "accel.<type>" (a noise model's augmented
+  /// states x, whose sensor error is M x: NoiseModelPlugin::augmented_sensor_map). The
+  /// navigation blocks ("position", "velocity", "attitude") are state(): their error states are
+  /// zero after every feedback. Throws std::invalid_argument for a navigation block or an unknown
+  /// name, listing the blocks there are.
+  Eigen::VectorXd block_estimate(std::string_view name) const;
+  /// Block `name`'s rows and columns of covariance() (size x size, in the block's units; the
+  /// navigation blocks too: "attitude" in rad^2). Throws std::invalid_argument for an unknown
+  /// name.
+  Eigen::MatrixXd block_covariance(std::string_view name) const;
+  /// P at the current epoch: propagates the epochs since the last covariance interval now, as a
+  /// measurement epoch does (the next interval starts here), and returns covariance(). A host
+  /// that asks at every epoch propagates at every epoch.
+  const Eigen::MatrixXd& covariance_now();
   const FilterHealth& health() const { return filter_.health(); }
   /// The update attempts of the last step.
   std::span<const InnovationRecord> innovations() const { return innovations_; }

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,6 +25,7 @@
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
 #include "stochnav/plugin/plugin_api.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 
 namespace stochnav::plugin {
 
@@ -94,6 +96,11 @@ class PluginRegistry {
                                                     const nlohmann::json& params,
                                                     const NoiseModelContext& context,
                                                     std::string_view type_pointer) const;
+
+  /// The parameter reference the plugin exports (plugin_documentation.hpp), in the reporting
+  /// units of `quantity`; nullopt when the library exports none. Throws ConfigError as find.
+  std::optional<PluginDocumentation> documentation(PluginKind kind, std::string_view type,
+                                                   Quantity quantity) const;
 
   /// Builds an aid with the plugin's factory. Throws ConfigError.
   std::shared_ptr<AidPlugin> create_aid(std::string_view type, const nlohmann::json& params,

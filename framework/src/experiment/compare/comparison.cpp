@@ -15,7 +15,7 @@
 
 #include <boost/math/distributions/chi_squared.hpp>
 
-#include "shared_imu_records.hpp"
+#include "records/shared_imu_records.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/work_limits.hpp"
 #include "stochnav/core/progress_bar.hpp"

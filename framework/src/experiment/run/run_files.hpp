@@ -14,8 +14,11 @@
 #include "stochnav/experiment/survey.hpp"
 #include "stochnav/filter/mwd_navigator.hpp"
 #include "stochnav/io/atomic_file.hpp"
+#include "stochnav/plugin/runtime.hpp"
 
 namespace stochnav {
+
+class StatesFile;
 
 /// A CSV file written through a large buffer into a PendingFile.
 class CsvOutput final {
@@ -36,14 +39,17 @@ class CsvOutput final {
 
 class RunFiles final {
  public:
-  /// errors.csv only `with_truth`.
+  /// errors.csv only `with_truth`; states.csv with the columns of `plugins`' layout.
   RunFiles(const std::filesystem::path& out_dir, const plugin::OutputConfig& config,
-           const std::vector<std::shared_ptr<plugin::AidPlugin>>& aids, bool with_truth);
+           const plugin::RunPlugins& plugins, bool with_truth);
+  ~RunFiles();
 
   /// One nav.csv, biases.csv (and covariance.csv) row: the estimate, its biases (rad/s,
   /// m/s^2) and the covariance whose first 15 rows and columns are the core states'.
   void write_state(const NavState& s, const Eigen::Vector3d& gyro_bias_b,
                    const Eigen::Vector3d& accel_bias_b, const Eigen::MatrixXd& p);
+  /// One states.csv row (run/states_file.hpp): the navigator's sensor-error states and sigmas.
+  void write_states(const MwdNavigator& navigator);
   void write_innovations(std::span<const InnovationRecord> records);
   void write_errors(const ErrorSample& sample, double nees);
 
@@ -60,6 +66,7 @@ class RunFiles final {
   CsvOutput nav_, biases_, innovations_;
   std::unique_ptr<CsvOutput> errors_;
   std::unique_ptr<CsvOutput> covariance_;
+  std::unique_ptr<StatesFile> states_;
 };
 
 }  // namespace stochnav

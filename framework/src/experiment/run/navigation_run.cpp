@@ -10,7 +10,7 @@
 #include <optional>
 #include <tuple>
 
-#include "run_files.hpp"
+#include "run/run_files.hpp"
 #include "stochnav/core/angles.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/progress_bar.hpp"
@@ -20,6 +20,7 @@
 #include "stochnav/experiment/navigation_files.hpp"
 #include "stochnav/experiment/run_consistency.hpp"
 #include "stochnav/experiment/station_qc.hpp"
+#include "stochnav/experiment/streaming_aligner.hpp"
 #include "stochnav/experiment/survey.hpp"
 #include "stochnav/filter/heading_hypotheses.hpp"
 #include "stochnav/ins/earth.hpp"
@@ -250,18 +251,16 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
 
   // The start: the initial_state section (aligned or given), else truth's first row.
   NavState initial;
-  std::vector<ImuIncrement> alignment_span;
+  std::optional<StreamingAligner> aligner;
   ImuIncrement increment;
   if (config.initial_state) {
     initial = state_from_initial_config(*config.initial_state, imu.start_time_s());
     if (const auto& alignment = config.initial_state->alignment) {
-      const double end_s = imu.start_time_s() + alignment->static_s + kTimeMatch_s;
-      while (imu.next(increment)) {
-        alignment_span.push_back(increment);
-        if (increment.t_s >= end_s - 2 * kTimeMatch_s) break;
+      aligner.emplace(*alignment, imu.start_time_s());
+      while (imu.next(increment) && !aligner->feed(increment)) {
       }
-      check_static_span(alignment_span, *alignment, imu.start_time_s());
-      initial.t_s = alignment_span.back().t_s;
+      aligner->check();
+      initial.t_s = aligner->end_time_s();
     }
   } else {
     if (!truth_pending || std::abs(truth.t_s - imu.start_time_s()) > kTimeMatch_s) {
@@ -280,12 +279,11 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   plugin::RunPlugins plugins =
       plugin::build_run_plugins(config, registry, aid_data, initial, imu.rate_hz());
   const NavState tie_on_state = initial;  // before alignment and the deliberate error
-  if (config.initial_state && config.initial_state->alignment) {
-    const AlignedStart aligned =
-        align_at_rest(alignment_span, initial, *config.initial_state->alignment, filter,
-                      *plugins.gyro, *plugins.accel);
+  if (aligner) {
+    const AlignedStart aligned = aligner->align(initial, filter, *plugins.gyro, *plugins.accel);
     initial = aligned.state;
     filter = aligned.options;
+    aligner.reset();  // the span's epochs are not needed again
   }
   NavigationRunResult result;
   result.start = initial;
@@ -347,7 +345,7 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   RunConsistency consistency(aid_types, aid_dofs);
   std::optional<RunFiles> files;
   if (!options.out_dir.empty()) {
-    files.emplace(options.out_dir, config.output, plugins.aids, result.has_truth);
+    files.emplace(options.out_dir, config.output, plugins, result.has_truth);
   }
   ThinnedSeries series(options.series_points);
   ProgressBar progress("run", estimated_rows(config.data.imu), options.progress);
@@ -365,6 +363,9 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
       if (output_epoch) {
         files->write_state(navigator.state(), navigator.gyro_bias_b(), navigator.accel_bias_b(),
                            navigator.covariance());
+        // With several heading hypotheses: the most probable one's (the mixture has the core
+        // states only).
+        files->write_states(navigator.most_probable());
       }
     }
     since_aid_epoch.add(increment.delta_theta_b, increment.delta_v_b, increment.dt_s);

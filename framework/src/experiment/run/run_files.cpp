@@ -1,4 +1,6 @@
-#include "run_files.hpp"
+#include "run/run_files.hpp"
+
+#include "run/states_file.hpp"
 
 #include <fmt/format.h>
 
@@ -46,7 +48,7 @@ void CsvOutput::commit() {
 }
 
 RunFiles::RunFiles(const std::filesystem::path& out_dir, const plugin::OutputConfig& config,
-                   const std::vector<std::shared_ptr<plugin::AidPlugin>>& aids, bool with_truth)
+                   const plugin::RunPlugins& plugins, bool with_truth)
     : folder_(out_dir),
       out_dir_(out_dir),
       config_(config),
@@ -58,7 +60,9 @@ RunFiles::RunFiles(const std::filesystem::path& out_dir, const plugin::OutputCon
                    "t,aid,type,accepted,nis,z0,z1,z2,z3,z4,z5,sigma0,sigma1,sigma2,sigma3,"
                    "sigma4,sigma5") {
   if (with_truth) errors_ = std::make_unique<CsvOutput>(out_dir / "errors.csv", error_header());
-  for (const auto& aid : aids) aid_types_.emplace_back(aid->type());
+  for (const auto& aid : plugins.aids) aid_types_.emplace_back(aid->type());
+  states_ = std::make_unique<StatesFile>(out_dir / "states.csv", plugins.layout, *plugins.gyro,
+                                         *plugins.accel);
   if (config.covariance) {
     covariance_ = std::make_unique<CsvOutput>(
         out_dir / "covariance.csv",
@@ -121,6 +125,10 @@ void RunFiles::write_state(const NavState& s, const Eigen::Vector3d& gyro_bias_b
   }
 }
 
+RunFiles::~RunFiles() = default;
+
+void RunFiles::write_states(const MwdNavigator& navigator) { states_->write(navigator); }
+
 void RunFiles::write_innovations(std::span<const InnovationRecord> records) {
   for (const InnovationRecord& r : records) {
     // {:.3f},{},{},{},{:.6g}, then z_i and sigma_i {:.6g} (empty cells past the size)
@@ -166,7 +174,7 @@ void remove_previous_run(const std::filesystem::path& out_dir) {
   static constexpr std::array kRunFiles = {
       "metrics.json", "nav.csv",    "biases.csv",        "innovations.csv",
       "errors.csv",   "errors.png", "covariance.csv",    "survey.csv",
-      "survey.png",   "well_path.csv", "survey_errors.csv"};
+      "survey.png",   "well_path.csv", "survey_errors.csv", "states.csv"};
   std::error_code ignored;
   for (const char* name : kRunFiles) std::filesystem::remove(out_dir / name, ignored);
 }
@@ -194,6 +202,7 @@ void RunFiles::commit(const NavigationRunResult& result, bool plot, const Survey
   innovations_.commit();
   if (errors_) errors_->commit();
   if (covariance_) covariance_->commit();
+  states_->commit();
   for (auto& file : survey_files) file->commit();
   write_file_atomically(out_dir_ / "metrics.json", result.metrics_json().dump(2) + "\n");
   folder_.keep();

@@ -14,7 +14,7 @@
 #include "stochnav/experiment/survey.hpp"
 #include "stochnav/experiment/survey_listing.hpp"
 #include "stochnav/report/gnuplot.hpp"
-#include "survey_plot.hpp"
+#include "survey/survey_plot.hpp"
 
 namespace stochnav {
 namespace {

@@ -1,4 +1,4 @@
-#include "shared_imu_records.hpp"
+#include "records/shared_imu_records.hpp"
 
 #include <algorithm>
 #include <fstream>

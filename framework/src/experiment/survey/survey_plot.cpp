@@ -1,4 +1,4 @@
-#include "survey_plot.hpp"
+#include "survey/survey_plot.hpp"
 
 #include <fmt/format.h>
 
