@@ -120,8 +120,8 @@ TEST_F(RunCli, RecordingWithoutTruthStartsFromTheAlignment) {
                               dir_->path());
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_TRUE(result.err.empty()) << "short runs print no progress lines: " << result.err;
-  for (const char* file : {"nav.csv", "biases.csv", "innovations.csv", "survey.csv",
-                           "metrics.json"}) {
+  for (const char* file : {"nav.csv", "biases.csv", "states.csv", "innovations.csv",
+                           "survey.csv", "trajectory.xml", "metrics.json"}) {
     EXPECT_TRUE(fs::exists(out / file)) << file;
   }
   EXPECT_FALSE(fs::exists(out / "errors.csv"));

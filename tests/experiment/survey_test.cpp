@@ -422,14 +422,15 @@ TEST(SurveyFiles, AppearOnlyOnCommit) {
   const testing::TempDir dir;
   const SurveyRecorder recorder = recorded_run(true);
   auto files = write_survey_files(recorder, kTieOn, dir.path(), false);
-  ASSERT_EQ(files.size(), 3u);
+  ASSERT_EQ(files.size(), 4u);
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "survey.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "trajectory.xml"));
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "survey_errors.csv"));
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "well_path.csv"));
-  EXPECT_EQ(files_in(dir.path()), 3u);  // the temporaries
+  EXPECT_EQ(files_in(dir.path()), 4u);  // the temporaries
   for (auto& file : files) file->commit();
   files.clear();
-  EXPECT_EQ(files_in(dir.path()), 3u);
+  EXPECT_EQ(files_in(dir.path()), 4u);
 
   const auto survey = read_lines(dir.path() / "survey.csv");
   ASSERT_EQ(survey.size(), 4u);
@@ -475,10 +476,11 @@ TEST(SurveyFiles, UncommittedFilesLeaveNothing) {
 TEST(SurveyFiles, NoErrorFileWithoutTruth) {
   const testing::TempDir dir;
   auto files = write_survey_files(recorded_run(false), kTieOn, dir.path(), false);
-  ASSERT_EQ(files.size(), 2u);
+  ASSERT_EQ(files.size(), 3u);
   for (auto& file : files) file->commit();
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "survey.csv"));
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "well_path.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "trajectory.xml"));
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "survey_errors.csv"));
 }
 
@@ -502,11 +504,11 @@ TEST(SurveyFiles, PlotIsAPngAndLeavesNoTemporaries) {
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gnuplot";
   const testing::TempDir dir;
   auto files = write_survey_files(recorded_run(true), kTieOn, dir.path(), true);
-  ASSERT_EQ(files.size(), 4u);
-  EXPECT_EQ(files_in(dir.path()), 4u);  // only the four pending files, no script or data
+  ASSERT_EQ(files.size(), 5u);
+  EXPECT_EQ(files_in(dir.path()), 5u);  // only the five pending files, no script or data
   for (auto& file : files) file->commit();
   files.clear();
-  EXPECT_EQ(files_in(dir.path()), 4u);
+  EXPECT_EQ(files_in(dir.path()), 5u);
   std::ifstream png(dir.path() / "survey.png", std::ios::binary);
   char magic[4] = {};
   png.read(magic, 4);

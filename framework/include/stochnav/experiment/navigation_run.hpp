@@ -37,7 +37,8 @@
 //                     initial error), the initial bias estimates and 1-sigmas the navigator
 //                     started with}}
 //   errors.png       errors with their 3-sigma bounds over time (with truth, gnuplot installed)
-//   survey.csv, survey_errors.csv (with truth), well_path.csv, survey.png
+//   survey.csv, trajectory.xml (WITSML), survey_errors.csv (with truth), well_path.csv,
+//   survey.png
 //                    survey stations at the connections (experiment/survey.hpp), each with
 //                    its static QC in the qc_* columns after DESIGN.md's
 //

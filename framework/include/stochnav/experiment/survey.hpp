@@ -185,6 +185,8 @@ class SurveyRecorder final {
 /// with the run's other files, so a failed run leaves none of them.
 ///   survey.csv          the stations (header as DESIGN.md, then the QC columns, then the
 ///                       listing's of experiment/survey_listing.hpp under `listing`)
+///   trajectory.xml      the same stations as a WITSML 1.4.1.1 trajectory, the tie-on first
+///                       (experiment/witsml_trajectory.hpp)
 ///   survey_errors.csv   the stations' errors (DESIGN.md's and the QC columns, not the
 ///                       listing's), only when there are any
 ///   well_path.csv       md_m, north/east/tvd by minimum curvature at the stations, and the INS

@@ -87,6 +87,11 @@ HorizontalEllipse horizontal_ellipse(const Eigen::Matrix2d& covariance_ne_m2, do
 double vertical_section_azimuth_deg(const std::vector<SurveyStation>& stations,
                                     const SurveyTieOn& tie_on, const SurveyListingOptions& options);
 
+/// The tie-on's TVD below the depth datum (m): options.tie_on_tvd_m, else
+/// datum_elevation_m - tie_on.height_m; nullopt without a datum.
+std::optional<double> tie_on_tvd_below_datum_m(const SurveyTieOn& tie_on,
+                                               const SurveyListingOptions& options);
+
 /// The derived columns of every station, in order (one per station).
 std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& stations,
                                            const SurveyTieOn& tie_on,

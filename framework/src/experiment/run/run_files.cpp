@@ -174,7 +174,8 @@ void remove_previous_run(const std::filesystem::path& out_dir) {
   static constexpr std::array kRunFiles = {
       "metrics.json", "nav.csv",    "biases.csv",        "innovations.csv",
       "errors.csv",   "errors.png", "covariance.csv",    "survey.csv",
-      "survey.png",   "well_path.csv", "survey_errors.csv", "states.csv"};
+      "survey.png",   "well_path.csv", "survey_errors.csv", "states.csv",
+      "trajectory.xml"};
   std::error_code ignored;
   for (const char* name : kRunFiles) std::filesystem::remove(out_dir / name, ignored);
 }

@@ -1,5 +1,6 @@
-// write_survey_files of experiment/survey.hpp: survey.csv, survey_errors.csv, well_path.csv and
-// survey.png, each complete in a temporary file, committed by the caller.
+// write_survey_files of experiment/survey.hpp: survey.csv, trajectory.xml (WITSML),
+// survey_errors.csv, well_path.csv and survey.png, each complete in a temporary file, committed
+// by the caller.
 
 #include <fmt/format.h>
 
@@ -13,6 +14,7 @@
 #include "stochnav/core/errors.hpp"
 #include "stochnav/experiment/survey.hpp"
 #include "stochnav/experiment/survey_listing.hpp"
+#include "stochnav/experiment/witsml_trajectory.hpp"
 #include "stochnav/report/gnuplot.hpp"
 #include "survey/survey_plot.hpp"
 
@@ -161,6 +163,9 @@ std::vector<std::unique_ptr<PendingFile>> write_survey_files(const SurveyRecorde
       survey_listing(recorder.stations(), tie_on, listing);
   files.push_back(
       pending_text_file(out_dir / "survey.csv", stations_csv(recorder.stations(), &listing_rows)));
+  files.push_back(pending_text_file(
+      out_dir / "trajectory.xml",
+      witsml_trajectory_xml(recorder.stations(), listing_rows, tie_on, listing)));
   if (!recorder.station_errors().empty()) {
     files.push_back(
         pending_text_file(out_dir / "survey_errors.csv", stations_csv(recorder.station_errors())));

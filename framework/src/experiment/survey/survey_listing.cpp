@@ -89,15 +89,19 @@ double vertical_section_azimuth_deg(const std::vector<SurveyStation>& stations,
   return std::isnan(closure) ? 0.0 : closure;
 }
 
+std::optional<double> tie_on_tvd_below_datum_m(const SurveyTieOn& tie_on,
+                                               const SurveyListingOptions& options) {
+  if (options.tie_on_tvd_m) return options.tie_on_tvd_m;
+  if (options.datum_elevation_m) return *options.datum_elevation_m - tie_on.height_m;
+  return std::nullopt;
+}
+
 std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& stations,
                                            const SurveyTieOn& tie_on,
                                            const SurveyListingOptions& options) {
   const double vs_azimuth_rad =
       vertical_section_azimuth_deg(stations, tie_on, options) * kRadPerDeg;
-  std::optional<double> tie_on_tvd_below_datum_m = options.tie_on_tvd_m;
-  if (options.datum_elevation_m && !tie_on_tvd_below_datum_m) {
-    tie_on_tvd_below_datum_m = *options.datum_elevation_m - tie_on.height_m;
-  }
+  const std::optional<double> tie_on_tvd = tie_on_tvd_below_datum_m(tie_on, options);
   std::vector<StationListing> listing(stations.size());
   for (std::size_t i = 0; i < stations.size(); ++i) {
     const SurveyStation& s = stations[i];
@@ -124,8 +128,8 @@ std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& sta
     row.ellipse_semi_major_m = ellipse.semi_major_m;
     row.ellipse_semi_minor_m = ellipse.semi_minor_m;
     row.ellipse_azimuth_deg = ellipse.azimuth_deg;
-    if (tie_on_tvd_below_datum_m) {
-      row.tvd_below_datum_m = *tie_on_tvd_below_datum_m + s.tvd_m;
+    if (tie_on_tvd) {
+      row.tvd_below_datum_m = *tie_on_tvd + s.tvd_m;
       row.tvdss_m = row.tvd_below_datum_m - *options.datum_elevation_m;
     } else {
       row.tvd_below_datum_m = row.tvdss_m = kUndefined;
