@@ -70,7 +70,8 @@ std::string readoff_rows(const FitResult& fit, bool csv) {
 
 }  // namespace
 
-std::string format_fit(const FitResult& fit, const Record& record, OutputFormat format) {
+std::string format_fit(const FitResult& fit, const Record& record, std::size_t samples,
+                       OutputFormat format) {
   if (format == OutputFormat::kJson) return fit_result_to_json(fit).dump(2) + "\n";
   const auto parameters = reported_parameters(fit);
   if (format == OutputFormat::kCsv) {
@@ -83,7 +84,7 @@ std::string format_fit(const FitResult& fit, const Record& record, OutputFormat 
   const auto& d = fit.diagnostics;
   std::string out = fmt::format(
       "# noise-term fit of {} [{}] ({} samples at {} Hz, unit {})\n", record.source, record.column,
-      record.values.size(), record.rate_hz, unit_name(record.unit));
+      samples, record.rate_hz, unit_name(record.unit));
   if (d.method == FitMethod::kGmwm) {
     out += fmt::format("# GMWM on the Haar wavelet variance: {} scales, {} parameters; objective "
                        "{:.4g} (J-test p = {:.3g}); WIC {:.4g}\n",

@@ -14,7 +14,10 @@ namespace stochnav::cli {
 /// JSON: the noise model of DESIGN.md with "<param>_sigma" after each parameter and
 /// "diagnostics" (fit/fit_result_json.hpp). Table and CSV: one row per parameter in reporting
 /// units with its 1-sigma uncertainty, then the IEEE 952 slope read-offs.
-std::string format_fit(const FitResult& fit, const Record& record, OutputFormat format);
+/// `record` describes the data (source, column, rate, unit); `samples` is its sample count (the
+/// record's values may have been released: stats/phase.hpp's PhaseRecord).
+std::string format_fit(const FitResult& fit, const Record& record, std::size_t samples,
+                       OutputFormat format);
 
 /// Coefficient time series of a windowed fit. JSON: {"units", "window", "step", "t": [...],
 /// "terms": [{"type": T, "<param>": [...], "<param>_sigma": [...]}, ...], "failed": [bool, ...],

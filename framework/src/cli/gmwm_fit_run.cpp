@@ -120,7 +120,7 @@ void run_gmwm_fit(const FitArguments& arguments) {
                     "--keep-failed to write the failed fit (flagged)",
                     data.source, fit.diagnostics.failure()));
   }
-  write_output(arguments.output, format_fit(fit, record, format));
+  write_output(arguments.output, format_fit(fit, record, record.values.size(), format));
 }
 
 }  // namespace stochnav::cli
