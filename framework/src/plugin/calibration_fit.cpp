@@ -4,6 +4,8 @@
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/fit/fit_data.hpp"
+#include "stochnav/fit/gmwm_data.hpp"
+#include "stochnav/fit/gmwm_fit.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/phase.hpp"
 
@@ -38,6 +40,34 @@ std::array<FitResult, 3> fit_calibration_axes(const CalibrationRecord& record,
   std::array<FitResult, 3> results;
   for (std::size_t axis = 0; axis < 3; ++axis) {
     results[axis] = fit_noise_terms(calibration_axis_data(record, axis), options);
+  }
+  return results;
+}
+
+std::array<FitResult, 3> fit_calibration_axes(const CalibrationRecord& record,
+                                              const FitOptions& options,
+                                              CalibrationEstimator estimator) {
+  if (estimator == CalibrationEstimator::kAllanVariance) {
+    return fit_calibration_axes(record, options);
+  }
+  if (options.terms.empty()) {
+    throw ConfigError(record.source + ": the gmwm method fits the terms it is given; name them "
+                                      "(\"terms\") or use the method \"avar\"");
+  }
+  const Unit unit =
+      record.group == SensorGroup::kGyro ? Unit::kRadPerSecond : Unit::kMeterPerSecondSquared;
+  GmwmOptions gmwm;
+  gmwm.terms = options.terms;
+  gmwm.drop_terms_at_bound = options.drop_terms_at_bound;
+  std::array<FitResult, 3> results;
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    if (record.axes[axis].size() != record.axes[0].size()) {
+      throw InputError(record.source +
+                       ": calibration axes differ in length; give three equal columns");
+    }
+    const GmwmData data = gmwm_data_from_rate(record.axes[axis], record.rate_hz, unit, false,
+                                              record.source);
+    results[axis] = fit_gmwm(data, gmwm);
   }
   return results;
 }
@@ -106,7 +136,8 @@ nlohmann::json calibration_fit_quality(const std::array<FitResult, 3>& fits) {
         {"dof", d.points > d.parameters ? d.points - d.parameters : 0},
         {"chi_square_per_dof", number_or_null(d.reduced_chi_square())},
         {"p_value", number_or_null(d.chi_square_p_value())},
-        {"at_bound", d.at_bound}};
+        {"at_bound", d.at_bound},
+        {"estimator", fit_method_name(d.method)}};
   }
   return quality;
 }

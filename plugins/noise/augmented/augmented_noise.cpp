@@ -214,6 +214,8 @@ struct AugmentedFitOptions {
   std::vector<TermType> terms;  ///< empty: automatic selection
   double flicker_components_per_decade = 1.0;
   double fold_below_s = 0.1;
+  stochnav::plugin::CalibrationEstimator method =
+      stochnav::plugin::CalibrationEstimator::kAllanVariance;
 };
 
 const stochnav::plugin::ParamTable<AugmentedFitOptions> kAugmentedFitTable{
@@ -230,6 +232,12 @@ const stochnav::plugin::ParamTable<AugmentedFitOptions> kAugmentedFitTable{
            ParamUnit::fixed(""), Bound::kPositive, 1.0, "flicker bank density"),
     scalar(&AugmentedFitOptions::fold_below_s, "fold_below_s", ParamUnit::fixed("s"),
            Bound::kNonNegative, 0.1, "first-order states faster than this become white noise"),
+    stochnav::plugin::choice(&AugmentedFitOptions::method, "method",
+                             {{"avar", stochnav::plugin::CalibrationEstimator::kAllanVariance},
+                              {"gmwm", stochnav::plugin::CalibrationEstimator::kGmwm}},
+                             stochnav::plugin::CalibrationEstimator::kAllanVariance,
+                             "estimator: the Allan variance or GMWM (the wavelet variance; "
+                             "needs \"terms\")"),
 };
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_augmented(
@@ -238,7 +246,7 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_augmented(
   const auto fit = kAugmentedFitTable.parse(json, context.params_pointer);
   stochnav::FitOptions options;
   options.terms = fit.terms;
-  const auto fits = stochnav::plugin::fit_calibration_axes(record, options);
+  const auto fits = stochnav::plugin::fit_calibration_axes(record, options, fit.method);
   AugmentedParams params;
   for (std::size_t i = 0; i < 3; ++i) params.models[i] = fits[i].model;
   params.flicker_band_max_s = static_cast<double>(record.axes[0].size()) / record.rate_hz;

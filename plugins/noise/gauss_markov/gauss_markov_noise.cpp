@@ -11,7 +11,8 @@
 // (exact discretisation: the stationary variance sigma^2 is preserved step after step);
 // Qw = diag(N^2) dt, Qb = diag(K^2) dt.
 // Fit params: {"white": bool (default true: fit N too), "rate_random_walk": bool (default
-// false)}: the Gauss-Markov term (and the others) fitted per axis to the record's Allan variance.
+// false), "method": "avar" (default) | "gmwm"}: the Gauss-Markov term (and the others) fitted
+// per axis to the record's Allan variance, or by GMWM to its wavelet variance.
 
 #include <array>
 #include <cmath>
@@ -53,6 +54,8 @@ const stochnav::plugin::ParamTable<GaussMarkovParams> kGaussMarkovTable{
 struct GaussMarkovFitOptions {
   bool white = true;              ///< fit N too
   bool rate_random_walk = false;  ///< fit K too
+  stochnav::plugin::CalibrationEstimator method =
+      stochnav::plugin::CalibrationEstimator::kAllanVariance;
 };
 
 const stochnav::plugin::ParamTable<GaussMarkovFitOptions> kGaussMarkovFitTable{
@@ -60,6 +63,11 @@ const stochnav::plugin::ParamTable<GaussMarkovFitOptions> kGaussMarkovFitTable{
                            "fit the angle random walk N too"),
     stochnav::plugin::flag(&GaussMarkovFitOptions::rate_random_walk, "rate_random_walk", false,
                            "fit the rate random walk K too"),
+    stochnav::plugin::choice(&GaussMarkovFitOptions::method, "method",
+                             {{"avar", stochnav::plugin::CalibrationEstimator::kAllanVariance},
+                              {"gmwm", stochnav::plugin::CalibrationEstimator::kGmwm}},
+                             stochnav::plugin::CalibrationEstimator::kAllanVariance,
+                             "estimator: the Allan variance or GMWM (the wavelet variance)"),
 };
 
 class GaussMarkovNoise final : public stochnav::plugin::TabulatedNoiseModel<GaussMarkovParams> {
@@ -131,7 +139,7 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_gauss_markov(
   options.terms = {TermType::kGaussMarkov};
   if (fit_options.white) options.terms.push_back(TermType::kAngleRandomWalk);
   if (fit_options.rate_random_walk) options.terms.push_back(TermType::kRateRandomWalk);
-  const auto fits = stochnav::plugin::fit_calibration_axes(record, options);
+  const auto fits = stochnav::plugin::fit_calibration_axes(record, options, fit_options.method);
   GaussMarkovParams params;
   for (std::size_t axis = 0; axis < 3; ++axis) {
     const auto& model = fits[axis].model;

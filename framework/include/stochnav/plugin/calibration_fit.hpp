@@ -16,6 +16,20 @@ namespace stochnav::plugin {
 std::array<FitResult, 3> fit_calibration_axes(const CalibrationRecord& record,
                                               const FitOptions& options);
 
+/// The estimator a fitter fits the terms to (the plugins' fit option "method").
+enum class CalibrationEstimator {
+  kAllanVariance,  ///< "avar": the octave OADEV, robust log fit (fit/fit_noise_terms.hpp)
+  kGmwm,           ///< "gmwm": the classical Haar wavelet variance by GMM (fit/gmwm_fit.hpp)
+};
+
+/// fit_calibration_axes with the estimator. With kGmwm, options.terms (not empty: the automatic
+/// selection is the Allan fit's) are fitted by fit_gmwm to each axis's classical wavelet
+/// variance, options.drop_terms_at_bound kept; the results' diagnostics say which method ran.
+/// Throws ConfigError for kGmwm with no terms, InputError as fit_gmwm does.
+std::array<FitResult, 3> fit_calibration_axes(const CalibrationRecord& record,
+                                              const FitOptions& options,
+                                              CalibrationEstimator estimator);
+
 /// The octave OADEV points of one axis of `record` (what fit_calibration_axes fits). Throws as
 /// fit_calibration_axes.
 FitData calibration_axis_data(const CalibrationRecord& record, std::size_t axis);
@@ -51,7 +65,8 @@ WhiteWalkFit fit_white_walk(const CalibrationRecord& record, bool with_walk);
 
 /// The fit quality of the three axes, for NoiseModelPlugin::set_fit_quality:
 /// {"x"|"y"|"z": {"chi_square", "dof" (points - parameters), "chi_square_per_dof", "p_value"
-/// (upper tail of chi2(dof); null without dof), "at_bound": ["term.param", ...]}}.
+/// (upper tail of chi2(dof); null without dof), "at_bound": ["term.param", ...], "estimator":
+/// "avar" | "gmwm" (fit_method_name)}}.
 nlohmann::json calibration_fit_quality(const std::array<FitResult, 3>& fits);
 
 /// The first term of `type` in a fit result's model, or nullptr.
