@@ -99,4 +99,33 @@ TEST(ShippedExperiments, PaperExperimentsBoundsAreConsistentAndTheDatasheetModel
   }
 }
 
+// Does a better estimator give a better filter (docs/gmwm.md)? Where the model can describe the
+// noise (white noise and a flicker floor: `augmented` with those terms) the Allan fit and GMWM
+// agree to about 1 % and the filter is the same and consistent; where it cannot (one
+// Gauss-Markov term for a flicker floor) the two estimators weigh the misfit differently, and
+// both filters are optimistic.
+TEST(ShippedExperiments, EstimatorsAgreeWhereTheModelDescribesTheNoise) {
+  const stochnav::testing::TempDir dir;
+  std::map<std::string, nlohmann::json> by_name;
+  for (const auto& variant :
+       run_shipped("estimators_random_vibration", dir,
+                   {{"/vibration_table/phases/2/duration_s", 60},
+                    {"/vibration_table/phases/4/duration_s", 60}})) {
+    by_name[variant["name"]] = variant;
+  }
+  ASSERT_EQ(by_name.size(), 4u);
+  for (const char* name : {"augmented_avar", "augmented_gmwm"}) {
+    EXPECT_FALSE(optimistic(by_name[name]))
+        << name << ": " << by_name[name]["consistency"]["optimistic_reason"];
+  }
+  const double avar = by_name["augmented_avar"]["metrics"]["azimuth_err_deg"]["mean"];
+  const double gmwm = by_name["augmented_gmwm"]["metrics"]["azimuth_err_deg"]["mean"];
+  EXPECT_NEAR(gmwm, avar, 0.05 * avar);
+  if (study_at_full_size()) {
+    for (const char* name : {"gauss_markov_avar", "gauss_markov_gmwm"}) {
+      EXPECT_TRUE(optimistic(by_name[name])) << name;
+    }
+  }
+}
+
 }  // namespace
