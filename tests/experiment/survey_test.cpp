@@ -233,6 +233,37 @@ TEST(SurveyRecorder, StationsAtTheLastStationaryEpochWithGivenDepth) {
   EXPECT_TRUE(recorder.station_errors().empty());
 }
 
+// A ZUPT rejected in the middle of a connection splits its stationary span in two: one station
+// still, the later span's (after more ZUPTs), with its error, and MD strictly increasing from
+// station to station although the tally read 5 cm less after the gap (it went backwards:
+// 1429.989 -> 1429.916 m in the run).
+TEST(SurveyRecorder, OneStationPerConnectionWhenAZuptIsRejectedInIt) {
+  SurveyRecorder recorder(kTieOn);
+  const auto covariance = known_covariance();
+  struct Step {
+    double t_s, tvd_m, md_m;
+    bool stationary;
+  };
+  const Step steps[] = {{0, 0, 1000.00, true},  {1, 0, 1000.00, true}, {2, 0, 999.95, false},
+                        {3, 0, 999.95, true},   {4, 0, 999.95, true},  {5, 10, 1010.0, false},
+                        {6, 20, 1020.0, false}, {7, 20, 1020.0, true}};
+  for (const Step& step : steps) {
+    const NavState state = state_at(step.t_s, 0.0, 0.0, step.tvd_m, attitude_deg(2.0, 0.0, 50.0));
+    recorder.observe(state, covariance, step.stationary, step.md_m, &state);
+  }
+  recorder.finish();
+  const auto& stations = recorder.stations();
+  ASSERT_EQ(stations.size(), 2u);
+  EXPECT_EQ(stations[0].t_s, 4.0) << "the connection's last stationary epoch";
+  EXPECT_DOUBLE_EQ(stations[0].md_m, 999.95);
+  EXPECT_EQ(stations[1].t_s, 7.0);
+  ASSERT_EQ(recorder.station_errors().size(), 2u);
+  EXPECT_EQ(recorder.station_errors()[0].t_s, 4.0);
+  for (std::size_t i = 1; i < stations.size(); ++i) {
+    EXPECT_GT(stations[i].md_m, stations[i - 1].md_m + SurveyRecorder::kSameConnectionMd_m);
+  }
+}
+
 TEST(SurveyRecorder, DepthFromTheInsPathWhenNotGiven) {
   SurveyRecorder recorder(kTieOn);
   const auto covariance = known_covariance();

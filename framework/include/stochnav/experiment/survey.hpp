@@ -144,6 +144,12 @@ class SurveyRecorder final {
   /// station). Call once, after the last epoch.
   void finish();
 
+  /// One station per connection: a stationary span that closes within this MD of the last
+  /// station (m) is the same connection resumed (a ZUPT rejected in the middle of it, the tool
+  /// picked up and set down on the slips again) and replaces that station, so that MD strictly
+  /// increases from station to station by more than this. A stand is 9-30 m.
+  static constexpr double kSameConnectionMd_m = 1.0;
+
   const std::vector<SurveyStation>& stations() const { return stations_; }
   /// Errors of the stations that had truth at their epoch (estimate - truth; t_s, md_m and the
   /// sigmas left as the station's, see above), in station order: parallel to stations() when

@@ -150,6 +150,14 @@ void SurveyRecorder::finish() { close_open_station(); }
 
 void SurveyRecorder::close_open_station() {
   if (!open_station_) return;
+  const bool same_connection =
+      !stations_.empty() && open_station_->md_m <= stations_.back().md_m + kSameConnectionMd_m;
+  if (same_connection) {
+    // The later span replaces the earlier one (after more ZUPTs), its error too.
+    const bool had_error = !errors_.empty() && errors_.back().t_s == stations_.back().t_s;
+    if (had_error) errors_.pop_back();
+    stations_.pop_back();
+  }
   stations_.push_back(*open_station_);
   if (open_error_) errors_.push_back(*open_error_);
   open_station_.reset();
