@@ -10,7 +10,8 @@
 //                              gap ("before step 2")
 //   candidate_screening.cpp    the candidates of one stochastic step, screened (step 4)
 //   stochastic_step.cpp        one stochastic step: exact assessment and acceptance in two tiers,
-//                              the time-domain fallback, the iteration and its evidence (4-6)
+//                              the time-domain fallback, the iteration kept (steps 4-6)
+//   step_evidence.cpp          the texts of a step: evidence, time range, why none was kept
 //   final_selection.cpp        joint refit, replace and drop variants after the loop (step 8)
 //   diagnose_common.cpp        helpers the stages share
 //
@@ -173,6 +174,29 @@ struct StepResult {
 /// builds the iteration with its evidence.
 StepResult take_stochastic_step(const ModelAssessment& current, const RandomWalkTest& walk,
                                 const StochasticContext& context);
+
+// ---- Stage 3c: the texts of a stochastic step (step_evidence.cpp) ------------------------------
+
+/// The record time spanned by the segments of `term` (a nonstationary term) that `base` did not
+/// have; empty for another term or when no segment is new.
+std::optional<std::array<double, 2>> segment_time_range(const NoiseTerm& term,
+                                                        const NoiseModel& base);
+
+/// The evidence paragraph of a step that kept `kept`: what the gap or the windows showed
+/// (`signature`, `before`: read before the step), how the candidates (`outcomes`) ranked, the
+/// term added. `time_range`: of a nonstationary term's new segments; `unit`: the record's.
+std::string evidence_text(const Signature& signature, const Gap& before, const Trial& kept,
+                          const std::vector<CandidateOutcome>& outcomes,
+                          const std::optional<std::array<double, 2>>& time_range, Unit unit);
+
+/// Appended to the evidence when the time-domain fallback kept the step: what the block means
+/// showed before (`walk`) and with the term (`walk_after`); K reported in `unit`'s quantity.
+std::string walk_evidence_text(const RandomWalkTest& walk, const RandomWalkTest& walk_after,
+                               double alpha, Unit unit);
+
+/// Why a step accepted no candidate (the conclusion of diagnose); `best`: the lowest score
+/// assessed exactly, or null.
+std::string rejection_text(const Gap& before, const RandomWalkTest& walk, const Trial* best);
 
 /// A variant of the final model, refitted jointly and assessed exactly.
 struct FinalVariant {
