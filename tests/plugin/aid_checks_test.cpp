@@ -88,8 +88,9 @@ TEST(AidChecks, FindAResidualThatIsNotZeroAtTheTruth) {
 
 TEST(AidChecks, FindACovarianceThatIsNotPositiveDefinite) {
   const auto failures = failures_of(broken("covariance"));
-  EXPECT_TRUE(any_contains(failures, "covariance: R not positive definite (smallest eigenvalue "
-                                     "-1e-06"))
+  EXPECT_TRUE(any_contains(failures,
+                           "covariance: R not positive definite (smallest eigenvalue "
+                           "-1e-06"))
       << joined(failures);
 }
 
@@ -124,10 +125,10 @@ TEST(PluginsCommand, CheckWithParamsRunsTheAidChecks) {
   stochnav::testing::TempDir scratch;
   const fs::path zupt = bundled_plugin_dir() / "stochnav_aid_zupt.so";
   const fs::path flags = write_csv(scratch.path(), "zupt.csv", "t,zupt\n0,1\n1,1\n");
-  const auto good = stochnav::testing::run_cli(
-      "plugins check '" + zupt.string() + "' --params '{\"sigma_velocity_mps\": 0.002}' " +
-          "--aid-data '" + flags.string() + "'",
-      scratch.path().string());
+  const auto good = stochnav::testing::run_cli("plugins check '" + zupt.string() +
+                                                   "' --params '{\"sigma_velocity_mps\": 0.002}' " +
+                                                   "--aid-data '" + flags.string() + "'",
+                                               scratch.path().string());
   EXPECT_EQ(good.exit_code, 0) << good.err;
   EXPECT_NE(good.out.find("aid: zupt: source = flags"), std::string::npos) << good.out;
   EXPECT_NE(good.out.find("properties: sizes, covariance, residual at the truth, jacobian, "
@@ -146,14 +147,13 @@ TEST(PluginsCommand, CheckWithParamsRunsTheAidChecks) {
       << moving.err;
 
   const fs::path rows = write_csv(scratch.path(), "rows.csv", "t\n0\n1\n");
-  const auto sign = stochnav::testing::run_cli("plugins check '" + kBrokenAid.string() +
-                                                   "' --params '{\"fault\": \"sign\"}' --aid-data '" +
-                                                   rows.string() + "'",
-                                               scratch.path().string());
+  const auto sign = stochnav::testing::run_cli(
+      "plugins check '" + kBrokenAid.string() + "' --params '{\"fault\": \"sign\"}' --aid-data '" +
+          rows.string() + "'",
+      scratch.path().string());
   EXPECT_EQ(sign.exit_code, 2) << sign.err;
   EXPECT_EQ(std::count(sign.err.begin(), sign.err.end(), '\n'), 3) << sign.err;
-  EXPECT_NE(sign.err.find("jacobian: H(2, 5) (dv_up) = -1, finite difference 1"),
-            std::string::npos)
+  EXPECT_NE(sign.err.find("jacobian: H(2, 5) (dv_up) = -1, finite difference 1"), std::string::npos)
       << sign.err;
 
   const auto typo = stochnav::testing::run_cli(

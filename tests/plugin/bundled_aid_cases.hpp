@@ -60,9 +60,9 @@ inline std::vector<stochnav::testing::AidCase> all() {
 
   auto pipe = bundled("pipe_length", {{"sigma_random_m", 0.02}});
   pipe.truth = inclined_tool(kDrillingSpeedMps);
-  pipe.data = AidData("aids.csv", {"t", "measured_depth_m"},
-                      {{0.0, 1.0, 2.0},
-                       {1000.0, 1000.0 + kDrillingSpeedMps, 1000.0 + 2.0 * kDrillingSpeedMps}});
+  pipe.data = AidData(
+      "aids.csv", {"t", "measured_depth_m"},
+      {{0.0, 1.0, 2.0}, {1000.0, 1000.0 + kDrillingSpeedMps, 1000.0 + 2.0 * kDrillingSpeedMps}});
   pipe.interval_s = 1.0;
   cases.push_back(pipe);
 

@@ -16,8 +16,8 @@
 
 #include "commands.hpp"
 #include "standard_output.hpp"
-#include "stochnav/core/errors.hpp"
 #include "stochnav/core/angles.hpp"
+#include "stochnav/core/errors.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
 #include "stochnav/io/json_document.hpp"
 #include "stochnav/plugin/aid_checks.hpp"
@@ -39,10 +39,10 @@ struct PluginsArguments {
   std::string group = "gyro";        // check: sensor group of the model
   double imu_rate_hz = 100.0;        // check: NoiseModelContext::imu_rate_hz
   plugin::PropertyCheckOptions checks;
-  std::string aid_data;              // check (aid): aids.csv consistent with the true state
-  std::string state;                 // check (aid): the true state (JSON text), "" for the default
-  double at_s = 1.0;                 // check (aid): a time with a measurement (s)
-  double interval_s = 1.0;           // check (aid): interval of an interval aid (s)
+  std::string aid_data;     // check (aid): aids.csv consistent with the true state
+  std::string state;        // check (aid): the true state (JSON text), "" for the default
+  double at_s = 1.0;        // check (aid): a time with a measurement (s)
+  double interval_s = 1.0;  // check (aid): interval of an interval aid (s)
 };
 
 // The true state of an aid check, in the units of a survey listing.
@@ -82,8 +82,8 @@ NavState true_state_of(const std::string& text) {
   state.longitude_rad = s.longitude_deg * kRadPerDeg;
   state.height_m = s.height_m;
   state.v_n = Eigen::Vector3d(s.v_n_mps[0], s.v_n_mps[1], s.v_n_mps[2]);
-  state.q_nb = quaternion_from_mwd({s.inclination_deg * kRadPerDeg, s.toolface_deg * kRadPerDeg,
-                                    s.azimuth_deg * kRadPerDeg});
+  state.q_nb = quaternion_from_mwd(
+      {s.inclination_deg * kRadPerDeg, s.toolface_deg * kRadPerDeg, s.azimuth_deg * kRadPerDeg});
   return state;
 }
 
@@ -191,7 +191,8 @@ void check_aid_properties(const PluginsArguments& arguments,
       plugin::steady_imu_sample(truth, arguments.at_s,
                                 aid->measures_interval_mean() ? arguments.interval_s : 0.0)};
   const std::vector<std::string> failures = plugin::check_aid(*aid, build, params, at);
-  const std::string where = fmt::format("{} (aid at t = {} s): ", arguments.library, arguments.at_s);
+  const std::string where =
+      fmt::format("{} (aid at t = {} s): ", arguments.library, arguments.at_s);
   for (std::size_t i = 0; i + 1 < failures.size(); ++i) {
     std::cerr << "stochnav: error: " << where << failures[i] << '\n';
   }

@@ -22,8 +22,8 @@ constexpr double kUnwritten = std::numeric_limits<double>::quiet_NaN();
 constexpr double kGuard = -1.2345e300;
 
 const char* const kCoreStateNames[cs::kSize] = {
-    "dr_east",  "dr_north", "dr_up",    "dv_east",  "dv_north", "dv_up",   "phi_east", "phi_north",
-    "phi_up",   "b_a_x",    "b_a_y",    "b_a_z",    "b_g_x",    "b_g_y",   "b_g_z"};
+    "dr_east", "dr_north", "dr_up", "dv_east", "dv_north", "dv_up", "phi_east", "phi_north",
+    "phi_up",  "b_a_x",    "b_a_y", "b_a_z",   "b_g_x",    "b_g_y", "b_g_z"};
 
 /// One call of measure() with NaN outputs inside a guard row and column.
 struct AidMeasurement {
@@ -132,8 +132,8 @@ std::vector<std::string> check_aid_sizes(const AidPlugin& aid, const AidCheckCas
   const int m = aid.measurement_size();
   if (m < 1) return {fmt::format("sizes: measurement_size() = {}; expected >= 1", m)};
   if (aid.measurement_size() != m) {
-    failures.push_back(fmt::format("sizes: measurement_size() changed from {} to {}", m,
-                                   aid.measurement_size()));
+    failures.push_back(
+        fmt::format("sizes: measurement_size() changed from {} to {}", m, aid.measurement_size()));
   }
   const bool due = aid.has_measurement(at.t_s);
   if (!due) {
@@ -160,9 +160,8 @@ std::vector<std::string> check_aid_sizes(const AidPlugin& aid, const AidCheckCas
     for (Eigen::Index i = 0; i < a.rows(); ++i) {
       for (Eigen::Index j = 0; j < a.cols(); ++j) {
         if (!std::isfinite(a(i, j))) {
-          const std::string column = (a.cols() == cs::kSize) ? std::string(" (") +
-                                                                   kCoreStateNames[j] + ")"
-                                                             : "";
+          const std::string column =
+              (a.cols() == cs::kSize) ? std::string(" (") + kCoreStateNames[j] + ")" : "";
           failures.push_back(fmt::format("sizes: {}({}, {}){} not written or not finite ({})", name,
                                          i, j, column, a(i, j)));
           return;
@@ -193,9 +192,10 @@ std::vector<std::string> check_aid_covariance(const AidPlugin& aid, const AidChe
   const Eigen::VectorXd eigenvalues =
       Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(m.r, Eigen::EigenvaluesOnly).eigenvalues();
   if (!(eigenvalues.minCoeff() > 0.0)) {
-    return {fmt::format("covariance: R not positive definite (smallest eigenvalue {:.3g}, "
-                        "max |R| = {:.3g})",
-                        eigenvalues.minCoeff(), scale)};
+    return {
+        fmt::format("covariance: R not positive definite (smallest eigenvalue {:.3g}, "
+                    "max |R| = {:.3g})",
+                    eigenvalues.minCoeff(), scale)};
   }
   return {};
 }
@@ -233,17 +233,17 @@ std::vector<std::string> check_aid_jacobian(const AidPlugin& aid, const AidCheck
     const AidMeasurement up = measure_aid(aid, at.t_s, plus.state, plus.imu);
     const AidMeasurement down = measure_aid(aid, at.t_s, minus.state, minus.imu);
     if (!up.ok || !down.ok) {
-      failures.push_back(fmt::format(
-          "jacobian: column {} ({}): measure() returned false at an error of {:.3g}", j,
-          kCoreStateNames[j], step));
+      failures.push_back(
+          fmt::format("jacobian: column {} ({}): measure() returned false at an error of {:.3g}", j,
+                      kCoreStateNames[j], step));
       continue;
     }
     const Eigen::VectorXd numerical = (up.z - down.z) / (2.0 * step);
     for (Eigen::Index i = 0; i < numerical.size(); ++i) {
       const double analytic = base.h(i, j);
-      const double allowed = options.jacobian_absolute +
-                             options.jacobian_relative *
-                                 std::max(std::abs(analytic), std::abs(numerical(i)));
+      const double allowed =
+          options.jacobian_absolute +
+          options.jacobian_relative * std::max(std::abs(analytic), std::abs(numerical(i)));
       if (!(std::abs(analytic - numerical(i)) <= allowed)) {
         failures.push_back(fmt::format(
             "jacobian: H({}, {}) ({}) = {:.6g}, finite difference {:.6g} (difference {:.3g} > "
@@ -261,8 +261,8 @@ std::vector<std::string> check_aid_round_trip(const AidPlugin& aid, const AidReb
   std::vector<std::string> failures;
   const std::string described = aid.describe();
   if (described.rfind(std::string(aid.type()), 0) != 0) {
-    failures.push_back("round trip: describe() \"" + described + "\" does not start with the type '" +
-                       std::string(aid.type()) + "'");
+    failures.push_back("round trip: describe() \"" + described +
+                       "\" does not start with the type '" + std::string(aid.type()) + "'");
   }
   std::shared_ptr<AidPlugin> again;
   try {

@@ -44,9 +44,9 @@ namespace stochnav::plugin {
 
 /// The epoch an aid is checked at.
 struct AidCheckCase {
-  NavState truth;       ///< the true state at t_s (its t_s is not used)
-  double t_s = 1.0;     ///< a time (s) at which the aid has a measurement
-  ImuSample imu;        ///< the IMU at t_s, true biases removed (steady_imu_sample())
+  NavState truth;    ///< the true state at t_s (its t_s is not used)
+  double t_s = 1.0;  ///< a time (s) at which the aid has a measurement
+  ImuSample imu;     ///< the IMU at t_s, true biases removed (steady_imu_sample())
 };
 
 /// The IMU sample of a tool moving steadily at truth.v_n with the attitude truth.q_nb: specific
@@ -57,11 +57,11 @@ struct AidCheckCase {
 ImuSample steady_imu_sample(const NavState& truth, double t_s, double interval_s);
 
 struct AidCheckOptions {
-  double position_step_m = 1e-3;  ///< finite-difference step of the position states (m)
-  double step = 1e-6;  ///< step of the other states (m/s, rad, m/s^2, rad/s)
+  double position_step_m = 1e-3;    ///< finite-difference step of the position states (m)
+  double step = 1e-6;               ///< step of the other states (m/s, rad, m/s^2, rad/s)
   double jacobian_absolute = 1e-6;  ///< aid units per state unit
   double jacobian_relative = 1e-4;
-  double residual_tolerance = 1e-6;  ///< at the truth, in 1-sigmas of R
+  double residual_tolerance = 1e-6;   ///< at the truth, in 1-sigmas of R
   double symmetry_tolerance = 1e-12;  ///< relative to the largest |R_ij|
 
   /// Empty when usable, else why not ("step <= 0", ...).
@@ -81,8 +81,7 @@ std::vector<std::string> check_aid_jacobian(const AidPlugin& aid, const AidCheck
                                             const AidCheckOptions& options);
 /// Any exception of the rebuild is reported as a failure.
 std::vector<std::string> check_aid_round_trip(const AidPlugin& aid, const AidRebuild& rebuild,
-                                              const nlohmann::json& params,
-                                              const AidCheckCase& at);
+                                              const nlohmann::json& params, const AidCheckCase& at);
 
 /// All of the above, in that order; the later checks only when measure() gives a measurement.
 std::vector<std::string> check_aid(const AidPlugin& aid, const AidRebuild& rebuild,
