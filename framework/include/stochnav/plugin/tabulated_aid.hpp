@@ -5,12 +5,12 @@
 // only its maths and a factory of a few lines:
 //
 //   struct SurveyParams {
-//     double sigma_rad;                     ///< rad
+//     double sigma_deg;                      ///< deg (the maths converts)
 //     stochnav::plugin::NisGateParams gate;  ///< the member the gate keys are read into
 //   };
 //   const auto kSurveyTable = stochnav::plugin::aid_param_table<SurveyParams>({
-//       scalar(&SurveyParams::sigma_rad, "sigma_deg", ParamUnit::fixed("deg", kRadPerDeg),
-//              Bound::kPositive, 0.1, "1-sigma of the surveyed inclination")});
+//       scalar(&SurveyParams::sigma_deg, "sigma_deg", ParamUnit::fixed("deg"), Bound::kPositive,
+//              0.1, "1-sigma of the surveyed inclination")});
 //
 //   class SurveyAid final : public stochnav::plugin::TabulatedAid<SurveyParams> {
 //    public:
@@ -18,7 +18,7 @@
 //     std::string_view type() const override { return "survey"; }
 //     int measurement_size() const override { return 1; }
 //     bool has_measurement(double t_s) const override { ... }
-//     bool measure(...) const override { ... parameters().sigma_rad ... }
+//     bool measure(...) const override { ... parameters().sigma_deg ... }
 //   };
 //   std::unique_ptr<AidPlugin> make_survey(const nlohmann::json& json, const AidContext& context) {
 //     return std::make_unique<SurveyAid>(parse_aid_params(kSurveyTable, json, context), ...);
