@@ -72,6 +72,8 @@ struct AidCheckOptions {
 /// the case's aid data and context).
 using AidRebuild = std::function<std::shared_ptr<AidPlugin>(const nlohmann::json& params)>;
 
+// Each check returns one line per failure, empty when the property holds. The checks after
+// sizes say nothing (empty) when measure() gives no measurement at the case: sizes reports it.
 std::vector<std::string> check_aid_sizes(const AidPlugin& aid, const AidCheckCase& at);
 std::vector<std::string> check_aid_covariance(const AidPlugin& aid, const AidCheckCase& at,
                                               const AidCheckOptions& options);
