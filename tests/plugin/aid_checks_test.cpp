@@ -146,6 +146,21 @@ TEST(PluginsCommand, CheckWithParamsRunsTheAidChecks) {
             std::string::npos)
       << moving.err;
 
+  // Drilling at 20 m/h: the rig's rate agrees with the state moving along its axis.
+  const fs::path rop = bundled_plugin_dir() / "stochnav_aid_rop.so";
+  const fs::path rates = write_csv(scratch.path(), "rop.csv", "t,rop_mph\n0,20\n1,20\n");
+  const auto drilling = stochnav::testing::run_cli(
+      "plugins check '" + rop.string() + "' --params '{}' --aid-data '" + rates.string() +
+          "' --state '{\"axial_speed_mps\": 0.0055555555555555558}' --interval 1",
+      scratch.path().string());
+  EXPECT_EQ(drilling.exit_code, 0) << drilling.err;
+  const auto without_data = stochnav::testing::run_cli(
+      "plugins check '" + rop.string() + "' --params '{}'", scratch.path().string());
+  EXPECT_EQ(without_data.exit_code, 2);
+  EXPECT_NE(without_data.err.find("--params: aid data (none given) has no column 'rop_mph'"),
+            std::string::npos)
+      << without_data.err;
+
   const fs::path rows = write_csv(scratch.path(), "rows.csv", "t\n0\n1\n");
   const auto sign = stochnav::testing::run_cli(
       "plugins check '" + kBrokenAid.string() + "' --params '{\"fault\": \"sign\"}' --aid-data '" +
@@ -170,7 +185,7 @@ TEST(PluginsCommand, CheckWithParamsRunsTheAidChecks) {
           "' --state '{\"latitude\": 30}'",
       scratch.path().string());
   EXPECT_EQ(bad_state.exit_code, 2);
-  EXPECT_NE(bad_state.err.find("--state/latitude: unknown key; expected only azimuth_deg"),
+  EXPECT_NE(bad_state.err.find("--state/latitude: unknown key; expected only axial_speed_mps"),
             std::string::npos)
       << bad_state.err;
 }

@@ -51,6 +51,7 @@ struct TrueState {
   double longitude_deg;
   double height_m;
   std::array<double, 3> v_n_mps;
+  double axial_speed_mps;
   double inclination_deg;
   double azimuth_deg;
   double toolface_deg;
@@ -64,7 +65,9 @@ const plugin::ParamTable<TrueState> kTrueStateTable{
     scalar(&TrueState::height_m, "height_m", plugin::ParamUnit::fixed("m"), plugin::Bound::kAny,
            0.0, "height above the WGS-84 ellipsoid"),
     per_axis(&TrueState::v_n_mps, "v_n_mps", plugin::ParamUnit::fixed("m/s"), plugin::Bound::kAny,
-             0.0, "velocity, ENU"),
+             0.0, "velocity, ENU, besides the axial speed"),
+    scalar(&TrueState::axial_speed_mps, "axial_speed_mps", plugin::ParamUnit::fixed("m/s"),
+           plugin::Bound::kAny, 0.0, "speed along the tool axis (down the hole)"),
     scalar(&TrueState::inclination_deg, "inclination_deg", plugin::ParamUnit::fixed("deg"),
            plugin::Bound::kAny, 60.0, "inclination of the tool axis"),
     scalar(&TrueState::azimuth_deg, "azimuth_deg", plugin::ParamUnit::fixed("deg"),
@@ -81,9 +84,10 @@ NavState true_state_of(const std::string& text) {
   state.latitude_rad = s.latitude_deg * kRadPerDeg;
   state.longitude_rad = s.longitude_deg * kRadPerDeg;
   state.height_m = s.height_m;
-  state.v_n = Eigen::Vector3d(s.v_n_mps[0], s.v_n_mps[1], s.v_n_mps[2]);
   state.q_nb = quaternion_from_mwd(
       {s.inclination_deg * kRadPerDeg, s.toolface_deg * kRadPerDeg, s.azimuth_deg * kRadPerDeg});
+  state.v_n = Eigen::Vector3d(s.v_n_mps[0], s.v_n_mps[1], s.v_n_mps[2]) +
+              state.q_nb * Eigen::Vector3d::UnitZ() * s.axial_speed_mps;
   return state;
 }
 
@@ -274,8 +278,8 @@ void add_plugins_command(CLI::App& app) {
                     "Aid: aid data (CSV with a column t) that the tool at --state measures");
   check->add_option("--state", arguments->state,
                     "Aid: the true state (JSON: latitude_deg, longitude_deg, height_m, v_n_mps, "
-                    "inclination_deg, azimuth_deg, toolface_deg); default at rest at 30 N 100 E, "
-                    "inclination 60, azimuth 45, toolface 30 deg");
+                    "axial_speed_mps, inclination_deg, azimuth_deg, toolface_deg); default at "
+                    "rest at 30 N 100 E, inclination 60, azimuth 45, toolface 30 deg");
   check->add_option("--at", arguments->at_s, "Aid: a time with a measurement (s)")
       ->capture_default_str();
   check
