@@ -78,7 +78,8 @@ set(survey "${WORK_DIR}/custom_aid_plugin/survey.csv")
 run(COMMAND "${stochnav}" plugins check "${aid_plugin}" --params "{\"sigma_deg\": 0.2}"
     --aid-data "${survey}" ENV ${clean_env} OUTPUT aid_checked)
 expect_match("${aid_checked}" "aid +inclination_survey +${API_VERSION}")
-expect_match("${aid_checked}" "aid: inclination_survey: surveyed inclination against the attitude's; column = \"inclination_deg\", sigma_deg = 0.2 deg")
+expect_match("${aid_checked}"
+  "aid: inclination_survey: surveyed inclination against the attitude's; column = \"inclination_deg\", sigma_deg = 0.2 deg")
 expect_match("${aid_checked}" "properties: .* hold at t = 1 s")
 run(COMMAND "${stochnav}" plugins check "${aid_plugin}" --params "{}" --aid-data "${survey}"
     --state "{\"inclination_deg\": 61}" EXPECT 2 ENV ${clean_env} OUTPUT aid_wrong)
