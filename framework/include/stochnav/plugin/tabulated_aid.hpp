@@ -28,7 +28,9 @@
 // detail() is empty). equals() holds for the same type and table with every parameter within
 // rel_tol.
 
+#include <cmath>
 #include <initializer_list>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -63,14 +65,27 @@ class TabulatedAid : public AidPlugin {
            table_.describe(params_);
   }
 
-  /// The params object the factory reads back into equal parameters (the gate keys included).
-  nlohmann::json params() const { return table_.to_json(params_); }
+  /// The params object the factory reads back into equal parameters (the gate keys included;
+  /// a value left for the factory to derive, such as an absent nis_threshold, is left out).
+  nlohmann::json params() const {
+    nlohmann::json json = table_.to_json(params_);
+    for (auto it = json.begin(); it != json.end();) {
+      const bool derived = it->is_number_float() && std::isnan(it->template get<double>());
+      it = derived ? json.erase(it) : std::next(it);
+    }
+    return json;
+  }
 
-  /// Same type, same table, every parameter within rel_tol.
+  /// Same type, same table, every parameter within rel_tol, the gates' thresholds compared as
+  /// the gates apply them (a derived threshold is the chi-square quantile).
   bool equals(const AidPlugin& other, double rel_tol) const {
     const auto* that = dynamic_cast<const TabulatedAid*>(&other);
-    return that != nullptr && &that->table_ == &table_ && that->type() == type() &&
-           table_.equal(params_, that->params_, rel_tol);
+    if (that == nullptr || &that->table_ != &table_ || that->type() != type()) return false;
+    Params mine = params_;
+    Params theirs = that->params_;
+    mine.gate.threshold = gate().threshold;
+    theirs.gate.threshold = that->gate().threshold;
+    return table_.equal(mine, theirs, rel_tol);
   }
 
  protected:
