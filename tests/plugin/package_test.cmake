@@ -54,7 +54,7 @@ run(COMMAND "${stochnav}" plugins list ENV ${clean_env} OUTPUT listing)
 expect_match("${listing}" "noise +white +${API_VERSION} +yes +${prefix}/lib[^ ]*/stochnav/plugins/stochnav_noise_white.so")
 expect_match("${listing}" "gauss_markov")
 
-foreach(example custom_noise_plugin embed_runtime)
+foreach(example custom_noise_plugin custom_aid_plugin embed_runtime)
   run(COMMAND ${CMAKE_COMMAND} -S "${SOURCE_DIR}/examples/${example}" -B "${WORK_DIR}/${example}"
               -G "${GENERATOR}" -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${prefix}")
   run(COMMAND ${CMAKE_COMMAND} --build "${WORK_DIR}/${example}")
@@ -76,6 +76,23 @@ expect_match("${typo}" "--params/tauc: unknown key 'tauc'; did you mean 'tau_c'\
 run(COMMAND "${WORK_DIR}/custom_noise_plugin/second_order_gauss_markov_properties"
     ENV ${clean_env} OUTPUT suite)
 expect_match("${suite}" "PASSED.* 10 tests")
+
+# The out-of-tree aid passes the aid checks through the CLI and the installed GoogleTest suite,
+# and the CLI rejects a survey that disagrees with the true state.
+set(aid_plugin "${WORK_DIR}/custom_aid_plugin/stochnav_inclination_survey.so")
+set(survey "${WORK_DIR}/custom_aid_plugin/survey.csv")
+run(COMMAND "${stochnav}" plugins check "${aid_plugin}" --params "{\"sigma_deg\": 0.2}"
+    --aid-data "${survey}" ENV ${clean_env} OUTPUT aid_checked)
+expect_match("${aid_checked}" "aid +inclination_survey +${API_VERSION}")
+expect_match("${aid_checked}"
+  "aid: inclination_survey: surveyed inclination against the attitude's; column = \"inclination_deg\", sigma_deg = 0.2 deg")
+expect_match("${aid_checked}" "properties: .* hold at t = 1 s")
+run(COMMAND "${stochnav}" plugins check "${aid_plugin}" --params "{}" --aid-data "${survey}"
+    --state "{\"inclination_deg\": 61}" EXPECT 2 ENV ${clean_env} OUTPUT aid_wrong)
+expect_match("${aid_wrong}" "truth: z\\(0\\) = 0.0174533 at the true state")
+run(COMMAND "${WORK_DIR}/custom_aid_plugin/inclination_survey_properties"
+    ENV ${clean_env} OUTPUT aid_suite)
+expect_match("${aid_suite}" "PASSED.* 10 tests")
 
 # Found through STOCHNAV_PLUGIN_PATH, and through the config's folder.
 run(COMMAND "${stochnav}" plugins list ENV "STOCHNAV_PLUGIN_PATH=${WORK_DIR}/custom_noise_plugin"

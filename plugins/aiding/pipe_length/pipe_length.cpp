@@ -38,6 +38,7 @@
 #include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/params.hpp"
 #include "stochnav/plugin/state_layout.hpp"
+#include "stochnav/plugin/tabulated_aid.hpp"
 
 namespace {
 
@@ -52,26 +53,22 @@ struct PipeLengthParams {
   stochnav::plugin::NisGateParams gate;
 };
 
-const auto kPipeLengthTable =
-    stochnav::plugin::ParamTable<PipeLengthParams>{
-        scalar(&PipeLengthParams::sigma_scale, "sigma_scale", ParamUnit::fixed(""),
-               Bound::kNonNegative, 1e-3, "relative 1-sigma of the tally (scale error)"),
-        scalar(&PipeLengthParams::sigma_random_m, "sigma_random_m", ParamUnit::fixed("m"),
-               Bound::kPositive, 0.05, "1-sigma of the random depth error"),
-        scalar(&PipeLengthParams::sigma_displacement_m, "sigma_displacement_m",
-               ParamUnit::fixed("m"), Bound::kNonNegative, 0.0,
-               "1-sigma of the displacement since the last update"),
-    }
-        .plus(lift(&PipeLengthParams::gate, stochnav::plugin::nis_gate_table()));
+const auto kPipeLengthTable = stochnav::plugin::aid_param_table<PipeLengthParams>({
+    scalar(&PipeLengthParams::sigma_scale, "sigma_scale", ParamUnit::fixed(""), Bound::kNonNegative,
+           1e-3, "relative 1-sigma of the tally (scale error)"),
+    scalar(&PipeLengthParams::sigma_random_m, "sigma_random_m", ParamUnit::fixed("m"),
+           Bound::kPositive, 0.05, "1-sigma of the random depth error"),
+    scalar(&PipeLengthParams::sigma_displacement_m, "sigma_displacement_m", ParamUnit::fixed("m"),
+           Bound::kNonNegative, 0.0, "1-sigma of the displacement since the last update"),
+});
 
-class PipeLengthAid final : public stochnav::plugin::AidPlugin {
+class PipeLengthAid final : public stochnav::plugin::TabulatedAid<PipeLengthParams> {
  public:
   static constexpr double kStatementSpan_s = 60.0;
 
-  PipeLengthAid(const PipeLengthParams& params, stochnav::plugin::NisGate gate,
-                std::span<const double> times_s, std::span<const double> depth_m)
-      : AidPlugin(gate),
-        params_(params),
+  PipeLengthAid(const PipeLengthParams& params, std::span<const double> times_s,
+                std::span<const double> depth_m)
+      : TabulatedAid(kPipeLengthTable, params, 1),
         schedule_(stochnav::plugin::AidSchedule::at_rows(times_s)),
         times_s_(times_s),
         depth_m_(depth_m) {}
@@ -100,10 +97,11 @@ class PipeLengthAid final : public stochnav::plugin::AidPlugin {
     residual(0) = axis_n.dot(interval.mean_v_n) - depth_change / dt;
     h = axis_n.transpose() * interval.mean_velocity_error_map;
     h.block<1, 3>(0, cs::kAttitude) += imu.reference_v_n.cross(axis_n).transpose();
-    const double scale_part = params_.sigma_scale * depth_change;
+    const PipeLengthParams& params = parameters();
+    const double scale_part = params.sigma_scale * depth_change;
     r(0, 0) = axis_n.dot(interval.mean_velocity_noise_covariance * axis_n) +
-              (scale_part * scale_part + 2.0 * params_.sigma_random_m * params_.sigma_random_m +
-               2.0 * params_.sigma_displacement_m * params_.sigma_displacement_m) /
+              (scale_part * scale_part + 2.0 * params.sigma_random_m * params.sigma_random_m +
+               2.0 * params.sigma_displacement_m * params.sigma_displacement_m) /
                   (dt * dt);
     return true;
   }
@@ -122,21 +120,18 @@ class PipeLengthAid final : public stochnav::plugin::AidPlugin {
     if (!(span > 0.0)) return false;
     const double change = depth_m_[*row] - depth_m_[first];
     v_n = state.q_nb * Eigen::Vector3d::UnitZ() * (change / span);
-    const double scale_part = params_.sigma_scale * change;
+    const PipeLengthParams& params = parameters();
+    const double scale_part = params.sigma_scale * change;
     sigma_mps =
-        std::sqrt(scale_part * scale_part + 2.0 * params_.sigma_random_m * params_.sigma_random_m +
-                  2.0 * params_.sigma_displacement_m * params_.sigma_displacement_m) /
+        std::sqrt(scale_part * scale_part + 2.0 * params.sigma_random_m * params.sigma_random_m +
+                  2.0 * params.sigma_displacement_m * params.sigma_displacement_m) /
         span;
     return sigma_mps > 0.0;
   }
 
-  std::string describe() const override {
-    return "pipe_length: depth tally against the mean tool-axis velocity; " +
-           kPipeLengthTable.describe(params_);
-  }
-
  private:
-  PipeLengthParams params_;
+  std::string detail() const override { return "depth tally against the mean tool-axis velocity"; }
+
   stochnav::plugin::AidSchedule schedule_;
   std::span<const double> times_s_;
   std::span<const double> depth_m_;
@@ -144,10 +139,8 @@ class PipeLengthAid final : public stochnav::plugin::AidPlugin {
 
 std::unique_ptr<stochnav::plugin::AidPlugin> make_pipe_length(
     const nlohmann::json& json, const stochnav::plugin::AidContext& context) {
-  const PipeLengthParams params = kPipeLengthTable.parse(json, context.params_pointer);
-  const auto gate = stochnav::plugin::nis_gate(params.gate, 1);
   return std::make_unique<PipeLengthAid>(
-      params, gate, context.data->time_s(),
+      stochnav::plugin::parse_aid_params(kPipeLengthTable, json, context), context.data->time_s(),
       context.data->column("measured_depth_m", context.params_pointer));
 }
 

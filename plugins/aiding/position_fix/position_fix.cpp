@@ -29,6 +29,7 @@
 #include "stochnav/plugin/aid_schedule.hpp"
 #include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/state_layout.hpp"
+#include "stochnav/plugin/tabulated_aid.hpp"
 
 namespace {
 
@@ -60,12 +61,10 @@ struct PositionFixParams {
   stochnav::plugin::NisGateParams gate;
 };
 
-const auto kPositionFixTable =
-    stochnav::plugin::ParamTable<PositionFixParams>{
-        group(&PositionFixParams::columns, "columns", kColumnTable,
-              stochnav::plugin::Absent::kDefaults, "names of the aid-data columns"),
-    }
-        .plus(lift(&PositionFixParams::gate, stochnav::plugin::nis_gate_table()));
+const auto kPositionFixTable = stochnav::plugin::aid_param_table<PositionFixParams>({
+    group(&PositionFixParams::columns, "columns", kColumnTable, stochnav::plugin::Absent::kDefaults,
+          "names of the aid-data columns"),
+});
 
 struct FixColumns {
   std::span<const double> latitude_deg;
@@ -81,12 +80,11 @@ bool carries_fix(const FixColumns& columns, std::size_t row) {
          columns.sigma_up_m[row] > 0.0;
 }
 
-class PositionFixAid final : public stochnav::plugin::AidPlugin {
+class PositionFixAid final : public stochnav::plugin::TabulatedAid<PositionFixParams> {
  public:
-  PositionFixAid(const PositionFixParams& params, stochnav::plugin::NisGate gate,
-                 std::span<const double> times_s, const FixColumns& columns, std::size_t fix_count)
-      : AidPlugin(gate),
-        params_(params),
+  PositionFixAid(const PositionFixParams& params, std::span<const double> times_s,
+                 const FixColumns& columns, std::size_t fix_count)
+      : TabulatedAid(kPositionFixTable, params, 3),
         schedule_(stochnav::plugin::AidSchedule::at_rows(times_s)),
         columns_(columns),
         fix_count_(fix_count) {}
@@ -121,13 +119,11 @@ class PositionFixAid final : public stochnav::plugin::AidPlugin {
     return true;
   }
 
-  std::string describe() const override {
-    return fmt::format("position_fix: {} position fixes from the aid data, ENU sigmas per row; {}",
-                       fix_count_, kPositionFixTable.describe(params_));
+ private:
+  std::string detail() const override {
+    return fmt::format("{} position fixes from the aid data, ENU sigmas per row", fix_count_);
   }
 
- private:
-  PositionFixParams params_;
   stochnav::plugin::AidSchedule schedule_;
   FixColumns columns_;
   std::size_t fix_count_;
@@ -135,8 +131,8 @@ class PositionFixAid final : public stochnav::plugin::AidPlugin {
 
 std::unique_ptr<stochnav::plugin::AidPlugin> make_position_fix(
     const nlohmann::json& json, const stochnav::plugin::AidContext& context) {
-  const PositionFixParams params = kPositionFixTable.parse(json, context.params_pointer);
-  const auto gate = stochnav::plugin::nis_gate(params.gate, 3);
+  const PositionFixParams params =
+      stochnav::plugin::parse_aid_params(kPositionFixTable, json, context);
   const stochnav::plugin::AidData& data = *context.data;
   // A missing column is reported at the key that renames it ("<params>/columns/latitude_deg"),
   // whether or not the params have it: that is where the user fixes it.
@@ -152,7 +148,7 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_position_fix(
   for (std::size_t row = 0; row < data.rows(); ++row) {
     if (carries_fix(columns, row)) ++fix_count;
   }
-  return std::make_unique<PositionFixAid>(params, gate, data.time_s(), columns, fix_count);
+  return std::make_unique<PositionFixAid>(params, data.time_s(), columns, fix_count);
 }
 
 }  // namespace

@@ -42,6 +42,7 @@
 #include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/params.hpp"
 #include "stochnav/plugin/state_layout.hpp"
+#include "stochnav/plugin/tabulated_aid.hpp"
 
 namespace {
 
@@ -56,23 +57,19 @@ struct RopParams {
   stochnav::plugin::NisGateParams gate;
 };
 
-const auto kRopTable =
-    stochnav::plugin::ParamTable<RopParams>{
-        scalar(&RopParams::sigma_rop_mps, "sigma_rop_mps", ParamUnit::fixed("m/s"),
-               Bound::kPositive, 1.0 / 3600.0, "1-sigma of the measured rate of penetration"),
-        scalar(&RopParams::sigma_lateral_mps, "sigma_lateral_mps", ParamUnit::fixed("m/s"),
-               Bound::kPositive, 1e-3, "1-sigma of the zero lateral velocity"),
-        scalar(&RopParams::sigma_displacement_m, "sigma_displacement_m", ParamUnit::fixed("m"),
-               Bound::kNonNegative, 0.0, "1-sigma of the displacement since the last update"),
-    }
-        .plus(lift(&RopParams::gate, stochnav::plugin::nis_gate_table()));
+const auto kRopTable = stochnav::plugin::aid_param_table<RopParams>({
+    scalar(&RopParams::sigma_rop_mps, "sigma_rop_mps", ParamUnit::fixed("m/s"), Bound::kPositive,
+           1.0 / 3600.0, "1-sigma of the measured rate of penetration"),
+    scalar(&RopParams::sigma_lateral_mps, "sigma_lateral_mps", ParamUnit::fixed("m/s"),
+           Bound::kPositive, 1e-3, "1-sigma of the zero lateral velocity"),
+    scalar(&RopParams::sigma_displacement_m, "sigma_displacement_m", ParamUnit::fixed("m"),
+           Bound::kNonNegative, 0.0, "1-sigma of the displacement since the last update"),
+});
 
-class RopAid final : public stochnav::plugin::AidPlugin {
+class RopAid final : public stochnav::plugin::TabulatedAid<RopParams> {
  public:
-  RopAid(const RopParams& params, stochnav::plugin::NisGate gate, std::span<const double> times_s,
-         std::span<const double> rop_mph)
-      : AidPlugin(gate),
-        params_(params),
+  RopAid(const RopParams& params, std::span<const double> times_s, std::span<const double> rop_mph)
+      : TabulatedAid(kRopTable, params, 3),
         schedule_(stochnav::plugin::AidSchedule::at_rows(times_s)),
         times_s_(times_s),
         rop_mph_(rop_mph) {}
@@ -98,12 +95,13 @@ class RopAid final : public stochnav::plugin::AidPlugin {
     residual(2) -= rop_mph / 3600.0;
     h = c_bn * interval.mean_velocity_error_map;
     h.block<3, 3>(0, cs::kAttitude) -= c_bn * stochnav::skew(imu.reference_v_n);
+    const RopParams& params = parameters();
     r = c_bn * interval.mean_velocity_noise_covariance * c_bn.transpose();
-    r(0, 0) += params_.sigma_lateral_mps * params_.sigma_lateral_mps;
-    r(1, 1) += params_.sigma_lateral_mps * params_.sigma_lateral_mps;
-    const double displacement_rate = params_.sigma_displacement_m / interval.duration_s;
+    r(0, 0) += params.sigma_lateral_mps * params.sigma_lateral_mps;
+    r(1, 1) += params.sigma_lateral_mps * params.sigma_lateral_mps;
+    const double displacement_rate = params.sigma_displacement_m / interval.duration_s;
     r(2, 2) +=
-        params_.sigma_rop_mps * params_.sigma_rop_mps + 2.0 * displacement_rate * displacement_rate;
+        params.sigma_rop_mps * params.sigma_rop_mps + 2.0 * displacement_rate * displacement_rate;
     return true;
   }
 
@@ -115,16 +113,13 @@ class RopAid final : public stochnav::plugin::AidPlugin {
     const auto row = schedule_.row_at(t_s);
     if (!row) return false;
     v_n = state.q_nb * Eigen::Vector3d::UnitZ() * (rop_mph_[*row] / 3600.0);
-    sigma_mps = params_.sigma_rop_mps;
+    sigma_mps = parameters().sigma_rop_mps;
     return true;
   }
 
-  std::string describe() const override {
-    return "rop: mean tool-axis velocity from rop_mph; " + kRopTable.describe(params_);
-  }
-
  private:
-  RopParams params_;
+  std::string detail() const override { return "mean tool-axis velocity from rop_mph"; }
+
   stochnav::plugin::AidSchedule schedule_;
   std::span<const double> times_s_;
   std::span<const double> rop_mph_;
@@ -132,9 +127,8 @@ class RopAid final : public stochnav::plugin::AidPlugin {
 
 std::unique_ptr<stochnav::plugin::AidPlugin> make_rop(const nlohmann::json& json,
                                                       const stochnav::plugin::AidContext& context) {
-  const RopParams params = kRopTable.parse(json, context.params_pointer);
-  const auto gate = stochnav::plugin::nis_gate(params.gate, 3);
-  return std::make_unique<RopAid>(params, gate, context.data->time_s(),
+  return std::make_unique<RopAid>(stochnav::plugin::parse_aid_params(kRopTable, json, context),
+                                  context.data->time_s(),
                                   context.data->column("rop_mph", context.params_pointer));
 }
 

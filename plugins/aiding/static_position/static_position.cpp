@@ -29,6 +29,7 @@
 #include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/params.hpp"
 #include "stochnav/plugin/state_layout.hpp"
+#include "stochnav/plugin/tabulated_aid.hpp"
 
 namespace {
 
@@ -61,61 +62,53 @@ struct StaticPositionParams {
   stochnav::plugin::NisGateParams gate;
 };
 
-const auto kStaticPositionTable =
-    stochnav::plugin::ParamTable<StaticPositionParams>{
-        scalar(&StaticPositionParams::rate_hz, "rate_hz", ParamUnit::fixed("Hz"), Bound::kPositive,
-               1.0, "measurement rate"),
-        scalar(&StaticPositionParams::sigma_position_m, "sigma_position_m", ParamUnit::fixed("m"),
-               Bound::kPositive, 0.01, "1-sigma of the site position"),
-        stochnav::plugin::flag(&StaticPositionParams::zero_velocity, "zero_velocity", true,
-                               "also measure the velocity against zero"),
-        scalar(&StaticPositionParams::sigma_velocity_mps, "sigma_velocity_mps",
-               ParamUnit::fixed("m/s"), Bound::kPositive, 0.001, "1-sigma of the zero velocity"),
-        group(&StaticPositionParams::site, "site", kSiteTable, stochnav::plugin::Absent::kKeep,
-              "the known position; default the run's initial position"),
-    }
-        .plus(lift(&StaticPositionParams::gate, stochnav::plugin::nis_gate_table()));
+const auto kStaticPositionTable = stochnav::plugin::aid_param_table<StaticPositionParams>({
+    scalar(&StaticPositionParams::rate_hz, "rate_hz", ParamUnit::fixed("Hz"), Bound::kPositive, 1.0,
+           "measurement rate"),
+    scalar(&StaticPositionParams::sigma_position_m, "sigma_position_m", ParamUnit::fixed("m"),
+           Bound::kPositive, 0.01, "1-sigma of the site position"),
+    stochnav::plugin::flag(&StaticPositionParams::zero_velocity, "zero_velocity", true,
+                           "also measure the velocity against zero"),
+    scalar(&StaticPositionParams::sigma_velocity_mps, "sigma_velocity_mps", ParamUnit::fixed("m/s"),
+           Bound::kPositive, 0.001, "1-sigma of the zero velocity"),
+    group(&StaticPositionParams::site, "site", kSiteTable, stochnav::plugin::Absent::kKeep,
+          "the known position; default the run's initial position"),
+});
 
-class StaticPositionAid final : public stochnav::plugin::AidPlugin {
+class StaticPositionAid final : public stochnav::plugin::TabulatedAid<StaticPositionParams> {
  public:
-  StaticPositionAid(const StaticPositionParams& params, stochnav::plugin::NisGate gate,
-                    double start_s)
-      : AidPlugin(gate),
-        params_(params),
+  StaticPositionAid(const StaticPositionParams& params, double start_s)
+      : TabulatedAid(kStaticPositionTable, params, params.zero_velocity ? 6 : 3),
         latitude_rad_(params.site.latitude_deg * kRadPerDeg),
         longitude_rad_(params.site.longitude_deg * kRadPerDeg),
         schedule_(stochnav::plugin::AidSchedule::periodic(start_s, params.rate_hz)) {}
 
   std::string_view type() const override { return "static_position"; }
-  int measurement_size() const override { return params_.zero_velocity ? 6 : 3; }
+  int measurement_size() const override { return parameters().zero_velocity ? 6 : 3; }
   bool has_measurement(double t_s) const override { return schedule_.due(t_s); }
 
   bool measure(double, const stochnav::NavState& state, const stochnav::plugin::ImuSample&,
                Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
                Eigen::Ref<Eigen::MatrixXd> r) const override {
+    const StaticPositionParams& params = parameters();
     const stochnav::EarthRadii radii = stochnav::earth_radii(latitude_rad_);
     residual(0) = std::remainder(state.longitude_rad - longitude_rad_, 2 * std::numbers::pi) *
-                  (radii.transverse_m + params_.site.height_m) * std::cos(latitude_rad_);
-    residual(1) = (state.latitude_rad - latitude_rad_) * (radii.meridian_m + params_.site.height_m);
-    residual(2) = state.height_m - params_.site.height_m;
+                  (radii.transverse_m + params.site.height_m) * std::cos(latitude_rad_);
+    residual(1) = (state.latitude_rad - latitude_rad_) * (radii.meridian_m + params.site.height_m);
+    residual(2) = state.height_m - params.site.height_m;
     h.setZero();
     h.block<3, 3>(0, cs::kPosition).setIdentity();
     r.setZero();
-    r.diagonal().head<3>().setConstant(params_.sigma_position_m * params_.sigma_position_m);
-    if (params_.zero_velocity) {
+    r.diagonal().head<3>().setConstant(params.sigma_position_m * params.sigma_position_m);
+    if (params.zero_velocity) {
       residual.segment<3>(3) = state.v_n;
       h.block<3, 3>(3, cs::kVelocity).setIdentity();
-      r.diagonal().tail<3>().setConstant(params_.sigma_velocity_mps * params_.sigma_velocity_mps);
+      r.diagonal().tail<3>().setConstant(params.sigma_velocity_mps * params.sigma_velocity_mps);
     }
     return true;
   }
 
-  std::string describe() const override {
-    return "static_position: " + kStaticPositionTable.describe(params_);
-  }
-
  private:
-  StaticPositionParams params_;
   double latitude_rad_;   ///< of the site
   double longitude_rad_;  ///< of the site
   stochnav::plugin::AidSchedule schedule_;
@@ -123,12 +116,13 @@ class StaticPositionAid final : public stochnav::plugin::AidPlugin {
 
 std::unique_ptr<stochnav::plugin::AidPlugin> make_static_position(
     const nlohmann::json& json, const stochnav::plugin::AidContext& context) {
-  StaticPositionParams params;
-  params.site = {context.initial_state.latitude_rad / kRadPerDeg,
-                 context.initial_state.longitude_rad / kRadPerDeg, context.initial_state.height_m};
-  kStaticPositionTable.parse_into(json, context.params_pointer, stochnav::Quantity::kPlain, params);
-  const auto gate = stochnav::plugin::nis_gate(params.gate, params.zero_velocity ? 6 : 3);
-  return std::make_unique<StaticPositionAid>(params, gate, context.initial_state.t_s);
+  StaticPositionParams defaults;
+  defaults.site = {context.initial_state.latitude_rad / kRadPerDeg,
+                   context.initial_state.longitude_rad / kRadPerDeg,
+                   context.initial_state.height_m};
+  return std::make_unique<StaticPositionAid>(
+      stochnav::plugin::parse_aid_params(kStaticPositionTable, json, context, defaults),
+      context.initial_state.t_s);
 }
 
 }  // namespace

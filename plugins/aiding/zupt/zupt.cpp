@@ -22,6 +22,7 @@
 #include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/params.hpp"
 #include "stochnav/plugin/state_layout.hpp"
+#include "stochnav/plugin/tabulated_aid.hpp"
 
 namespace {
 
@@ -38,28 +39,26 @@ struct ZuptParams {
   stochnav::plugin::NisGateParams gate;
 };
 
-const auto kZuptTable =
-    stochnav::plugin::ParamTable<ZuptParams>{
-        stochnav::plugin::choice(&ZuptParams::detector, "source",
-                                 {{"flags", false}, {"detector", true}}, false,
-                                 "rows flagged in the aid data's \"zupt\" column, or the "
-                                 "stationarity detector"),
-        scalar(&ZuptParams::rate_hz, "rate_hz", ParamUnit::fixed("Hz"), Bound::kPositive, 1.0,
-               "detector: update rate"),
-        scalar(&ZuptParams::accel_threshold_mps2, "accel_threshold_mps2", ParamUnit::fixed("m/s^2"),
-               Bound::kPositive, 0.05, "detector: largest specific-force deviation at rest"),
-        scalar(&ZuptParams::gyro_threshold_radps, "gyro_threshold_radps", ParamUnit::fixed("rad/s"),
-               Bound::kPositive, 1e-3, "detector: largest angular rate at rest"),
-        scalar(&ZuptParams::sigma_velocity_mps, "sigma_velocity_mps", ParamUnit::fixed("m/s"),
-               Bound::kPositive, 0.001, "1-sigma of the zero velocity"),
-    }
-        .plus(lift(&ZuptParams::gate, stochnav::plugin::nis_gate_table()));
+const auto kZuptTable = stochnav::plugin::aid_param_table<ZuptParams>({
+    stochnav::plugin::choice(&ZuptParams::detector, "source",
+                             {{"flags", false}, {"detector", true}}, false,
+                             "rows flagged in the aid data's \"zupt\" column, or the "
+                             "stationarity detector"),
+    scalar(&ZuptParams::rate_hz, "rate_hz", ParamUnit::fixed("Hz"), Bound::kPositive, 1.0,
+           "detector: update rate"),
+    scalar(&ZuptParams::accel_threshold_mps2, "accel_threshold_mps2", ParamUnit::fixed("m/s^2"),
+           Bound::kPositive, 0.05, "detector: largest specific-force deviation at rest"),
+    scalar(&ZuptParams::gyro_threshold_radps, "gyro_threshold_radps", ParamUnit::fixed("rad/s"),
+           Bound::kPositive, 1e-3, "detector: largest angular rate at rest"),
+    scalar(&ZuptParams::sigma_velocity_mps, "sigma_velocity_mps", ParamUnit::fixed("m/s"),
+           Bound::kPositive, 0.001, "1-sigma of the zero velocity"),
+});
 
-class ZuptAid final : public stochnav::plugin::AidPlugin {
+class ZuptAid final : public stochnav::plugin::TabulatedAid<ZuptParams> {
  public:
-  ZuptAid(const ZuptParams& params, stochnav::plugin::NisGate gate,
-          stochnav::plugin::AidSchedule schedule, std::span<const double> flags)
-      : AidPlugin(gate), params_(params), schedule_(schedule), flags_(flags) {}
+  ZuptAid(const ZuptParams& params, stochnav::plugin::AidSchedule schedule,
+          std::span<const double> flags)
+      : TabulatedAid(kZuptTable, params, 3), schedule_(schedule), flags_(flags) {}
 
   std::string_view type() const override { return "zupt"; }
   int measurement_size() const override { return 3; }
@@ -67,16 +66,17 @@ class ZuptAid final : public stochnav::plugin::AidPlugin {
   bool has_measurement(double t_s) const override {
     const auto row = schedule_.row_at(t_s);
     if (!row) return false;
-    return params_.detector || flags_[*row] > 0.5;
+    return parameters().detector || flags_[*row] > 0.5;
   }
 
   bool measure(double, const stochnav::NavState& state, const stochnav::plugin::ImuSample& imu,
                Eigen::Ref<Eigen::VectorXd> residual, Eigen::Ref<Eigen::MatrixXd> h,
                Eigen::Ref<Eigen::MatrixXd> r) const override {
-    if (params_.detector) {
+    const ZuptParams& params = parameters();
+    if (params.detector) {
       const double g = stochnav::normal_gravity(state.latitude_rad, state.height_m);
-      if (std::abs(imu.f_ib_b.norm() - g) >= params_.accel_threshold_mps2 ||
-          imu.omega_ib_b.norm() >= params_.gyro_threshold_radps) {
+      if (std::abs(imu.f_ib_b.norm() - g) >= params.accel_threshold_mps2 ||
+          imu.omega_ib_b.norm() >= params.gyro_threshold_radps) {
         return false;
       }
     }
@@ -84,7 +84,7 @@ class ZuptAid final : public stochnav::plugin::AidPlugin {
     h.setZero();
     h.block<3, 3>(0, cs::kVelocity).setIdentity();
     r.setZero();
-    r.diagonal().setConstant(params_.sigma_velocity_mps * params_.sigma_velocity_mps);
+    r.diagonal().setConstant(params.sigma_velocity_mps * params.sigma_velocity_mps);
     return true;
   }
 
@@ -94,31 +94,26 @@ class ZuptAid final : public stochnav::plugin::AidPlugin {
   bool stated_velocity_n(double, const stochnav::NavState&, Eigen::Ref<Eigen::Vector3d> v_n,
                          double& sigma_mps) const override {
     v_n.setZero();
-    sigma_mps = params_.sigma_velocity_mps;
+    sigma_mps = parameters().sigma_velocity_mps;
     return true;
   }
 
-  std::string describe() const override { return "zupt: " + kZuptTable.describe(params_); }
-
  private:
-  ZuptParams params_;
   stochnav::plugin::AidSchedule schedule_;
   std::span<const double> flags_;
 };
 
 std::unique_ptr<stochnav::plugin::AidPlugin> make_zupt(
     const nlohmann::json& json, const stochnav::plugin::AidContext& context) {
-  const ZuptParams params = kZuptTable.parse(json, context.params_pointer);
-  const auto gate = stochnav::plugin::nis_gate(params.gate, 3);
+  const ZuptParams params = stochnav::plugin::parse_aid_params(kZuptTable, json, context);
   if (params.detector) {
     return std::make_unique<ZuptAid>(
-        params, gate,
-        stochnav::plugin::AidSchedule::periodic(context.initial_state.t_s, params.rate_hz),
+        params, stochnav::plugin::AidSchedule::periodic(context.initial_state.t_s, params.rate_hz),
         std::span<const double>());
   }
   const auto flags = context.data->column("zupt", context.params_pointer + "/source");
   return std::make_unique<ZuptAid>(
-      params, gate, stochnav::plugin::AidSchedule::at_rows(context.data->time_s()), flags);
+      params, stochnav::plugin::AidSchedule::at_rows(context.data->time_s()), flags);
 }
 
 }  // namespace

@@ -17,7 +17,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <ostream>
@@ -27,6 +26,7 @@
 #include "stochnav/plugin/noise_model_checks.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
+#include "stochnav/testing/plugin_test_support.hpp"
 
 namespace stochnav::testing {
 
@@ -42,19 +42,6 @@ struct NoiseModelCase {
   std::vector<std::filesystem::path> search_path = {};
   double imu_rate_hz = 100.0;  ///< NoiseModelContext::imu_rate_hz
 };
-
-/// The registry of a search path, loaded once per test executable.
-inline const plugin::PluginRegistry& registry_for(
-    const std::vector<std::filesystem::path>& search_path) {
-  static std::map<std::vector<std::filesystem::path>, std::unique_ptr<plugin::PluginRegistry>>
-      registries;
-  auto& registry = registries[search_path];
-  if (registry == nullptr) {
-    registry = std::make_unique<plugin::PluginRegistry>(
-        search_path.empty() ? plugin::default_search_path() : search_path);
-  }
-  return *registry;
-}
 
 /// The factory of the case's plugin on `params`, params under "/noise/<group>/params".
 inline std::shared_ptr<plugin::NoiseModelPlugin> make_case_model(const NoiseModelCase& c,
@@ -76,13 +63,6 @@ inline void PrintTo(const NoiseModelCase& c, std::ostream* os) {
 inline std::string noise_model_case_name(const ::testing::TestParamInfo<NoiseModelCase>& info) {
   return info.param.type + "_" + std::string(plugin::sensor_group_name(info.param.group)) + "_" +
          std::to_string(info.index);
-}
-
-/// Lines of failures as one message.
-inline std::string failure_lines(const std::vector<std::string>& failures) {
-  std::string text;
-  for (const auto& line : failures) text += line + "\n";
-  return text;
 }
 
 class NoiseModelProperties : public ::testing::TestWithParam<NoiseModelCase> {
