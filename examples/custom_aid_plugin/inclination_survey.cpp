@@ -19,6 +19,7 @@
 
 #include "stochnav/plugin/aid_plugin.hpp"
 #include "stochnav/plugin/aid_schedule.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 #include "stochnav/plugin/tabulated_aid.hpp"
 
@@ -97,3 +98,5 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_inclination_survey(
 STOCHNAV_AID_PLUGIN("inclination_survey",
                     "Surveyed inclination (deg) from an aid-data column against the attitude",
                     make_inclination_survey)
+// Optional: the params reference `stochnav plugins doc` prints, from the same table.
+STOCHNAV_PLUGIN_DOCUMENTATION(kSurveyTable)

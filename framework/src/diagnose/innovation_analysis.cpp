@@ -48,7 +48,8 @@ ComponentMeaning component_meaning(const std::string& aid_type, std::size_t inde
   return {fmt::format("component {}", index), "unknown (aid type " + aid_type + ")"};
 }
 
-double median(std::vector<double> values) {
+// The upper median (the larger middle value of an even count): a robust level, no averaging.
+double upper_median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
   std::nth_element(values.begin(), middle, values.end());
@@ -272,7 +273,7 @@ AidAnalysis analyse_aid(const AidInnovations& input, const InnovationAnalysisOpt
   if (aid.updates < kMinimumUpdates) return aid;
   std::vector<double> spacing;
   for (std::size_t k = 1; k < view.t.size(); ++k) spacing.push_back(view.t[k] - view.t[k - 1]);
-  aid.update_interval_s = median(spacing);
+  aid.update_interval_s = upper_median(spacing);
 
   for (std::size_t i = 0; i < m; ++i) {
     const auto meaning = component_meaning(input.type, i);
@@ -291,7 +292,7 @@ AidAnalysis analyse_aid(const AidInnovations& input, const InnovationAnalysisOpt
     for (std::size_t i = 0; i < m; ++i) {
       std::vector<double> levels;
       for (const auto& w : aid.windows) levels.push_back(w.level[i]);
-      const double reference = median(levels);
+      const double reference = upper_median(levels);
       aid.reference_level[i] = reference;
       if (reference <= 0.0) continue;
       const double rho = aid.components[i].rho1;
@@ -330,7 +331,7 @@ AidAnalysis analyse_aid(const AidInnovations& input, const InnovationAnalysisOpt
     finding.components = names_of(aid, components);
     finding.sensor = sensor_of(aid, components);
     finding.time_range_s = std::pair{aid.windows[span.first].t0_s, aid.windows[span.last].t1_s};
-    finding.scale = std::sqrt(median(ratios));
+    finding.scale = std::sqrt(upper_median(ratios));
     finding.evidence = fmt::format(
         "innovation level (median over the components) {:.3g} times the run's median level over "
         "[{:.0f}, {:.0f}) s in {} "

@@ -39,6 +39,7 @@
 #include "stochnav/plugin/params.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 #include "stochnav/plugin/tabulated_aid.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 
 namespace {
 
@@ -148,3 +149,4 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_pipe_length(
 
 STOCHNAV_AID_PLUGIN("pipe_length", "Measured depth from the drill-pipe tally (along-hole speed)",
                     make_pipe_length)
+STOCHNAV_PLUGIN_DOCUMENTATION(kPipeLengthTable)

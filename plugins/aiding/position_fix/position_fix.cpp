@@ -30,6 +30,7 @@
 #include "stochnav/plugin/param_table.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 #include "stochnav/plugin/tabulated_aid.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 
 namespace {
 
@@ -157,3 +158,4 @@ STOCHNAV_AID_PLUGIN("position_fix",
                     "Position fixes with per-row ENU sigmas from the aid data (GNSS, tie-on, "
                     "survey station)",
                     make_position_fix)
+STOCHNAV_PLUGIN_DOCUMENTATION(kPositionFixTable)

@@ -43,6 +43,7 @@
 #include "stochnav/plugin/params.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 #include "stochnav/plugin/tabulated_aid.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 
 namespace {
 
@@ -136,3 +137,4 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_rop(const nlohmann::json& json
 
 STOCHNAV_AID_PLUGIN("rop", "Rate of penetration along the tool axis with the lateral constraint",
                     make_rop)
+STOCHNAV_PLUGIN_DOCUMENTATION(kRopTable)

@@ -30,6 +30,7 @@
 #include "stochnav/plugin/params.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 #include "stochnav/plugin/tabulated_aid.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 
 namespace {
 
@@ -130,3 +131,4 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_static_position(
 STOCHNAV_AID_PLUGIN("static_position",
                     "Known fixed position and zero velocity (vibration-table experiments)",
                     make_static_position)
+STOCHNAV_PLUGIN_DOCUMENTATION(kStaticPositionTable)

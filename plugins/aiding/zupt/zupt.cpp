@@ -23,6 +23,7 @@
 #include "stochnav/plugin/params.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 #include "stochnav/plugin/tabulated_aid.hpp"
+#include "stochnav/plugin/plugin_documentation.hpp"
 
 namespace {
 
@@ -120,3 +121,4 @@ std::unique_ptr<stochnav::plugin::AidPlugin> make_zupt(
 
 STOCHNAV_AID_PLUGIN("zupt", "Zero-velocity updates from aid flags or a stationarity detector",
                     make_zupt)
+STOCHNAV_PLUGIN_DOCUMENTATION(kZuptTable)
