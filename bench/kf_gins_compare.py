@@ -44,8 +44,8 @@ The conversion to KF-GINS's formats:
 The cases, each timed from process start to exit (GNU time: wall, user + system CPU; the cases
 interleaved, best of R runs):
   stochnav 15 / 21 states, covariance every epoch ("covariance_interval_s": 0), no per-epoch
-      output (decimation past the end; errors.csv at the truth rate and metrics.json are
-      written); 21 states = 15 + gyro and accelerometer scale factors
+      output (decimation past the end: innovations.csv at 1 Hz, metrics.json and the survey
+      files only); 21 states = 15 + gyro and accelerometer scale factors
       ("scale_factor_sigma_ppm": {"gyro": 100, "accel": 100})
   stochnav 21 states, every epoch, nav + biases + covariance.csv at every epoch (the output
       load nearest KF-GINS's)
@@ -56,8 +56,10 @@ noise and priors. stochnav also adds its second-order attitude term while the he
 uncertain by degrees (not here: the heading sigma starts at 0.57 deg).
 
 Accuracy against truth, at the 10 Hz truth epochs: RMS and maximum horizontal position error
-over the record and the tool-axis azimuth error at the end (stochnav: its errors.csv; KF-GINS: its
-KF_GINS_Navresult.nav against truth.csv, the azimuth of z_b from its Euler angles).
+over the record and the tool-axis azimuth error at the end (stochnav: errors.csv of an untimed
+rerun of each no-output case with output decimation 10, whose estimates are those of the timed
+run; KF-GINS: its KF_GINS_Navresult.nav against truth.csv, the azimuth of z_b from its Euler
+angles).
 """
 import argparse, json, math, os, random, shutil, subprocess, sys, tempfile
 
@@ -198,7 +200,8 @@ def kf_gins_yaml(imu, gnss, output):
         "antlever: [0.0, 0.0, 0.0]", ""])
 
 
-def run_config(imu, aids, truth, states, interval_s, output):
+def run_config(imu, aids, truth, states, interval_s, output, decimation=None):
+    """stochnav's run config; decimation (IMU epochs) overrides the output's (1 or past the end)."""
     scale = ({"scale_factor_sigma_ppm": {"gyro": SCALE_FACTOR_SIGMA_PPM,
                                          "accel": SCALE_FACTOR_SIGMA_PPM}}
              if states == 21 else {})
@@ -215,8 +218,8 @@ def run_config(imu, aids, truth, states, interval_s, output):
                        "gyro_bias_deg_h": math.degrees(GYRO_BIAS_SIGMA_RADPS) * 3600},
                    **scale},
         "initial_state": {"tie_on": SITE, "attitude": ATTITUDE},
-        "output": {"decimation": 1 if output else 1_000_000_000, "covariance": output,
-                   "nees": False}}
+        "output": {"decimation": decimation or (1 if output else 1_000_000_000),
+                   "covariance": output, "nees": False}}
 
 
 def timed(command):
@@ -333,6 +336,7 @@ def main():
         write_kf_gins_imu(imu, kf_imu)
 
         cases = {}  # name -> (states, command, output folder)
+        accuracy_runs = {}  # name -> command that writes errors.csv into the output folder
         for states, interval_name, interval_s, output in (
                 (15, "every epoch", 0.0, False), (21, "every epoch", 0.0, False),
                 (21, "every epoch, all output", 0.0, True),
@@ -344,6 +348,12 @@ def main():
             folder = os.path.join(work, f"out_{len(cases)}")
             cases[name] = (states, [stochnav, "run", config, "--out", folder, "--no-plot"],
                            folder)
+            if not output:  # the same run with errors.csv at every truth epoch, not timed
+                config = os.path.join(work, f"accuracy_{len(cases)}.json")
+                with open(config, "w") as out:
+                    json.dump(run_config(imu, aids, truth_csv, states, interval_s, False,
+                                         decimation=10), out)
+                accuracy_runs[name] = [stochnav, "run", config, "--out", folder, "--no-plot"]
         kf_out = os.path.join(work, "out_kf_gins")
         os.makedirs(kf_out, exist_ok=True)
         kf_config = os.path.join(work, "kf-gins.yaml")
@@ -355,6 +365,8 @@ def main():
         for _ in range(args.repeats):  # interleaved: a busy spell hits every case alike
             for name, (_, command, _) in cases.items():
                 best[name] = [min(a, b) for a, b in zip(best[name], timed(command))]
+        for command in accuracy_runs.values():
+            subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
         accuracy = {name: (kf_gins_accuracy(folder, truth) if name.startswith("KF-GINS")
                            else stochnav_accuracy(folder))
                     for name, (_, _, folder) in cases.items()}
