@@ -291,7 +291,7 @@ def kf_gins_binary(args, work):
     build = args.kf_gins_build or os.path.join(work, "kf_gins_build")
     print(f"building KF-GINS from {src} in {build} (Release, -j2) ...", flush=True)
     for command in (["cmake", "-S", src, "-B", build, "-DCMAKE_BUILD_TYPE=Release"],
-                    ["cmake", "--build", build, "-j2"]):
+                    ["cmake", "--build", build, "--target", "KF-GINS", "-j2"]):
         result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
         if result.returncode != 0:
             sys.exit(f"KF-GINS build failed: {' '.join(command)}\n"
@@ -381,9 +381,10 @@ def main():
         for name, (states, _, _) in cases.items():
             wall, cpu = best[name]
             rms, largest, azimuth = accuracy[name]
-            print(f"{name:<38}{states:>7}{wall:>8.2f}{cpu:>8.2f}{epochs / wall:>15,.0f}"
-                  f"{epochs / cpu:>14,.0f}{kf_cpu / cpu:>15.1f}{rms:>13.4f}{largest:>13.4f}"
-                  f"{azimuth:>14.4f}")
+            rate = lambda seconds: f"{epochs / seconds:,.0f}" if seconds > 0 else "-"
+            ratio = f"{kf_cpu / cpu:.1f}" if cpu > 0 else "-"  # GNU time's 10 ms resolution
+            print(f"{name:<38}{states:>7}{wall:>8.2f}{cpu:>8.2f}{rate(wall):>15}{rate(cpu):>14}"
+                  f"{ratio:>15}{rms:>13.4f}{largest:>13.4f}{azimuth:>14.4f}")
     finally:
         if not args.work:
             shutil.rmtree(work, ignore_errors=True)
