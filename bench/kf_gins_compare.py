@@ -349,7 +349,7 @@ def main():
             cases[name] = (states, [stochnav, "run", config, "--out", folder, "--no-plot"],
                            folder)
             if not output:  # the same run with errors.csv at every truth epoch, not timed
-                config = os.path.join(work, f"accuracy_{len(cases)}.json")
+                config = os.path.join(work, f"accuracy_{len(cases) - 1}.json")
                 with open(config, "w") as out:
                     json.dump(run_config(imu, aids, truth_csv, states, interval_s, False,
                                          decimation=10), out)
