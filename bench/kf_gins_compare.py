@@ -1,8 +1,13 @@
 #!/usr/bin/python3
 """stochnav against KF-GINS on one simulated record: speed (whole process) and accuracy.
 
-Usage: bench/kf_gins_compare.py --kf-gins-src DIR [--kf-gins-bin FILE] [--stochnav FILE]
-                                [--duration S] [--repeats R] [--fix-sigma M] [--work DIR]
+Usage: bench/kf_gins_compare.py [BUILD_DIR] --kf-gins-src DIR [--kf-gins-bin FILE]
+                                [--kf-gins-build DIR] [--stochnav FILE] [--duration S]
+                                [--repeats R] [--fix-sigma M] [--work DIR]
+  BUILD_DIR   the stochnav build tree (default build/release): framework/stochnav is taken from
+              it, unless --stochnav names the executable.
+  --work DIR  keep the record, the configs and every output there (default: a temporary folder,
+              removed at the end). About 1 GB for the 7200-s record.
 
 KF-GINS (i2Nav-WHU's GNSS/INS loosely coupled EKF, https://github.com/i2Nav-WHU/KF-GINS) is not a
 dependency: point --kf-gins-src at a checkout of its source (it bundles Eigen, yaml-cpp and abseil)
