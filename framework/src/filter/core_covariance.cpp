@@ -14,24 +14,27 @@ constexpr int kPadded = 12;
 // the baseline SSE2 code elsewhere. Neither contracts to FMA (AVX2 does not imply it), and each
 // entry is summed in the same order by both: bit-identical results on every machine. No clones
 // under the thread sanitizer: their IFUNC resolver would run, instrumented, before libtsan is
-// initialised (stats/vector_clones.hpp).
+// initialised (stats/vector_clones.hpp). The kernels are templates on the state size, inlined
+// into one cloned function per size (GCC clones functions, not templates).
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_THREAD__)
 #define STOCHNAV_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define STOCHNAV_SIMD_CLONES
 #endif
 
-// The kernel of propagate_core_covariance on column-major storage: phi and q with 15 rows per
-// column, p with `p_stride`.
-STOCHNAV_SIMD_CLONES void propagate_core_kernel(const double* phi, const double* q, double* p,
-                                                long p_stride) {
-  // T = [A B] P (9 x 15), column j = sum_k Phi(:, k) P(k, j).
-  alignas(32) double t[kCore][kPadded];
-  for (int j = 0; j < kCore; ++j) {
+// The kernel of propagate_nav_diagonal_covariance on column-major storage: phi and q with N rows
+// per column, p with `p_stride`.
+template <int N>
+[[gnu::always_inline]] inline void propagate_nav_diagonal_body(const double* phi, const double* q,
+                                                               double* p, long p_stride) {
+  static_assert(N >= kPadded);
+  // T = [A B] P (9 x N), column j = sum_k Phi(:, k) P(k, j).
+  alignas(32) double t[N][kPadded];
+  for (int j = 0; j < N; ++j) {
     double column[kPadded] = {};
-    for (int k = 0; k < kCore; ++k) {
+    for (int k = 0; k < N; ++k) {
       const double p_kj = p[j * p_stride + k];
-      const double* phi_k = phi + k * kCore;
+      const double* phi_k = phi + k * N;
       for (int i = 0; i < kPadded; ++i) column[i] += phi_k[i] * p_kj;
     }
     for (int i = 0; i < kPadded; ++i) t[j][i] = column[i];
@@ -40,47 +43,86 @@ STOCHNAV_SIMD_CLONES void propagate_core_kernel(const double* phi, const double*
   alignas(32) double next_nn[kNav][kPadded];
   for (int j = 0; j < kNav; ++j) {
     double column[kPadded] = {};
-    for (int k = 0; k < kCore; ++k) {
-      const double phi_jk = phi[k * kCore + j];
+    for (int k = 0; k < N; ++k) {
+      const double phi_jk = phi[k * N + j];
       for (int i = 0; i < kPadded; ++i) column[i] += t[k][i] * phi_jk;
     }
     for (int i = 0; i < kPadded; ++i) next_nn[j][i] = column[i];
   }
-  // P' from the lower triangles, mirrored: P'_nn, then P'_bn = T_b^T + Q_bn, then P_bb + Q_bb.
+  // P' from the lower triangles, mirrored: P'_nn, then P'_bn = D T_b^T + Q_bn, then
+  // D P_bb D + Q_bb.
   const auto set = [p, p_stride](int i, int j, double value) {
     p[j * p_stride + i] = value;
     p[i * p_stride + j] = value;
   };
+  const auto d = [phi](int i) { return phi[i * N + i]; };
   for (int j = 0; j < kNav; ++j) {
-    for (int i = j; i < kNav; ++i) set(i, j, next_nn[j][i] + q[j * kCore + i]);
+    for (int i = j; i < kNav; ++i) set(i, j, next_nn[j][i] + q[j * N + i]);
   }
   for (int j = 0; j < kNav; ++j) {
-    for (int i = kNav; i < kCore; ++i) set(i, j, t[i][j] + q[j * kCore + i]);
+    for (int i = kNav; i < N; ++i) set(i, j, d(i) * t[i][j] + q[j * N + i]);
   }
-  for (int j = kNav; j < kCore; ++j) {
-    for (int i = j; i < kCore; ++i) set(i, j, p[j * p_stride + i] + q[j * kCore + i]);
+  for (int j = kNav; j < N; ++j) {
+    for (int i = j; i < N; ++i) set(i, j, d(i) * p[j * p_stride + i] * d(j) + q[j * N + i]);
   }
 }
 
-// out += F^2 / 2 on F's first 9 rows (F's last 6 rows are zero): column j of F^2 is
+// out += F^2 / 2 on F's first 9 rows (F's last N - 9 rows are zero): column j of F^2 is
 // sum_{k < 9} F(:, k) F(k, j), over the nonzero F(k, j) only (about half: F's first column,
-// most of the position rows and the bias columns are zero). f and out column-major, 15 rows
+// most of the position rows and the bias columns are zero). f and out column-major, N rows
 // per column.
-STOCHNAV_SIMD_CLONES void add_half_square(const double* f, double* out) {
-  for (int j = 0; j < kCore; ++j) {
+template <int N>
+[[gnu::always_inline]] inline void add_half_square_body(const double* f, double* out) {
+  for (int j = 0; j < N; ++j) {
     alignas(32) double column[kPadded] = {};
     for (int k = 0; k < kNav; ++k) {
-      const double f_kj = f[j * kCore + k];
+      const double f_kj = f[j * N + k];
       if (f_kj == 0.0) continue;
-      const double* f_k = f + k * kCore;
+      const double* f_k = f + k * N;
       for (int i = 0; i < kPadded; ++i) column[i] += f_k[i] * f_kj;
     }
-    // All 12 lanes stored and read back (rows 9..11 of F^2 are zero, F's bias rows being zero):
-    // with only 9 of them live the compiler would keep the sums in scalar registers.
-    double* out_j = out + j * kCore;
+    // All 12 lanes stored and read back (rows 9..11 of F^2 are zero, F's trailing rows being
+    // zero): with only 9 of them live the compiler would keep the sums in scalar registers.
+    double* out_j = out + j * N;
     for (int i = 0; i < kNav; ++i) out_j[i] += 0.5 * column[i];
     for (int i = kNav; i < kPadded; ++i) out_j[i] += 0.5 * column[i];
   }
+}
+
+// One cloned entry point per supported size.
+#define STOCHNAV_NAV_DIAGONAL_KERNELS(N)                                                         \
+  STOCHNAV_SIMD_CLONES void propagate_nav_diagonal_kernel_##N(const double* phi, const double* q, \
+                                                              double* p, long p_stride) {         \
+    propagate_nav_diagonal_body<N>(phi, q, p, p_stride);                                          \
+  }                                                                                               \
+  STOCHNAV_SIMD_CLONES void add_half_square_##N(const double* f, double* out) {                  \
+    add_half_square_body<N>(f, out);                                                              \
+  }
+STOCHNAV_NAV_DIAGONAL_KERNELS(15)
+STOCHNAV_NAV_DIAGONAL_KERNELS(18)
+STOCHNAV_NAV_DIAGONAL_KERNELS(21)
+STOCHNAV_NAV_DIAGONAL_KERNELS(24)
+STOCHNAV_NAV_DIAGONAL_KERNELS(27)
+#undef STOCHNAV_NAV_DIAGONAL_KERNELS
+
+template <int N>
+void propagate_nav_diagonal_kernel(const double* phi, const double* q, double* p, long stride) {
+  static_assert(kHasNavDiagonalKernel<N>);
+  if constexpr (N == 15) propagate_nav_diagonal_kernel_15(phi, q, p, stride);
+  if constexpr (N == 18) propagate_nav_diagonal_kernel_18(phi, q, p, stride);
+  if constexpr (N == 21) propagate_nav_diagonal_kernel_21(phi, q, p, stride);
+  if constexpr (N == 24) propagate_nav_diagonal_kernel_24(phi, q, p, stride);
+  if constexpr (N == 27) propagate_nav_diagonal_kernel_27(phi, q, p, stride);
+}
+
+template <int N>
+void add_half_square(const double* f, double* out) {
+  static_assert(kHasNavDiagonalKernel<N>);
+  if constexpr (N == 15) add_half_square_15(f, out);
+  if constexpr (N == 18) add_half_square_18(f, out);
+  if constexpr (N == 21) add_half_square_21(f, out);
+  if constexpr (N == 24) add_half_square_24(f, out);
+  if constexpr (N == 27) add_half_square_27(f, out);
 }
 
 }  // namespace
@@ -90,15 +132,48 @@ bool has_constant_bias_rows(const Eigen::Ref<const CoreMatrix>& phi) {
          phi.bottomRightCorner<kBias, kBias>() == Eigen::Matrix<double, kBias, kBias>::Identity();
 }
 
+template <int N>
+bool has_diagonal_trailing_rows(const NavDiagonalMatrix<N>& phi) {
+  constexpr int kTrailing = N - kNav;
+  Eigen::Matrix<double, kTrailing, N> off_diagonal = phi.template bottomRows<kTrailing>();
+  off_diagonal.template rightCols<kTrailing>().diagonal().setZero();
+  return off_diagonal.cwiseAbs().sum() == 0.0;
+}
+
 void propagate_core_covariance(const CoreMatrix& phi, const CoreMatrix& q_d,
                                Eigen::Ref<CoreMatrix> p) {
-  propagate_core_kernel(phi.data(), q_d.data(), p.data(), static_cast<long>(p.outerStride()));
+  propagate_nav_diagonal_covariance<kCore>(phi, q_d, p);
+}
+
+template <int N>
+void propagate_nav_diagonal_covariance(const NavDiagonalMatrix<N>& phi,
+                                       const NavDiagonalMatrix<N>& q_d,
+                                       Eigen::Ref<NavDiagonalMatrix<N>> p) {
+  propagate_nav_diagonal_kernel<N>(phi.data(), q_d.data(), p.data(),
+                                   static_cast<long>(p.outerStride()));
 }
 
 CoreMatrix second_order_transition_increment(const CoreMatrix& f) {
-  CoreMatrix increment = f;
-  add_half_square(f.data(), increment.data());
+  return second_order_transition_increment<kCore>(f);
+}
+
+template <int N>
+NavDiagonalMatrix<N> second_order_transition_increment(const NavDiagonalMatrix<N>& f) {
+  NavDiagonalMatrix<N> increment = f;
+  add_half_square<N>(f.data(), increment.data());
   return increment;
 }
+
+#define STOCHNAV_INSTANTIATE_NAV_DIAGONAL(N)                                                    \
+  template bool has_diagonal_trailing_rows<N>(const NavDiagonalMatrix<N>&);                     \
+  template void propagate_nav_diagonal_covariance<N>(                                           \
+      const NavDiagonalMatrix<N>&, const NavDiagonalMatrix<N>&, Eigen::Ref<NavDiagonalMatrix<N>>); \
+  template NavDiagonalMatrix<N> second_order_transition_increment<N>(const NavDiagonalMatrix<N>&);
+STOCHNAV_INSTANTIATE_NAV_DIAGONAL(15)
+STOCHNAV_INSTANTIATE_NAV_DIAGONAL(18)
+STOCHNAV_INSTANTIATE_NAV_DIAGONAL(21)
+STOCHNAV_INSTANTIATE_NAV_DIAGONAL(24)
+STOCHNAV_INSTANTIATE_NAV_DIAGONAL(27)
+#undef STOCHNAV_INSTANTIATE_NAV_DIAGONAL
 
 }  // namespace stochnav

@@ -41,6 +41,26 @@ void ErrorStateFilter::propagate_core(const CoreMatrix& phi, const CoreMatrix& q
   keep_healthy(Symmetrize::kNone);  // the kernel's P is exactly symmetric
 }
 
+template <int N>
+void ErrorStateFilter::propagate_nav_diagonal(const Eigen::Matrix<double, N, N>& phi,
+                                              const Eigen::Matrix<double, N, N>& q_d) {
+  assert(size() == N && has_diagonal_trailing_rows<N>(phi));
+  propagate_nav_diagonal_covariance<N>(phi, q_d,
+                                       Eigen::Map<Eigen::Matrix<double, N, N>>(covariance_.data()));
+  keep_healthy(Symmetrize::kNone);  // the kernel's P is exactly symmetric
+}
+
+template void ErrorStateFilter::propagate_nav_diagonal<15>(const Eigen::Matrix<double, 15, 15>&,
+                                                           const Eigen::Matrix<double, 15, 15>&);
+template void ErrorStateFilter::propagate_nav_diagonal<18>(const Eigen::Matrix<double, 18, 18>&,
+                                                           const Eigen::Matrix<double, 18, 18>&);
+template void ErrorStateFilter::propagate_nav_diagonal<21>(const Eigen::Matrix<double, 21, 21>&,
+                                                           const Eigen::Matrix<double, 21, 21>&);
+template void ErrorStateFilter::propagate_nav_diagonal<24>(const Eigen::Matrix<double, 24, 24>&,
+                                                           const Eigen::Matrix<double, 24, 24>&);
+template void ErrorStateFilter::propagate_nav_diagonal<27>(const Eigen::Matrix<double, 27, 27>&,
+                                                           const Eigen::Matrix<double, 27, 27>&);
+
 void ErrorStateFilter::propagate(const BlockTransition& transition) {
   const Eigen::Index n = size();
   const Eigen::Index d = transition.head_transition.rows();

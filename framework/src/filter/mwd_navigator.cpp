@@ -287,10 +287,87 @@ void MwdNavigator::propagate_covariance() {
   const double interval = fast_.interval_s;
   if (interval <= 0.0) return;
   const CoreMatrix f_t = integrated_core_dynamics(ins_.state(), fast_);
-  if (layout_.size() == cs::kSize) {
-    propagate_core_states(f_t, interval);
-    return;
+  advance_augmented_groups(interval);
+  // The core alone always, and with the structured products (the default) any state whose
+  // transition has the fixed-size form: the scale-factor blocks and first-order augmented states.
+  if (layout_.size() == cs::kSize || options_.structured_covariance) {
+    if (propagate_by_fixed_size_kernel(f_t, interval)) return;
   }
+  propagate_by_dynamic_blocks(f_t, interval);
+}
+
+// Phi and Qd of each noise model's augmented states over the interval, the coupling of those
+// states into the attitude or velocity rows, and their nominal values propagated.
+void MwdNavigator::advance_augmented_groups(double interval) {
+  // Augmented sensor errors enter like the biases: + C M x (gyro, attitude rows) and
+  // - C M x (accelerometer, velocity rows), with the sign of d omega = -(db + M dx).
+  for (auto [group, sign] :
+       {std::pair{&gyro_augmented_, 1.0}, std::pair{&accel_augmented_, -1.0}}) {
+    if (group->size == 0) continue;
+    update_augmented_transition(*group, interval);
+    group->coupling = sign * fast_.c_nb_dt;
+    group->transition.multiply(group->estimate, group->propagated);
+    group->estimate.swap(group->propagated);
+  }
+}
+
+bool MwdNavigator::propagate_by_fixed_size_kernel(const CoreMatrix& f_t, double interval) {
+  // The kernel needs diagonal transition rows after the navigation states: every augmented
+  // group's Phi (and Qd, on the same structure) diagonal.
+  for (const AugmentedGroup* group : {&gyro_augmented_, &accel_augmented_}) {
+    if (!group->blocks.is_diagonal()) return false;
+  }
+  switch (layout_.size()) {
+    case 15: propagate_fixed_size<15>(f_t, interval); return true;
+    case 18: propagate_fixed_size<18>(f_t, interval); return true;
+    case 21: propagate_fixed_size<21>(f_t, interval); return true;
+    case 24: propagate_fixed_size<24>(f_t, interval); return true;
+    case 27: propagate_fixed_size<27>(f_t, interval); return true;
+    default: return false;
+  }
+}
+
+// The N-state error state in fixed-size matrices (filter/core_covariance.hpp): Phi and Qd as the
+// dense path builds them (the head's second-order transition, the augmented states' first-order
+// coupling and their own Phi, Qd), then the kernel.
+template <int N>
+void MwdNavigator::propagate_fixed_size(const CoreMatrix& f_t, double interval) {
+  using Square = NavDiagonalMatrix<N>;
+  Square f = Square::Zero();
+  f.template topLeftCorner<cs::kSize, cs::kSize>() = f_t;
+  // The scale-factor columns couple into attitude (gyro) and velocity (accel) like the biases.
+  if (gyro_scale_.offset >= 0) {
+    f.template block<3, 3>(cs::kAttitude, gyro_scale_.offset) = fast_.gyro_scale_dt;
+  }
+  if (accel_scale_.offset >= 0) {
+    f.template block<3, 3>(cs::kVelocity, accel_scale_.offset) = -fast_.accel_scale_dt;
+  }
+  Square phi = second_order_transition_increment<N>(f);
+  phi.diagonal().array() += 1.0;
+  Square q_d = Square::Zero();
+  const SecondOrderTerm second_order = second_order_term(interval);
+  q_d.template topLeftCorner<cs::kSize, cs::kSize>() =
+      core_process_noise(interval, second_order.noise);
+  for (auto [group, rows] : {std::pair{&gyro_augmented_, cs::kAttitude},
+                             std::pair{&accel_augmented_, cs::kVelocity}}) {
+    if (group->size == 0) continue;
+    for (int i = 0; i < group->size; ++i) {
+      const int state = group->offset + i;
+      phi(state, state) = group->phi(i, i);
+      q_d(state, state) = group->q_d(i, i);
+      phi.template block<3, 1>(rows, state).noalias() =
+          group->coupling * Eigen::Vector3d(group->sensor_map.col(i));
+    }
+  }
+  filter_.propagate_nav_diagonal<N>(phi, q_d);
+  feed_back_second_order_drift(second_order.drift);
+  close_interval(interval);
+}
+
+// Any other layout (augmented states with 2 x 2 or larger blocks, or the dense reference):
+// the head in dynamic-size matrices, the augmented states by blocks (BlockTransition) or
+// densely.
+void MwdNavigator::propagate_by_dynamic_blocks(const CoreMatrix& f_t, double interval) {
   phi_.setIdentity();
   if (head_size_ == cs::kSize) {
     phi_.topLeftCorner<15, 15>() += second_order_transition_increment(f_t);
@@ -308,59 +385,40 @@ void MwdNavigator::propagate_covariance() {
   }
   q_d_.setZero();
   const SecondOrderTerm second_order = second_order_term(interval);
-  q_d_.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_ + second_order.noise;
-  q_d_.block<3, 3>(cs::kVelocity, cs::kVelocity) = velocity_noise_;
-  gyro_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
-  q_d_.block<3, 3>(cs::kGyroBias, cs::kGyroBias) = bias_walk_;
-  accel_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
-  q_d_.block<3, 3>(cs::kAccelBias, cs::kAccelBias) = bias_walk_;
-
-  // Augmented sensor errors enter like the biases: + C M x (gyro, attitude rows) and
-  // - C M x (accelerometer, velocity rows), with the sign of d omega = -(db + M dx).
-  for (auto [group, rows, sign] : {std::tuple{&gyro_augmented_, cs::kAttitude, 1.0},
-                                   std::tuple{&accel_augmented_, cs::kVelocity, -1.0}}) {
-    if (group->size == 0) continue;
-    update_augmented_transition(*group, interval);
-    group->coupling = sign * fast_.c_nb_dt;
-    group->transition.multiply(group->estimate, group->propagated);
-    group->estimate.swap(group->propagated);
-    if (!options_.structured_covariance) {
+  q_d_.topLeftCorner<cs::kSize, cs::kSize>() = core_process_noise(interval, second_order.noise);
+  if (!options_.structured_covariance) {
+    for (auto [group, rows] : {std::pair{&gyro_augmented_, cs::kAttitude},
+                               std::pair{&accel_augmented_, cs::kVelocity}}) {
+      if (group->size == 0) continue;
       phi_.block(group->offset, group->offset, group->size, group->size) = group->phi;
       q_d_.block(group->offset, group->offset, group->size, group->size) = group->q_d;
       phi_.block(rows, group->offset, 3, group->size) = group->coupling * group->sensor_map;
     }
-  }
-  if (options_.structured_covariance) {
+    filter_.propagate(phi_, q_d_);
+  } else {
     const std::array<TailSegment, 2> tail{
         TailSegment{gyro_augmented_.offset, gyro_augmented_.transition, gyro_augmented_.noise,
                     cs::kAttitude, gyro_augmented_.coupling, gyro_augmented_.sparse_sensor_map},
         TailSegment{accel_augmented_.offset, accel_augmented_.transition, accel_augmented_.noise,
                     cs::kVelocity, accel_augmented_.coupling, accel_augmented_.sparse_sensor_map}};
     filter_.propagate(BlockTransition{phi_, q_d_, tail});
-  } else {
-    filter_.propagate(phi_, q_d_);
   }
   feed_back_second_order_drift(second_order.drift);
   close_interval(interval);
 }
 
-// The 15 core states alone (no scale-factor or augmented states): fixed-size matrices
-// throughout, and the filter's kernel for the core transition's structure
-// (filter/core_covariance.hpp).
-void MwdNavigator::propagate_core_states(const CoreMatrix& f_t, double interval) {
-  CoreMatrix phi = second_order_transition_increment(f_t);
-  phi.diagonal().array() += 1.0;
+// Qd of the 15 core states over the interval: the white noises accumulated through C_nb, the
+// attitude error's second-order spread, and the bias walks.
+CoreMatrix MwdNavigator::core_process_noise(double interval,
+                                            const Eigen::Matrix3d& second_order_noise) {
   CoreMatrix q_d = CoreMatrix::Zero();
-  const SecondOrderTerm second_order = second_order_term(interval);
-  q_d.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_ + second_order.noise;
+  q_d.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_ + second_order_noise;
   q_d.block<3, 3>(cs::kVelocity, cs::kVelocity) = velocity_noise_;
   gyro_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
   q_d.block<3, 3>(cs::kGyroBias, cs::kGyroBias) = bias_walk_;
   accel_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
   q_d.block<3, 3>(cs::kAccelBias, cs::kAccelBias) = bias_walk_;
-  filter_.propagate_core(phi, q_d);
-  feed_back_second_order_drift(second_order.drift);
-  close_interval(interval);
+  return q_d;
 }
 
 // The attitude error's second-order rate while the heading is uncertain by degrees

@@ -40,6 +40,10 @@ class BlockDiagonalStructure final {
   int max_block_size() const;
   /// A single dense block over all states (nothing to exploit).
   bool is_dense() const { return blocks_.size() == 1 && !blocks_[0].diagonal; }
+  /// Every state independent (one diagonal run, or no states): a diagonal matrix.
+  bool is_diagonal() const {
+    return blocks_.empty() || (blocks_.size() == 1 && blocks_[0].diagonal);
+  }
 
   /// True when every nonzero of `matrix` (size x size) lies inside a block (inside a diagonal
   /// run: on the diagonal). O(k^2), no allocation.

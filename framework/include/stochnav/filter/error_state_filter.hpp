@@ -100,6 +100,16 @@ class ErrorStateFilter final {
   /// fixed-size kernel without propagate()'s checks and copies. Same result as propagate().
   void propagate_core(const CoreMatrix& phi, const CoreMatrix& q_d);
 
+  /// P <- Phi P Phi^T + Q_d for a filter of N states whose transition has the fixed-size form
+  /// of filter/core_covariance.hpp (the 9 navigation states, then N - 9 states with diagonal
+  /// transition rows: biases, scale factors, first-order augmented states;
+  /// kHasNavDiagonalKernel<N>; the form is checked in debug builds), Q_d symmetric: no
+  /// dynamic-size product, no allocation. The same result as propagate() to rounding; at N = 15
+  /// identical to propagate_core().
+  template <int N>
+  void propagate_nav_diagonal(const Eigen::Matrix<double, N, N>& phi,
+                              const Eigen::Matrix<double, N, N>& q_d);
+
   /// P <- Phi P Phi^T + Q_d with Phi and Q_d given by blocks (BlockTransition): the same
   /// result as the dense propagate to rounding, in O(n^2 (b + c) + D^2 n). Precondition:
   /// D + the segments' sizes = n, segments contiguous, coupling rows inside the head.

@@ -137,7 +137,14 @@ class MwdNavigator final {
                         const Eigen::Matrix3d& c_nb, Eigen::Matrix3d& cache, double& cached_dt,
                         Eigen::Matrix3d& sum);
   void propagate_covariance();
-  void propagate_core_states(const CoreMatrix& f_t, double interval);
+  void advance_augmented_groups(double interval);
+  // True when the layout has a fixed-size kernel (filter/core_covariance.hpp) and P was
+  // propagated by it.
+  bool propagate_by_fixed_size_kernel(const CoreMatrix& f_t, double interval);
+  template <int N>
+  void propagate_fixed_size(const CoreMatrix& f_t, double interval);
+  void propagate_by_dynamic_blocks(const CoreMatrix& f_t, double interval);
+  CoreMatrix core_process_noise(double interval, const Eigen::Matrix3d& second_order_noise);
   struct SecondOrderTerm {
     Eigen::Matrix3d noise = Eigen::Matrix3d::Zero();  // rad^2 over the interval
     Eigen::Vector3d drift = Eigen::Vector3d::Zero();  // rad over the interval
