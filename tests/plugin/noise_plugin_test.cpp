@@ -108,21 +108,25 @@ TEST(StateLayout, RuntimeAssignsOffsetsAfterTheCoreStates) {
   EXPECT_THROW(assign_state_layout(*accel, *gyro), std::invalid_argument);
 }
 
-// Eight records of three axes (24 independent fits): the estimates scatter around the truth
-// (their mean within three standard errors of it or 1 %: no bias that matters) and 90 % of them
-// fall within a tolerance of about 2.5 of their standard deviations (0.4 deg/h, 0.46 s and
-// 7.5e-5 deg/sqrt(h) measured; 99 % expected); one lucky record could show neither.
-TEST(GaussMarkovFit, RecoversSigmaAndCorrelationTimeOverManyRecords) {
+// Eight records of three axes (24 independent fits) of white noise and a Gauss-Markov term,
+// fitted with `fit_params`: the estimates scatter around the truth (their mean within three
+// standard errors of it or 1 %: no bias that matters) and 90 % of them fall within a tolerance of
+// about 2.5 of their standard deviations (0.4 deg/h, 0.46 s and 7.5e-5 deg/sqrt(h) measured with
+// the Allan fit; 99 % expected); one lucky record could show neither. Returns the first model's
+// fit quality.
+nlohmann::json expect_gauss_markov_recovered(const nlohmann::json& fit_params) {
   const double deg_h = std::numbers::pi / 180.0 / 3600.0;   // rad/s per deg/h
   const double deg_rt_h = std::numbers::pi / 180.0 / 60.0;  // rad/sqrt(s) per deg/sqrt(h)
   NoiseModel truth{Unit::kRadPerSecond,
                    100.0,
                    {AngleRandomWalkTerm{0.05 * deg_rt_h}, GaussMarkovTerm{10.0 * deg_h, 5.0}}};
   std::vector<double> sigma, tau_c, n;
+  nlohmann::json quality;
   for (std::uint64_t record_index = 0; record_index < 8; ++record_index) {
     const auto record = simulated_record(truth, 2000.0, 100 + 3 * record_index);
     const auto model = registry().fit_noise_model(
-        "gauss_markov", record, {}, context_for(SensorGroup::kGyro), "/noise/gyro/plugin");
+        "gauss_markov", record, fit_params, context_for(SensorGroup::kGyro), "/noise/gyro/plugin");
+    if (quality.is_null()) quality = model->fit_quality();
     const auto params = model->params();
     for (int axis = 0; axis < 3; ++axis) {
       sigma.push_back(params["sigma"][axis].get<double>());
@@ -135,36 +139,23 @@ TEST(GaussMarkovFit, RecoversSigmaAndCorrelationTimeOverManyRecords) {
   expect_recovered("sigma (deg/h)", sigma, 10.0, 1.0);
   expect_recovered("tau_c (s)", tau_c, 5.0, 1.2);
   expect_recovered("N (deg/sqrt(h))", n, 0.05, 3e-4);
+  return quality;
 }
 
-// The same with the fit option "method": "gmwm": the terms fitted to each axis's wavelet
-// variance by GMWM recover the truth as the Allan fit does, and the method is said in the fit's
-// diagnostics; without terms to fit (augmented's automatic selection) GMWM is refused.
+TEST(GaussMarkovFit, RecoversSigmaAndCorrelationTimeOverManyRecords) {
+  EXPECT_EQ(expect_gauss_markov_recovered({})["x"]["estimator"], "avar");
+}
+
+// The fit option "method": "gmwm": the terms fitted to each axis's wavelet variance by GMWM
+// recover the truth as the Allan fit does, and the fit quality names the estimator; without
+// terms to fit (augmented's automatic selection) GMWM is refused.
 TEST(GaussMarkovFit, GmwmMethodRecoversSigmaAndCorrelationTimeOverManyRecords) {
-  const double deg_h = std::numbers::pi / 180.0 / 3600.0;
+  EXPECT_EQ(expect_gauss_markov_recovered({{"method", "gmwm"}})["x"]["estimator"], "gmwm");
   const double deg_rt_h = std::numbers::pi / 180.0 / 60.0;
-  NoiseModel truth{Unit::kRadPerSecond,
-                   100.0,
-                   {AngleRandomWalkTerm{0.05 * deg_rt_h}, GaussMarkovTerm{10.0 * deg_h, 5.0}}};
-  std::vector<double> sigma, tau_c, n;
-  for (std::uint64_t record_index = 0; record_index < 8; ++record_index) {
-    const auto record = simulated_record(truth, 2000.0, 100 + 3 * record_index);
-    const auto model = registry().fit_noise_model("gauss_markov", record, {{"method", "gmwm"}},
-                                                  context_for(SensorGroup::kGyro), "/p");
-    EXPECT_EQ(model->fit_quality()["x"]["estimator"], "gmwm") << model->fit_quality();
-    const auto params = model->params();
-    for (int axis = 0; axis < 3; ++axis) {
-      sigma.push_back(params["sigma"][axis].get<double>());
-      tau_c.push_back(params["tau_c"][axis].get<double>());
-      n.push_back(params["N"][axis].get<double>());
-    }
-  }
-  expect_recovered("sigma (deg/h)", sigma, 10.0, 1.0);
-  expect_recovered("tau_c (s)", tau_c, 5.0, 1.2);
-  expect_recovered("N (deg/sqrt(h))", n, 0.05, 3e-4);
-  const auto record = simulated_record(truth, 200.0, 7);
-  EXPECT_THROW(registry().fit_noise_model("augmented", record, {{"method", "gmwm"}},
-                                          context_for(SensorGroup::kGyro), "/p"),
+  const NoiseModel white{Unit::kRadPerSecond, 100.0, {AngleRandomWalkTerm{0.05 * deg_rt_h}}};
+  EXPECT_THROW(registry().fit_noise_model("augmented", simulated_record(white, 200.0, 7),
+                                          {{"method", "gmwm"}}, context_for(SensorGroup::kGyro),
+                                          "/p"),
                ConfigError);
 }
 
