@@ -167,13 +167,17 @@ class PythonNavigator final {
     return out;
   }
 
-  py::array_t<double> covariance() const {
-    const Eigen::MatrixXd& p = navigator_->covariance();
-    py::array_t<double> out({static_cast<py::ssize_t>(p.rows()), static_cast<py::ssize_t>(p.cols())});
-    for (Eigen::Index r = 0; r < p.rows(); ++r) {
-      for (Eigen::Index c = 0; c < p.cols(); ++c) out.mutable_at(r, c) = p(r, c);
-    }
-    return out;
+  py::array_t<double> covariance(bool now) const {
+    return matrix_copy(now ? navigator_->covariance_now() : navigator_->covariance());
+  }
+
+  py::array_t<double> block_estimate(const std::string& name) const {
+    const Eigen::VectorXd estimate = navigator_->block_estimate(name);
+    return to_numpy(std::vector<double>(estimate.data(), estimate.data() + estimate.size()));
+  }
+
+  py::array_t<double> block_covariance(const std::string& name) const {
+    return matrix_copy(navigator_->block_covariance(name));
   }
 
   py::list layout() const {
@@ -205,6 +209,14 @@ class PythonNavigator final {
   py::dict innovations() const { return innovation_columns(last_innovations_); }
 
  private:
+  static py::array_t<double> matrix_copy(const Eigen::MatrixXd& p) {
+    py::array_t<double> out({static_cast<py::ssize_t>(p.rows()), static_cast<py::ssize_t>(p.cols())});
+    for (Eigen::Index r = 0; r < p.rows(); ++r) {
+      for (Eigen::Index c = 0; c < p.cols(); ++c) out.mutable_at(r, c) = p(r, c);
+    }
+    return out;
+  }
+
   static Eigen::Vector3d three_vector(const py::object& object, const std::string& name) {
     const auto values = real_argument(object, name).values;
     if (values.size() != 3) throw py::value_error(name + ": expected 3 values (x, y, z body axes)");
@@ -273,7 +285,7 @@ t0_s : float
     Time of the initial state (s): the start of the first increment.
 
 Feed increments with step() (one epoch) or steps() (arrays, the GIL released); read state(),
-covariance(), innovations(), health(), layout(). One Navigator is not for several threads at
+covariance(), block_estimate(), block_covariance(), innovations(), health(), layout(). One Navigator is not for several threads at
 once (steps() releases the GIL): give each thread its own.
 )";
 
@@ -299,9 +311,18 @@ void bind_navigator(py::module_& module) {
            "The estimate: t_s, latitude_deg, longitude_deg, height_m (WGS-84), v_n (ENU, m/s), "
            "q_nb (w, x, y, z: body to ENU), inclination_deg, azimuth_deg, toolface_deg, "
            "gyro_bias_deg_h and accel_bias_m_s2 (body axes).")
-      .def("covariance", &PythonNavigator::covariance,
+      .def("covariance", &PythonNavigator::covariance, py::arg("now") = false,
            "P of the error state (n x n, a copy): dr (ENU, m), dv (ENU, m/s), phi (rad), b_a "
-           "(m/s^2), b_g (rad/s), then the blocks of layout().")
+           "(m/s^2), b_g (rad/s), then the blocks of layout(). As of the last covariance "
+           "interval or update; now=True propagates the open interval first (as a measurement "
+           "epoch does) and gives P at the current epoch.")
+      .def("block_estimate", &PythonNavigator::block_estimate, py::arg("name"),
+           "The estimate of a sensor-error block of layout() by name (SI units): accel_bias "
+           "(m/s^2), gyro_bias (rad/s), gyro_scale_factor, accel_scale_factor, or a noise "
+           "model's augmented states (\"gyro.<type>\"). ValueError for a navigation block "
+           "(its estimate is state()) or an unknown name.")
+      .def("block_covariance", &PythonNavigator::block_covariance, py::arg("name"),
+           "The rows and columns of covariance() of block `name` (its units squared).")
       .def("layout", &PythonNavigator::layout,
            "The error state's blocks as (name, offset, size) tuples.")
       .def("innovations", &PythonNavigator::innovations,

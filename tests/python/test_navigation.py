@@ -109,6 +109,19 @@ def test_navigator_follows_run_epoch_by_epoch(scenario, tmp_path):
     p = navigator.covariance()
     assert p.shape == (navigator.layout()[-1][1] + navigator.layout()[-1][2],) * 2
     np.testing.assert_allclose(p, p.T, atol=1e-12 * np.abs(p).max())
+    # Every block by name: the biases as state() gives them, the covariance's blocks.
+    for name, offset, size in navigator.layout():
+        np.testing.assert_array_equal(navigator.block_covariance(name),
+                                      p[offset:offset + size, offset:offset + size])
+    np.testing.assert_allclose(navigator.block_estimate("gyro_bias") / (np.pi / 180 / 3600),
+                               navigator.state()["gyro_bias_deg_h"], rtol=1e-12)
+    assert navigator.block_estimate("gyro_scale_factor").shape == (3,)
+    with pytest.raises(ValueError, match="navigation block"):
+        navigator.block_estimate("attitude")
+    with pytest.raises(ValueError, match="no state block 'gyro.nothing'"):
+        navigator.block_covariance("gyro.nothing")
+    now = navigator.covariance(now=True)
+    assert now.shape == p.shape
 
 
 def test_navigator_refuses_bad_increments_and_a_start_without_attitude():
