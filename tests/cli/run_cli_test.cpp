@@ -396,7 +396,8 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
   EXPECT_TRUE(header_line.ends_with(
       ",qc_azimuth_sigmas,qc_flag,dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,"
       "closure_azimuth_deg,vertical_section_m,ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,"
-      "ellipse_semi_minor_m,ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m"))
+      "ellipse_semi_minor_m,ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m,azimuth_defined,"
+      "gyro_toolface"))
       << header_line;
   const std::vector<std::string> header = csv_cells(header_line);
   std::vector<std::vector<std::string>> rows;

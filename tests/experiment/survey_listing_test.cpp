@@ -136,6 +136,21 @@ TEST(SurveyListing, NoTurnRateNearVertical) {
   EXPECT_GT(listing[1].dls_deg_30m, 0.5);
 }
 
+// The azimuth is marked undefined within 1 deg of vertical, and the toolface named gyro where
+// the MWD convention switches to it (exactly vertical here), high-side elsewhere.
+TEST(SurveyListing, NearVerticalAzimuthAndTheToolfaceKindAreMarked) {
+  const std::vector<SurveyStation> stations = {
+      station_at(1010.0, 0.0, 0.0), station_at(1020.0, 0.5, 10.0), station_at(1030.0, 1.5, 20.0),
+      station_at(1040.0, 179.5, 30.0)};
+  const auto listing = survey_listing(stations, tie_on_at(1000.0), {});
+  const double defined[] = {0.0, 0.0, 1.0, 0.0};
+  const double gyro[] = {1.0, 0.0, 0.0, 0.0};
+  for (std::size_t i = 0; i < stations.size(); ++i) {
+    EXPECT_EQ(listing[i].azimuth_defined, defined[i]) << i;
+    EXPECT_EQ(listing[i].gyro_toolface, gyro[i]) << i;
+  }
+}
+
 TEST(SurveyListing, VerticalSectionProjectsOntoTheChosenAzimuth) {
   const std::vector<SurveyStation> stations = {station_at(1100.0, 40.0, 10.0, 30.0, 40.0),
                                                station_at(1200.0, 40.0, 10.0, -6.0, 8.0)};
@@ -298,7 +313,7 @@ TEST(SurveyListing, SurveyCsvCarriesTheColumnsAfterTheQc) {
   const std::string listing_columns =
       ",qc_flag,dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,closure_azimuth_deg,"
       "vertical_section_m,ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,ellipse_semi_minor_m,"
-      "ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m";
+      "ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface";
   ASSERT_TRUE(survey[0].ends_with(listing_columns)) << survey[0];
   const auto header = split(survey[0]);
   const auto row = split(survey[1]);

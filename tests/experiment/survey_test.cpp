@@ -440,7 +440,7 @@ constexpr const char* kSurveyHeader =
 constexpr const char* kListingColumns =
     ",dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,closure_azimuth_deg,vertical_section_m,"
     "ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,ellipse_semi_minor_m,ellipse_azimuth_deg,"
-    "tvd_below_datum_m,tvdss_m";
+    "tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface";
 
 // The first `count` cells of a CSV row.
 std::string first_cells(const std::string& row, int count) {

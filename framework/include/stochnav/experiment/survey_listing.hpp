@@ -34,6 +34,13 @@
 //   tvdss_m              TVD below mean sea level (subsea), POSITIVE DOWN (negative above
 //                        MSL): tvd_below_datum_m - datum_elevation_m (m)
 //                        Both NaN without a datum (SurveyListingOptions::datum_elevation_m).
+//   azimuth_defined      1 where the azimuth means something, 0 within 1 deg of vertical, where
+//                        a tiny tilt swings it through any angle (azimuth_deg is then the MWD
+//                        convention's value, its sigma large or NaN, and no turn rate is given)
+//   gyro_toolface        1 where toolface_deg is the gyro ("north") toolface, the angle from
+//                        North: at sin(inclination) < kNearVerticalSin (ins/mwd_attitude.hpp),
+//                        where the high-side toolface is undefined; 0 where it is the high-side
+//                        toolface
 //
 // The vertical-section azimuth, when not given, is the tie-on's azimuth (the planned direction
 // at the start) when the tie-on's attitude is known and more than 1 deg from vertical, else the
@@ -64,6 +71,8 @@ struct StationListing {
   double ellipse_azimuth_deg = 0.0;
   double tvd_below_datum_m = 0.0;
   double tvdss_m = 0.0;
+  double azimuth_defined = 1.0;  ///< 1 or 0 (a CSV number)
+  double gyro_toolface = 0.0;    ///< 1 or 0
 };
 
 /// A horizontal error ellipse: semi-axes (m) and the major axis' azimuth, [0, 180) deg.

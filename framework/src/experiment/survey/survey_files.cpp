@@ -34,7 +34,7 @@ constexpr std::string_view kSurveyHeader =
 constexpr std::string_view kListingHeader =
     ",dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,closure_azimuth_deg,vertical_section_m,"
     "ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,ellipse_semi_minor_m,ellipse_azimuth_deg,"
-    "tvd_below_datum_m,tvdss_m";
+    "tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface";
 constexpr std::string_view kWellPathHeader = "source,md_m,north_m,east_m,tvd_m";
 
 /// A CSV number: 9 significant digits (0.01 mm at 1 km, 1 ms at 200 h); any NaN as "nan" (the
@@ -101,7 +101,9 @@ std::string stations_csv(const std::vector<SurveyStation>& stations,
                                         l.ellipse_semi_minor_m,
                                         l.ellipse_azimuth_deg,
                                         l.tvd_below_datum_m,
-                                        l.tvdss_m};
+                                        l.tvdss_m,
+                                        l.azimuth_defined,
+                                        l.gyro_toolface};
       append_cells(csv, listing_columns, true);
     }
     csv += '\n';

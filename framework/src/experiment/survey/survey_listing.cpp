@@ -6,6 +6,7 @@
 
 #include "stochnav/core/angles.hpp"
 #include "stochnav/core/minimum_curvature.hpp"
+#include "stochnav/ins/mwd_attitude.hpp"
 
 namespace stochnav {
 namespace {
@@ -128,6 +129,9 @@ std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& sta
     row.ellipse_semi_major_m = ellipse.semi_major_m;
     row.ellipse_semi_minor_m = ellipse.semi_minor_m;
     row.ellipse_azimuth_deg = ellipse.azimuth_deg;
+    row.azimuth_defined = near_vertical(s.inclination_deg) ? 0.0 : 1.0;
+    row.gyro_toolface =
+        std::abs(std::sin(s.inclination_deg * kRadPerDeg)) < kNearVerticalSin ? 1.0 : 0.0;
     if (tie_on_tvd) {
       row.tvd_below_datum_m = *tie_on_tvd + s.tvd_m;
       row.tvdss_m = row.tvd_below_datum_m - *options.datum_elevation_m;
