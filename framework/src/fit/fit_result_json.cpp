@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "stochnav/io/json_numbers.hpp"
 #include "stochnav/model/noise_model_json.hpp"
 #include "stochnav/model/reporting_units.hpp"
 
@@ -10,8 +11,6 @@ namespace stochnav {
 namespace {
 
 using nlohmann::json;
-
-json number_or_null(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
 
 json term_names(const std::vector<TermType>& types) {
   json names = json::array();

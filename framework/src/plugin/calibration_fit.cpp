@@ -6,6 +6,7 @@
 #include "stochnav/fit/fit_data.hpp"
 #include "stochnav/fit/gmwm_data.hpp"
 #include "stochnav/fit/gmwm_fit.hpp"
+#include "stochnav/io/json_numbers.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/phase.hpp"
 
@@ -124,9 +125,6 @@ WhiteWalkFit fit_white_walk(const CalibrationRecord& record, bool with_walk) {
 }
 
 nlohmann::json calibration_fit_quality(const std::array<FitResult, 3>& fits) {
-  const auto number_or_null = [](double x) {
-    return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
-  };
   nlohmann::json quality = nlohmann::json::object();
   const char* names[] = {"x", "y", "z"};
   for (std::size_t axis = 0; axis < 3; ++axis) {

@@ -17,6 +17,7 @@
 
 #include "records/shared_imu_records.hpp"
 #include "stochnav/core/errors.hpp"
+#include "stochnav/io/json_numbers.hpp"
 #include "stochnav/core/work_limits.hpp"
 #include "stochnav/core/progress_bar.hpp"
 #include "stochnav/core/temporary_files.hpp"
@@ -139,10 +140,6 @@ void apply_scenario_overrides(const nlohmann::json& overrides, const fs::path& s
     }
     scenario[pointer] = value;
   }
-}
-
-nlohmann::json number_or_null(double x) {
-  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
 }
 
 double json_number(const nlohmann::json& value) {

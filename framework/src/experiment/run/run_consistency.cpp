@@ -6,10 +6,11 @@
 #include <cmath>
 #include <limits>
 
+#include "stochnav/io/json_numbers.hpp"
+
 namespace stochnav {
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-nlohmann::json number_or_null(double x) { return std::isfinite(x) ? nlohmann::json(x) : nullptr; }
 }  // namespace
 
 double AidStatistics::nis_mean() const {
