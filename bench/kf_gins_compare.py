@@ -75,6 +75,9 @@ accuracy of the two agrees to 0.1 mm and 0.001 deg.
 """
 import argparse, json, math, os, random, shutil, subprocess, sys, tempfile
 
+# The whole-process timing of the navigation bench: (wall s, CPU s, peak RSS) of one command.
+from nav_whole_process import timed
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SITE = {"latitude_deg": 39.9778, "longitude_deg": 116.3448, "height_m": 50.0}
 ATTITUDE = {"inclination_deg": 60.0, "toolface_deg": 30.0, "azimuth_deg": 45.0}
@@ -232,18 +235,6 @@ def run_config(imu, aids, truth, states, interval_s, output, decimation=None):
         "initial_state": {"tie_on": SITE, "attitude": ATTITUDE},
         "output": {"decimation": decimation or (1 if output else 1_000_000_000),
                    "covariance": output, "nees": False}}
-
-
-def timed(command):
-    """(wall s, CPU s) of one process, which must exit with 0."""
-    with tempfile.NamedTemporaryFile("r", suffix=".time") as report:
-        result = subprocess.run(["/usr/bin/time", "-f", "%e %U %S", "-o", report.name]
-                                + command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-        if result.returncode != 0:
-            sys.exit(f"failed ({result.returncode}): {' '.join(command)}\n"
-                     f"{result.stderr.decode()}")
-        wall, user, system = report.read().split()[-3:]
-    return float(wall), float(user) + float(system)
 
 
 def stochnav_accuracy(out):

@@ -19,9 +19,10 @@
 namespace stochnav::diagnose_stages {
 namespace {
 
-// A term of `type` whose values do not matter (refit_jointly reads the types only); an angle
-// random walk for the types the Allan loop does not add.
-NoiseTerm placeholder_term(TermType type) {
+// The slot of a term of `type` in a layout to refit: refit_jointly reads the terms' types only,
+// so the values are make_term's defaults (an angle random walk for the types the Allan loop does
+// not add, which have no Allan-variance form).
+NoiseTerm layout_slot_of_type(TermType type) {
   switch (type) {
     case TermType::kNonstationary:
     case TermType::kBiasStep:
@@ -69,12 +70,13 @@ std::vector<FinalLayout> final_layouts(const DiagnoseResult& result,
       // candidate of its size; what the end can revisit is a two-parameter term (a
       // Gauss-Markov of long correlation time, a sinusoid) standing in for a simpler one once
       // the rest is in.
-      if (added_parameters(placeholder_term(type)) >= added_parameters(placeholder_term(added))) {
+      if (added_parameters(layout_slot_of_type(type)) >=
+          added_parameters(layout_slot_of_type(added))) {
         continue;
       }
       NoiseModel variant = layout;
       if (auto it = last_term_of_type(variant, added); it != variant.terms.rend()) {
-        *it = placeholder_term(type);
+        *it = layout_slot_of_type(type);
       }
       layouts.push_back({std::move(variant), added, type});
     }
