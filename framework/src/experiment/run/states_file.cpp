@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string_view>
 
@@ -76,19 +77,23 @@ void StatesFile::write(const MwdNavigator& navigator) {
     for (const Columns& group : columns_) {
       const auto states = estimate_.segment(group.offset, group.size);
       const auto covariance = p.block(group.offset, group.offset, group.size, group.size);
-      Eigen::VectorXd values;
-      if (group.sensor_map.size() == 0) {
-        values = sigmas ? Eigen::VectorXd(covariance.diagonal().cwiseMax(0.0).cwiseSqrt())
-                        : Eigen::VectorXd(states);
-      } else {
-        values = sigmas ? Eigen::VectorXd((group.sensor_map * covariance *
-                                           group.sensor_map.transpose())
-                                              .diagonal()
-                                              .cwiseMax(0.0)
-                                              .cwiseSqrt())
-                        : Eigen::VectorXd(group.sensor_map * states);
-      }
-      for (double value : values) {
+      // One column per state, or per body axis of the sensor error M x (sigma: sqrt of
+      // diag M P M^T), formatted as computed: no temporaries per row.
+      const bool mapped = group.sensor_map.size() > 0;
+      for (int column = 0; column < (mapped ? 3 : group.size); ++column) {
+        double value = 0.0;
+        if (!mapped) {
+          value = sigmas ? std::sqrt(std::max(0.0, covariance(column, column))) : states(column);
+        } else if (!sigmas) {
+          value = group.sensor_map.row(column).dot(states);
+        } else {
+          const auto m = group.sensor_map.row(column);
+          double variance = 0.0;
+          for (int i = 0; i < group.size; ++i) {
+            for (int j = 0; j < group.size; ++j) variance += m(i) * covariance(i, j) * m(j);
+          }
+          value = std::sqrt(std::max(0.0, variance));
+        }
         out += ',';
         append_general(out, value * group.scale, 6);
       }
