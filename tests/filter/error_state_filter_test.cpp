@@ -263,5 +263,63 @@ TEST(ErrorStateFilter, GatedUpdateLeavesCovarianceAndCorrectionUnchanged) {
   EXPECT_TRUE(filter.last_gain().isZero(0.0));
 }
 
+// A consider state (Schmidt-Kalman): never corrected, its variance unchanged by an update, and
+// P is the covariance of the errors the suboptimal gain leaves: checked against the Joseph
+// product with that gain in long double, and by Monte Carlo (the optimal filter's P - K S K^T
+// with the gain's row zeroed would understate the errors; the Monte-Carlo check sees that).
+TEST(ErrorStateFilter, ConsiderStateIsNeverCorrectedAndPIsTheErrorsCovariance) {
+  std::mt19937_64 engine(9);
+  constexpr int kStates = 6;
+  constexpr int kConsidered = 2;
+  const Eigen::MatrixXd p = random_spd(kStates, engine);
+  Eigen::MatrixXd h = random_matrix(2, kStates, engine);
+  const Eigen::Matrix2d r = Eigen::Vector2d(0.3, 0.7).asDiagonal() * p.diagonal().mean();
+  ErrorStateFilter filter(p);
+  filter.consider(kConsidered);
+  Eigen::VectorXd correction = Eigen::VectorXd::Zero(kStates);
+  const Eigen::Vector2d z = random_matrix(2, 1, engine);
+  ASSERT_TRUE(filter.update(z, h, r, INFINITY, correction).accepted);
+  EXPECT_EQ(correction(kConsidered), 0.0);
+  EXPECT_TRUE(filter.last_gain().row(kConsidered).isZero(0.0));
+  EXPECT_NEAR(filter.covariance()(kConsidered, kConsidered), p(kConsidered, kConsidered),
+              1e-12 * p(kConsidered, kConsidered));
+
+  // The Joseph product with the optimal gain's considered row zeroed, in long double.
+  const MatrixL pl = p.cast<long double>();
+  const MatrixL hl = h.cast<long double>();
+  const MatrixL s = hl * pl * hl.transpose() + r.cast<long double>();
+  MatrixL k = pl * hl.transpose() * s.inverse();
+  k.row(kConsidered).setZero();
+  const MatrixL i_kh = MatrixL::Identity(kStates, kStates) - k * hl;
+  const MatrixL expected =
+      i_kh * pl * i_kh.transpose() + k * r.cast<long double>() * k.transpose();
+  EXPECT_LT((filter.covariance().cast<long double>() - expected).norm(), 1e-12L * pl.norm());
+  // The estimated states' gains are the optimal ones.
+  const MatrixL optimal = pl * hl.transpose() * s.inverse();
+  for (int i = 0; i < kStates; ++i) {
+    if (i == kConsidered) continue;
+    EXPECT_LT((filter.last_gain().row(i).cast<long double>() - optimal.row(i)).norm(),
+              1e-12L * optimal.norm());
+  }
+
+  // Monte Carlo: errors x - K (H x + v) over draws of x ~ N(0, P), v ~ N(0, R).
+  const Eigen::LLT<Eigen::MatrixXd> p_factor(p);
+  const Eigen::LLT<Eigen::Matrix2d> r_factor(r);
+  const Eigen::MatrixXd gain = filter.last_gain();
+  constexpr int kDraws = 40000;
+  Eigen::MatrixXd scatter = Eigen::MatrixXd::Zero(kStates, kStates);
+  for (int draw = 0; draw < kDraws; ++draw) {
+    const Eigen::VectorXd x = p_factor.matrixL() * random_matrix(kStates, 1, engine);
+    const Eigen::Vector2d v = r_factor.matrixL() * random_matrix(2, 1, engine);
+    const Eigen::VectorXd error = x - gain * (h * x + v);
+    scatter += error * error.transpose();
+  }
+  scatter /= kDraws;
+  for (int i = 0; i < kStates; ++i) {
+    // The sample variance of kDraws Gaussian draws: relative sigma sqrt(2 / kDraws) = 0.7 %.
+    EXPECT_NEAR(scatter(i, i) / filter.covariance()(i, i), 1.0, 0.04) << "state " << i;
+  }
+}
+
 }  // namespace
 }  // namespace stochnav

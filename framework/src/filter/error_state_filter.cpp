@@ -1,5 +1,6 @@
 #include "stochnav/filter/error_state_filter.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -186,6 +187,7 @@ UpdateOutcome ErrorStateFilter::update(const Eigen::Ref<const Eigen::VectorXd>& 
   gain_ = p_ht_;
   innovation_factor_.matrixU().solveInPlace<Eigen::OnTheRight>(gain_);
   innovation_factor_.matrixL().solveInPlace<Eigen::OnTheRight>(gain_);
+  for (const Eigen::Index state : considered_) gain_.row(state).setZero();
   correction.noalias() = gain_ * z;
   if (form == JosephForm::kExpanded) {
     // P - K U^T - U K^T + K S K^T = P + E K^T + K E^T with E = K S / 2 - U.
@@ -208,6 +210,13 @@ UpdateOutcome ErrorStateFilter::update(const Eigen::Ref<const Eigen::VectorXd>& 
   }
   outcome.accepted = true;
   return outcome;
+}
+
+void ErrorStateFilter::consider(Eigen::Index index) {
+  assert(index >= 0 && index < size());
+  if (std::find(considered_.begin(), considered_.end(), index) == considered_.end()) {
+    considered_.push_back(index);
+  }
 }
 
 void ErrorStateFilter::keep_healthy(Symmetrize how) {

@@ -60,6 +60,7 @@ FilterOptions with_start(const FilterOptions& options, const SplitStart& start) 
   split.gyro_bias_sigma_radps = sigma.segment<3>(core::kGyroBias);
   split.initial_accel_bias_mps2 = start.estimate.accel_bias_b;
   split.initial_gyro_bias_radps = start.estimate.gyro_bias_b;
+  split.heading_considered = options.heading_hypotheses_consider_heading;
   return split;
 }
 

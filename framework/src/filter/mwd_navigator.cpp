@@ -109,6 +109,7 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
   phi_ = Eigen::MatrixXd::Identity(phi_size, phi_size);
   q_d_ = Eigen::MatrixXd::Zero(phi_size, phi_size);
   correction_ = Eigen::VectorXd::Zero(n);
+  if (options_.heading_considered) filter_.consider(cs::kAttitude + 2);  // phi_U
   innovations_.reserve(aids_.size());
   reference_.active = std::any_of(aids_.begin(), aids_.end(), [](const plugin::AidPlugin* aid) {
     return aid->states_velocity();

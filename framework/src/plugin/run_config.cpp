@@ -373,6 +373,8 @@ FilterConfig parse_filter_section(const nlohmann::json& json, const std::string&
       reader.number_or("heading_hypothesis_sigma_deg",
                        out.heading_hypothesis_sigma_rad * kDegPerRad, Bound::kNonNegative, "deg") /
       kDegPerRad;
+  out.heading_hypotheses_consider_heading = reader.boolean_or(
+      "heading_hypothesis_consider", out.heading_hypotheses_consider_heading);
   if (reader.has("max_consecutive_rejections")) {
     const std::uint64_t count = non_negative_integer(reader, "max_consecutive_rejections");
     if (count > 1'000'000'000u) {

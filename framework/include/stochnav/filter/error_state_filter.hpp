@@ -24,6 +24,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "stochnav/filter/block_diagonal_matrix.hpp"
 #include "stochnav/filter/error_dynamics.hpp"
@@ -125,6 +126,11 @@ class ErrorStateFilter final {
                        Eigen::Ref<Eigen::VectorXd> correction,
                        JosephForm form = JosephForm::kExpanded);
 
+  /// Makes state `index` a consider state (Schmidt-Kalman): update() never corrects its
+  /// estimate (its row of K is zero), while P keeps its uncertainty and its correlations with
+  /// the other states, whose gains are the optimal ones (the Joseph form holds for any gain).
+  void consider(Eigen::Index index);
+
   /// S = H P H^T + R of the last update attempt (m x m) and its gain K (n x m; zero if
   /// rejected): for innovation records and adaptive noise models.
   const Eigen::MatrixXd& last_innovation_covariance() const { return innovation_covariance_; }
@@ -148,6 +154,7 @@ class ErrorStateFilter final {
   Eigen::MatrixXd p_ht_;                 // U = P H^T, n x m
   Eigen::MatrixXd joseph_term_;          // K S / 2 - U, n x m
   Eigen::MatrixXd h_full_;               // H padded to m x n (JosephForm::kProduct)
+  std::vector<Eigen::Index> considered_;  // consider states: rows of K kept zero
   // propagate(const BlockTransition&): Y = P_th Phi_h^T + P_tt G^T (n_a x D),
   // Z = P_hh Phi_h^T + P_ht G^T (D x D), X = P_tt Phi_t^T (n_a x n_a), and the products with
   // the coupling maps P_tt M^T (n_a x r), P_ht M^T (D x r), M Y (r x D).

@@ -106,6 +106,18 @@ struct FilterOptions {
   /// section 4).
   double heading_hypothesis_sigma_rad = 4.0 * std::numbers::pi / 180.0;
 
+  /// The heading error (phi_U) as a consider state (ErrorStateFilter::consider): no update
+  /// corrects it, its uncertainty stays in P. Set by the bank over the heading for its
+  /// hypotheses, whose heading is the bank's cell: the heading information there is second
+  /// order (the rotating cross-axis gyros see cos psi of the horizontal Earth rate), which the
+  /// weights read over the whole bank and one first-order filter a few degrees off reads as
+  /// first order (docs/drilling-envelope.md, section 4).
+  bool heading_considered = false;
+  /// Whether the bank over the heading sets heading_considered for its hypotheses (run config
+  /// "filter/heading_hypothesis_consider"; false: each hypothesis updates its heading, the
+  /// ablation).
+  bool heading_hypotheses_consider_heading = true;
+
   /// Covariance products by blocks (filter/error_state_filter.hpp, BlockTransition and
   /// JosephForm::kExpanded): augmented states cost O(n^2) per propagation and update instead of
   /// O(n^3), with the same results to rounding. false: the dense products, kept as the
