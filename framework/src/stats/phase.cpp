@@ -236,7 +236,11 @@ bool integrate(const double* rate, double* x_after_first, std::size_t n, double 
     const auto position = static_cast<double>(static_cast<std::int64_t>(i + 1));
     x_after_first[i] = (running.value() - position * mean_low) * tau0_s;
   };
-  parallel_for(tasks, [&](std::size_t task) {
+  // The tasks run from the end of the record back to its start: the stretch pass 1 read last
+  // is then still in the last-level cache, and so, afterwards, is the start of the phase, where
+  // the deviation sums begin. The tasks are independent: the same result in any order.
+  parallel_for(tasks, [&](std::size_t from_end) {
+    const std::size_t task = tasks - 1 - from_end;
     const std::size_t first = task * kChunksPerTask;
     const std::size_t last = std::min(chunks, first + kChunksPerTask);
     if (last - first == kChunksPerTask && chunk_size(last - 1) == kChunk) {
