@@ -63,6 +63,10 @@ struct SplitMean {
 /// result does not depend on the thread count.
 constexpr std::size_t kChunk = std::size_t{1} << 14;
 constexpr std::size_t kChunksPerTask = 8;
+/// Tasks at the start of the record whose rates integrate() lets go after pass 1 already: 8 MB
+/// of float64 rates, room for the huge pages of the phase that pass 2 writes ahead of the file
+/// pages it drops.
+constexpr std::size_t kEarlyDroppedTasks = 8;
 
 /// Compensated sum of one chunk (or of a whole record): four independent lanes, so the
 /// additions pipeline.
@@ -178,11 +182,13 @@ running_sums_of_eight_chunks(const double* rate, double* x, const double* start_
 }
 
 /// x[i + 1] = (sum_{j <= i} (y[j] - mean)) tau0 for the n rates y; x may be y (in place).
-/// `done(first, count)` is called when pass 2, the last to read them, has read rates
-/// [first, first + count). A mapped file's pages can be dropped then: pass 2 writes the phase
-/// as it drops the file, so the file's resident pages and the phase array never add up to much
-/// more than one copy of the data. (Dropping them after pass 1 as well lowered the peak by two
-/// huge pages only, and cost mapping the file twice: about 5 % of an OADEV run's CPU time.)
+/// `done(first, count)` is called when a pass has read the rates [first, first + count) for the
+/// last time for a while: after pass 2, and after pass 1 for the first kEarlyDroppedTasks tasks
+/// (which pass 2, running backwards, reaches last). A mapped file's pages can be dropped then:
+/// pass 2 writes the phase as it drops the file, so the file's resident pages and the phase
+/// array never add up to much more than one copy of the data (the stretch dropped early makes
+/// room for the huge pages of the phase, which run ahead of the pages dropped). Dropping every
+/// page after pass 1 as well cost mapping the file twice: about 5 % of an OADEV run's CPU time.
 /// Returns false, having written nothing, when the rates do not sum to a finite number (a NaN
 /// or infinite sample, or overflow).
 bool integrate(const double* rate, double* x_after_first, std::size_t n, double tau0_s,
@@ -197,6 +203,9 @@ bool integrate(const double* rate, double* x_after_first, std::size_t n, double 
     const std::size_t last = std::min(chunks, (task + 1) * kChunksPerTask);
     for (std::size_t c = task * kChunksPerTask; c < last; ++c) {
       sums[c] = wide_chunk_sum(rate + c * kChunk, chunk_size(c));
+    }
+    if (done && task < kEarlyDroppedTasks) {
+      done(task * kChunksPerTask * kChunk, (last - task * kChunksPerTask) * kChunk);
     }
   });
   CompensatedSum total;
