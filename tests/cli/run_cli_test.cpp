@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "csv_columns.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
 #include "stochnav/io/psins_imu.hpp"
-#include "csv_columns.hpp"
 #include "temp_dir.hpp"
 
 namespace stochnav {
@@ -397,7 +397,7 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
       ",qc_azimuth_sigmas,qc_flag,dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,"
       "closure_azimuth_deg,vertical_section_m,ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,"
       "ellipse_semi_minor_m,ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m,azimuth_defined,"
-      "gyro_toolface"))
+      "gyro_toolface,mc_north_m,mc_east_m,mc_tvd_m,md_sigma_m"))
       << header_line;
   const std::vector<std::string> header = csv_cells(header_line);
   std::vector<std::vector<std::string>> rows;
@@ -431,6 +431,46 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
   EXPECT_TRUE(std::isfinite(cell(r, "ne_m2")));
   EXPECT_TRUE(std::isfinite(cell(r, "nv_m2")));
   EXPECT_TRUE(std::isfinite(cell(r, "ev_m2")));
+}
+
+// The tally reads the bit's depth (450.45 m at the start: 450 m with the scenario's 1e-3 scale
+// error, averaged over the static start); a tie-on MD 50 m shallower is refused, naming both
+// values, unless the survey sensor sits 50 m behind the bit: then the stations' MDs are the
+// tally minus 50 m.
+TEST_F(RunCli, TieOnMdIsCheckedAgainstTheTallyTakenToTheSensor) {
+  nlohmann::json config = recording_config();
+  config["aids"] = {{{"plugin", "zupt"}}, {{"plugin", "pipe_length"}}};
+  config["initial_state"]["tie_on"]["measured_depth_m"] = 400;
+  const std::string data = (dir_->path() / "recording").string();
+  const fs::path refused = dir_->path() / "out_tie_on_refused";
+  const auto result = run_cli("run '" + write_config("tie_on_far.json", config) + "' --out '" +
+                                  refused.string() + "' --data '" + data + "' --no-plot",
+                              dir_->path());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << "one line: " << result.err;
+  EXPECT_NE(result.err.find("/initial_state/tie_on/measured_depth_m: 400 m, but the depth "
+                            "data's tally at the start (measured_depth_m, 450.4"),
+            std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find("/survey/sensor_to_bit_m"), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(refused));
+
+  config["survey"] = {{"sensor_to_bit_m", 50}};
+  const fs::path out = dir_->path() / "out_sensor_behind_bit";
+  const auto accepted = run_cli("run '" + write_config("sensor_behind_bit.json", config) +
+                                    "' --out '" + out.string() + "' --data '" + data +
+                                    "' --no-plot",
+                                dir_->path());
+  ASSERT_EQ(accepted.exit_code, 0) << accepted.err;
+  const auto survey = stochnav::testing::read_csv_columns((out / "survey.csv").string());
+  const auto aids = stochnav::testing::read_csv_columns(data + "/aids.csv");
+  ASSERT_GE(survey.at("md_m").size(), 2u);
+  // The first station, at the end of the static start: the mean tally there, minus 50 m.
+  EXPECT_NEAR(survey.at("md_m").front(), aids.at("measured_depth_m").front() - 50.0, 0.2);
+  for (double md_sigma : survey.at("md_sigma_m")) {
+    EXPECT_GT(md_sigma, 0.0);
+    EXPECT_LT(md_sigma, 0.06) << "the pipe_length aid's 5 cm per reading, and its scale error";
+  }
 }
 
 class BadRun : public RunCli, public ::testing::WithParamInterface<BadRunCase> {};
@@ -484,6 +524,16 @@ INSTANTIATE_TEST_SUITE_P(
                    "/survey/datum_elevation_m: 20000"},
         BadRunCase{"survey_tie_on_tvd_without_datum", R"({"survey": {"tie_on_tvd_m": 100}})", "",
                    "/survey/tie_on_tvd_m: given without datum_elevation_m"},
+        BadRunCase{"survey_sensor_to_bit_negative", R"({"survey": {"sensor_to_bit_m": -1}})",
+                   "", "/survey/sensor_to_bit_m: -1"},
+        BadRunCase{"survey_sensor_to_bit_far", R"({"survey": {"sensor_to_bit_m": 250}})", "",
+                   "/survey/sensor_to_bit_m: 250"},
+        BadRunCase{"survey_tie_on_tolerance_zero",
+                   R"({"survey": {"tie_on_md_tolerance_m": 0}})", "",
+                   "/survey/tie_on_md_tolerance_m: 0"},
+        BadRunCase{"survey_tie_on_tolerance_text",
+                   R"({"survey": {"tie_on_md_tolerance_m": "5 m"}})", "",
+                   "/survey/tie_on_md_tolerance_m"},
         BadRunCase{"survey_unknown_key", R"({"survey": {"vs_azimuth_deg": 10}})", "",
                    "/survey/vs_azimuth_deg: unknown key"},
         BadRunCase{"survey_not_object", R"({"survey": 3})", "", "/survey: not an object"},

@@ -278,6 +278,28 @@ TEST(SurveyListing, DatumColumnsArePositiveDownFromTheDatumAndMeanSeaLevel) {
   EXPECT_NEAR(listing[0].tvdss_m, 1070.0, 1e-9);
 }
 
+// On a straight hold from a tie-on with the same attitude, minimum curvature is the straight
+// line, where straight_hold also put the INS positions: the two solutions coincide.
+TEST(SurveyListing, MinimumCurvatureColumnsFollowTheListedStations) {
+  const auto stations = straight_hold(30.0, 60.0);
+  const auto listing =
+      survey_listing(stations, tie_on_at(1000.0, SurveyDirection{30.0, 60.0}), {});
+  ASSERT_EQ(listing.size(), stations.size());
+  for (std::size_t i = 0; i < stations.size(); ++i) {
+    EXPECT_NEAR(listing[i].mc_north_m, stations[i].north_m, 1e-9) << i;
+    EXPECT_NEAR(listing[i].mc_east_m, stations[i].east_m, 1e-9) << i;
+    EXPECT_NEAR(listing[i].mc_tvd_m, stations[i].tvd_m, 1e-9) << i;
+  }
+  // From a vertical tie-on the first segment bends: the columns follow minimum_curvature_path
+  // with the tie-on's direction, not the INS positions.
+  const SurveyTieOn vertical = tie_on_at(1000.0, SurveyDirection{0.0, 0.0});
+  const auto bent = survey_listing(stations, vertical, {});
+  const auto path = minimum_curvature_path(stations, 1000.0, vertical.direction);
+  EXPECT_NEAR(bent[0].mc_tvd_m, path[0].tvd_m, 1e-12);
+  EXPECT_NEAR(bent[2].mc_east_m, path[2].east_m, 1e-12);
+  EXPECT_GT(bent[0].mc_tvd_m, stations[0].tvd_m + 0.1);
+}
+
 // ---------------------------------------------------------------- file
 
 std::vector<std::string> read_lines(const std::filesystem::path& path) {
@@ -313,7 +335,8 @@ TEST(SurveyListing, SurveyCsvCarriesTheColumnsAfterTheQc) {
   const std::string listing_columns =
       ",qc_flag,dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,closure_azimuth_deg,"
       "vertical_section_m,ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,ellipse_semi_minor_m,"
-      "ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface";
+      "ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface,mc_north_m,"
+      "mc_east_m,mc_tvd_m,md_sigma_m";
   ASSERT_TRUE(survey[0].ends_with(listing_columns)) << survey[0];
   const auto header = split(survey[0]);
   const auto row = split(survey[1]);

@@ -3,8 +3,11 @@
 // the filter's attitude and position become one station, as an MWD survey reports it.
 //
 // Conventions (DESIGN.md, `survey.csv`):
-//   md_m          measured depth along the hole (m): from the aid data's "measured_depth_m" at the
-//                 station when the run has it, else the tie-on depth plus the INS path length
+//   md_m          measured depth of the survey SENSOR along the hole (m): with depth readings
+//                 (the aid data's "measured_depth_m", a pipe tally of the BIT's depth, minus the
+//                 run config's "survey/sensor_to_bit_m"), the mean of the readings of the
+//                 station's stationary span (experiment/tally_smoother.hpp); else the tie-on
+//                 depth plus the INS path length
 //   inclination   angle of the tool axis from vertical down (deg), [0, 180]
 //   azimuth       direction of the tool axis' horizontal projection from TRUE north, clockwise
 //                 towards east (deg), [0, 360)
@@ -43,11 +46,13 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "stochnav/experiment/station_qc.hpp"
+#include "stochnav/experiment/tally_smoother.hpp"
 #include "stochnav/ins/nav_state.hpp"
 #include "stochnav/io/atomic_file.hpp"
 
@@ -104,6 +109,9 @@ struct SurveyStation {
   /// The QC of the station from its connection's static data alone (experiment/station_qc.hpp):
   /// the survey.csv columns after the DESIGN.md ones.
   StationQc qc;
+  /// 1-sigma of md_m relative to the tie-on (m), experiment/tally_smoother.hpp; NaN without
+  /// depth readings or without the depth aid's stated sigma.
+  double md_sigma_m = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The point of the minimum-curvature well path at a station.
@@ -115,24 +123,30 @@ struct WellPathPoint {
 };
 
 /// Minimum-curvature positions of the stations (inclination and azimuth in deg), from the
-/// tie-on at (0, 0, 0) and its measured depth; the first segment uses the first station's
-/// attitude at both ends. One point per station.
-std::vector<WellPathPoint> minimum_curvature_path(const std::vector<SurveyStation>& stations,
-                                                  double tie_on_md_m);
+/// tie-on at (0, 0, 0) and its measured depth; the first segment starts with the tie-on's
+/// direction when given, else with the first station's (a straight first segment). One point
+/// per station.
+std::vector<WellPathPoint> minimum_curvature_path(
+    const std::vector<SurveyStation>& stations, double tie_on_md_m,
+    const std::optional<SurveyDirection>& tie_on_direction = std::nullopt);
 
 /// Collects stations while a run goes, and an INS path (thinned) for the plot.
 class SurveyRecorder final {
  public:
   /// With a budget, every station gets its static QC (StationQc) from the span observe() is
-  /// given; without, the QC columns are NaN.
+  /// given; without, the QC columns are NaN. With the depth aid's stated sigma, stations with
+  /// depth readings get md_sigma_m; without, it is NaN.
   explicit SurveyRecorder(const SurveyTieOn& tie_on,
-                          std::optional<StationQcBudget> qc_budget = std::nullopt);
+                          std::optional<StationQcBudget> qc_budget = std::nullopt,
+                          std::optional<DepthReadingSigma> depth_sigma = std::nullopt);
 
   /// Call at every epoch at which any aid measured (and may be called at others).
   ///   state:        the navigator's state after the epoch's updates
   ///   covariance:   the 9 x 9 top-left block of P (dr ENU m, dv ENU m/s, phi rad)
   ///   stationary:   a zero-velocity update was accepted at this epoch
-  ///   measured_depth_m: the aid data's measured depth at this epoch, if the run has one
+  ///   measured_depth_m: the SENSOR's measured depth read at this epoch (the tally minus the
+  ///                 sensor-to-bit offset), if the run has one; a station's md_m is the mean
+  ///                 of its stationary span's readings
   ///   truth:        the true state at this epoch, when there is truth (for survey_errors.csv)
   ///   static_span:  the raw increments of the connection's stationary span so far (its first
   ///                 stationary aid epoch to this one), for the station's QC; may be null
@@ -172,8 +186,10 @@ class SurveyRecorder final {
 
   SurveyTieOn tie_on_;
   std::optional<StationQcBudget> qc_budget_;
-  double north_m_per_rad_ = 0.0;  ///< (R_M(lat0) + h0): latitude change to north metres
-  double east_m_per_rad_ = 0.0;   ///< (R_N(lat0) + h0) cos(lat0): longitude change to east metres
+  std::optional<DepthReadingSigma> depth_sigma_;
+  StationaryDepthMean span_depth_;  ///< the readings of the current stationary span
+  double north_m_per_rad_ = 0.0;    ///< (R_M(lat0) + h0): latitude change to north metres
+  double east_m_per_rad_ = 0.0;     ///< (R_N(lat0) + h0) cos(lat0): longitude change to east metres
   std::vector<SurveyStation> stations_;
   std::vector<SurveyStation> errors_;
   std::vector<WellPathPoint> ins_path_;

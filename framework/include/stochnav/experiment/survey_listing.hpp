@@ -41,6 +41,18 @@
 //                        North: at sin(inclination) < kNearVerticalSin (ins/mwd_attitude.hpp),
 //                        where the high-side toolface is undefined; 0 where it is the high-side
 //                        toolface
+//   mc_north_m, mc_east_m, mc_tvd_m
+//                        the station's position by MINIMUM CURVATURE (survey.hpp,
+//                        minimum_curvature_path) through the listed md_m, inclination_deg and
+//                        azimuth_deg from the tie-on at (0, 0, 0), TVD positive down (m): what a
+//                        client recomputing the listing gets. The first segment starts with the
+//                        tie-on's attitude when known (SurveyTieOn::direction), else straight
+//                        along the first station's. north_m/east_m/tvd_m are the INS filter's
+//                        positions, a second, independent solution of the same stations: the
+//                        two differ by the filter's position error plus minimum curvature's
+//                        (its circular-arc assumption and the MD and angle errors), which the
+//                        *_sigma_m columns bound on the simulated runs of
+//                        tests/experiment/survey_adds_up_test.cpp.
 //
 // The vertical-section azimuth, when not given, is the tie-on's azimuth (the planned direction
 // at the start) when the tie-on's attitude is known and more than 1 deg from vertical, else the
@@ -73,6 +85,9 @@ struct StationListing {
   double tvdss_m = 0.0;
   double azimuth_defined = 1.0;  ///< 1 or 0 (a CSV number)
   double gyro_toolface = 0.0;    ///< 1 or 0
+  double mc_north_m = 0.0;       ///< minimum curvature through the listed stations (m)
+  double mc_east_m = 0.0;
+  double mc_tvd_m = 0.0;  ///< positive down (m)
 };
 
 /// A horizontal error ellipse: semi-axes (m) and the major axis' azimuth, [0, 180) deg.

@@ -39,7 +39,9 @@
 //     "survey": {"vertical_section_azimuth_deg": 45,   // [0, 360); default: see SurveyConfig
 //                "ellipse_confidence": 0.95,           // (0, 1), the horizontal ellipse's
 //                "datum_elevation_m": 30,              // depth datum above MSL (m), optional
-//                "tie_on_tvd_m": 1200}                 // tie-on TVD below the datum, optional
+//                "tie_on_tvd_m": 1200,                 // tie-on TVD below the datum, optional
+//                "sensor_to_bit_m": 12.5,              // survey sensor behind the bit, [0, 200]
+//                "tie_on_md_tolerance_m": 5}           // tie-on MD vs first tally, (0, 1000]
 //   }
 // Three-axis values accept a number (all axes) or [x, y, z]. With "fit", the noise model is
 // fitted to the calibration record by the plugin's fitter (params then hold its fit options).
@@ -121,7 +123,9 @@ struct TieOnConfig {
   double longitude_deg = 0.0;               ///< "longitude_deg", required
   double height_m = 0.0;                    ///< "height_m", ellipsoidal, required
   std::optional<double> measured_depth_m;   ///< "measured_depth_m" (m), optional: absent, the
-                                            ///< aid data's first measured_depth_m, else 0
+                                            ///< tally at the start (the aid data's leading
+                                            ///< measured_depth_m at rest) minus
+                                            ///< "survey/sensor_to_bit_m", else 0
 };
 
 /// "initial_state/attitude": a known attitude (deg; ins/mwd_attitude.hpp conventions).
@@ -200,6 +204,16 @@ struct SurveyConfig {
   /// with datum_elevation_m. Absent: datum_elevation_m - the tie-on's height_m (the ellipsoidal
   /// height taken as the elevation above MSL: the geoid undulation, tens of metres, ignored).
   std::optional<double> tie_on_tvd_m;
+  /// "sensor_to_bit_m" (m): how far the survey sensor sits behind the bit, finite, [0, 200].
+  /// The depth data's "measured_depth_m" (a pipe tally) is the BIT's depth: a station's MD is
+  /// the tally minus this (experiment/tally_smoother.hpp), and so is the tie-on's MD when it is
+  /// not configured.
+  double sensor_to_bit_m = 0.0;
+  /// "tie_on_md_tolerance_m" (m), (0, 1000]: a configured tie-on MD
+  /// ("initial_state/tie_on/measured_depth_m") farther than this from the tally at the start
+  /// (the mean of the depth data's leading readings flagged "zupt", else its first) minus
+  /// sensor_to_bit_m is rejected (exit 2) before the run: one of them is wrong.
+  double tie_on_md_tolerance_m = 5.0;
 };
 
 struct RunConfig {

@@ -35,18 +35,23 @@ bool keep_every_other_point(std::vector<WellPathPoint>& path) {
 
 }  // namespace
 
-std::vector<WellPathPoint> minimum_curvature_path(const std::vector<SurveyStation>& stations,
-                                                  double tie_on_md_m) {
+std::vector<WellPathPoint> minimum_curvature_path(
+    const std::vector<SurveyStation>& stations, double tie_on_md_m,
+    const std::optional<SurveyDirection>& tie_on_direction) {
   std::vector<WellPathPoint> path;
   path.reserve(stations.size());
   WellPathPoint point{tie_on_md_m, 0.0, 0.0, 0.0};
   Eigen::Vector3d previous_direction;
+  if (tie_on_direction) {
+    previous_direction = hole_direction_nev(tie_on_direction->inclination_deg * kRadPerDeg,
+                                            tie_on_direction->azimuth_deg * kRadPerDeg);
+  }
   for (std::size_t i = 0; i < stations.size(); ++i) {
-    const Eigen::Vector3d direction = hole_direction_nev(
-        stations[i].inclination_deg * kRadPerDeg, stations[i].azimuth_deg * kRadPerDeg);
-    // The tie-on has no attitude of its own: the first segment is straight along the first
+    const Eigen::Vector3d direction = hole_direction_nev(stations[i].inclination_deg * kRadPerDeg,
+                                                         stations[i].azimuth_deg * kRadPerDeg);
+    // A tie-on without an attitude of its own: the first segment is straight along the first
     // station's direction.
-    if (i == 0) previous_direction = direction;
+    if (i == 0 && !tie_on_direction) previous_direction = direction;
     const double md_step_m = stations[i].md_m - point.md_m;
     const Eigen::Vector3d step_ned =
         minimum_curvature_step(previous_direction, direction, md_step_m);
@@ -58,8 +63,9 @@ std::vector<WellPathPoint> minimum_curvature_path(const std::vector<SurveyStatio
   return path;
 }
 
-SurveyRecorder::SurveyRecorder(const SurveyTieOn& tie_on, std::optional<StationQcBudget> qc_budget)
-    : tie_on_(tie_on), qc_budget_(qc_budget) {
+SurveyRecorder::SurveyRecorder(const SurveyTieOn& tie_on, std::optional<StationQcBudget> qc_budget,
+                               std::optional<DepthReadingSigma> depth_sigma)
+    : tie_on_(tie_on), qc_budget_(qc_budget), depth_sigma_(depth_sigma) {
   const EarthRadii radii = earth_radii(tie_on.latitude_rad);
   north_m_per_rad_ = radii.meridian_m + tie_on.height_m;
   east_m_per_rad_ = (radii.transverse_m + tie_on.height_m) * std::cos(tie_on.latitude_rad);
@@ -132,11 +138,19 @@ void SurveyRecorder::observe(const NavState& state, const Eigen::Matrix<double, 
 
   if (!stationary) {
     close_open_station();
+    span_depth_.reset();
     return;
   }
+  if (measured_depth_m) span_depth_.add(*measured_depth_m);
   // Still in the connection: this epoch replaces the previous candidate, so the station ends
-  // up at the connection's last stationary epoch, after all of its ZUPTs.
-  open_station_ = station_candidate(state, covariance, position_m, md_m);
+  // up at the connection's last stationary epoch, after all of its ZUPTs, at the mean depth
+  // of its readings so far.
+  const bool has_readings = span_depth_.count() > 0;
+  open_station_ =
+      station_candidate(state, covariance, position_m, has_readings ? span_depth_.mean_m() : md_m);
+  if (has_readings && depth_sigma_) {
+    open_station_->md_sigma_m = span_depth_.sigma_m(*depth_sigma_, tie_on_.measured_depth_m);
+  }
   open_station_->qc =
       station_qc(qc_budget_ && static_span ? *static_span : StaticSpan{},
                  qc_budget_.value_or(StationQcBudget{}), state.t_s, open_station_->inclination_deg,

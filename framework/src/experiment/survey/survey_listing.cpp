@@ -103,10 +103,15 @@ std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& sta
   const double vs_azimuth_rad =
       vertical_section_azimuth_deg(stations, tie_on, options) * kRadPerDeg;
   const std::optional<double> tie_on_tvd = tie_on_tvd_below_datum_m(tie_on, options);
+  const std::vector<WellPathPoint> minimum_curvature =
+      minimum_curvature_path(stations, tie_on.measured_depth_m, tie_on.direction);
   std::vector<StationListing> listing(stations.size());
   for (std::size_t i = 0; i < stations.size(); ++i) {
     const SurveyStation& s = stations[i];
     StationListing& row = listing[i];
+    row.mc_north_m = minimum_curvature[i].north_m;
+    row.mc_east_m = minimum_curvature[i].east_m;
+    row.mc_tvd_m = minimum_curvature[i].tvd_m;
     if (i > 0) {
       set_rates(row, stations[i - 1].inclination_deg, stations[i - 1].azimuth_deg, s,
                 s.md_m - stations[i - 1].md_m);
