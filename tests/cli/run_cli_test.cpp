@@ -397,7 +397,7 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
       ",qc_azimuth_sigmas,qc_flag,dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,"
       "closure_azimuth_deg,vertical_section_m,ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,"
       "ellipse_semi_minor_m,ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m,azimuth_defined,"
-      "gyro_toolface,mc_north_m,mc_east_m,mc_tvd_m,md_sigma_m"))
+      "gyro_toolface,mc_north_m,mc_east_m,mc_tvd_m,md_sigma_m,station_type"))
       << header_line;
   const std::vector<std::string> header = csv_cells(header_line);
   std::vector<std::vector<std::string>> rows;
@@ -411,8 +411,15 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
     }
     return std::stod(rows[row][static_cast<std::size_t>(at - header.begin())]);
   };
-  // An aligned start: the tie-on's attitude is not configured, so the first station has no rates.
+  // The tie-on row first (no rates); after an aligned start the tie-on's attitude is the
+  // aligned one, so the first station has rates from it.
+  EXPECT_EQ(rows[0].back(), "tie_on");
   EXPECT_TRUE(std::isnan(cell(0, "dls_deg_30m")));
+  EXPECT_EQ(cell(0, "md_m"), 450.0);
+  EXPECT_EQ(cell(0, "north_m"), 0.0);
+  EXPECT_GT(cell(0, "north_sigma_m"), 0.0) << "the initial covariance's";
+  EXPECT_EQ(rows[1].back(), "survey");
+  EXPECT_TRUE(std::isfinite(cell(1, "dls_deg_30m")));
   const std::size_t r = rows.size() - 1;
   EXPECT_TRUE(std::isfinite(cell(r, "dls_deg_30m")));
   EXPECT_GE(cell(r, "dls_deg_30m"), 0.0);
@@ -464,13 +471,24 @@ TEST_F(RunCli, TieOnMdIsCheckedAgainstTheTallyTakenToTheSensor) {
   ASSERT_EQ(accepted.exit_code, 0) << accepted.err;
   const auto survey = stochnav::testing::read_csv_columns((out / "survey.csv").string());
   const auto aids = stochnav::testing::read_csv_columns(data + "/aids.csv");
-  ASSERT_GE(survey.at("md_m").size(), 2u);
+  ASSERT_GE(survey.at("md_m").size(), 3u);
+  const auto types =
+      stochnav::testing::read_csv_text_column((out / "survey.csv").string(), "station_type");
+  ASSERT_EQ(types.size(), survey.at("md_m").size());
+  EXPECT_EQ(types.front(), "tie_on");
+  EXPECT_EQ(types.back(), "projection_to_bit");
+  EXPECT_EQ(survey.at("md_m").front(), 400.0) << "the configured tie-on";
   // The first station, at the end of the static start: the mean tally there, minus 50 m.
-  EXPECT_NEAR(survey.at("md_m").front(), aids.at("measured_depth_m").front() - 50.0, 0.2);
-  for (double md_sigma : survey.at("md_sigma_m")) {
-    EXPECT_GT(md_sigma, 0.0);
-    EXPECT_LT(md_sigma, 0.06) << "the pipe_length aid's 5 cm per reading, and its scale error";
+  EXPECT_NEAR(survey.at("md_m")[1], aids.at("measured_depth_m").front() - 50.0, 0.2);
+  for (std::size_t i = 1; i + 1 < types.size(); ++i) {
+    EXPECT_EQ(types[i], "survey");
+    EXPECT_GT(survey.at("md_sigma_m")[i], 0.0);
+    EXPECT_LT(survey.at("md_sigma_m")[i], 0.06)
+        << "the pipe_length aid's 5 cm per reading, and its scale error";
   }
+  // The projection to the bit: 50 m beyond the last station.
+  const std::size_t last = types.size() - 2;
+  EXPECT_NEAR(survey.at("md_m").back(), survey.at("md_m")[last] + 50.0, 1e-5);
 }
 
 class BadRun : public RunCli, public ::testing::WithParamInterface<BadRunCase> {};

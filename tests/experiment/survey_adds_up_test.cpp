@@ -4,8 +4,8 @@
 // configs/runs/drilling_build_hold.json. survey.csv carries both solutions of every station:
 // the INS filter's (north_m, east_m, tvd_m) and minimum curvature through the listed MD,
 // inclination and azimuth (mc_*). Checked:
-//   - a client recomputing minimum curvature from survey.csv (the tie-on's MD and attitude from
-//     trajectory.xml's tie-in point) reproduces mc_* to 1e-6 m;
+//   - a client recomputing minimum curvature from survey.csv alone (its tie-on row, then the
+//     stations) reproduces mc_* to 1e-6 m; the tie-on row is trajectory.xml's tie-in point;
 //   - per station and axis, |INS - MC| <= 3 sigma, sigma = sqrt(sigma_INS^2 + (md_sigma_m
 //     t)^2) with t the axis' component of the hole direction: the filter's stated position
 //     sigma and the smoothed MD's stated sigma along the hole (minimum curvature's own angle
@@ -73,6 +73,18 @@ ListedStation listed_tie_on(const std::string& run) {
           std::stod(tie_in.child_value("azi"))};
 }
 
+// survey.csv's rows: the tie-on first (station_type tie_on), then the stations (survey).
+ListedStation tie_on_row(const CsvColumns& survey) {
+  return {survey.at("md_m")[0], survey.at("inclination_deg")[0], survey.at("azimuth_deg")[0]};
+}
+
+// The survey stations' columns only (the rows after the tie-on's).
+CsvColumns station_rows(const CsvColumns& survey) {
+  CsvColumns stations;
+  for (const auto& [name, column] : survey) stations[name].assign(column.begin() + 1, column.end());
+  return stations;
+}
+
 std::vector<ListedStation> listed_stations(const CsvColumns& survey, double md_offset_m = 0.0) {
   std::vector<ListedStation> stations;
   for (std::size_t i = 0; i < survey.at("md_m").size(); ++i) {
@@ -111,10 +123,9 @@ std::vector<ListedPosition> listed_mc(const CsvColumns& survey) {
   return mc;
 }
 
-// A client's recomputation from survey.csv and the tie-in point reproduces mc_* (m).
-double worst_client_difference_m(const std::string& run, const CsvColumns& survey) {
-  const auto client =
-      stochnav::testing::client_minimum_curvature(listed_tie_on(run), listed_stations(survey));
+// A client's recomputation from survey.csv's rows reproduces mc_* (m).
+double worst_client_difference_m(const ListedStation& tie_on, const CsvColumns& survey) {
+  const auto client = stochnav::testing::client_minimum_curvature(tie_on, listed_stations(survey));
   const auto listed = listed_mc(survey);
   double worst_m = 0.0;
   for (std::size_t i = 0; i < client.size(); ++i) {
@@ -131,7 +142,17 @@ double worst_client_difference_m(const std::string& run, const CsvColumns& surve
 TEST(SurveyAddsUp, ClientReproducesTheListingAndInsAgreesWithMinimumCurvature) {
   const stochnav::testing::TempDir scratch;
   const std::string run = drilling_run(scratch);
-  const CsvColumns survey = read_csv_columns(run + "/survey.csv");
+  const CsvColumns listing = read_csv_columns(run + "/survey.csv");
+  const auto types = stochnav::testing::read_csv_text_column(run + "/survey.csv", "station_type");
+  ASSERT_GE(types.size(), 4u);
+  EXPECT_EQ(types[0], "tie_on");
+  for (std::size_t i = 1; i < types.size(); ++i) EXPECT_EQ(types[i], "survey") << i;
+  const ListedStation tie_on = tie_on_row(listing);
+  const ListedStation tie_in = listed_tie_on(run);
+  EXPECT_EQ(tie_on.md_m, tie_in.md_m);
+  EXPECT_EQ(tie_on.inclination_deg, tie_in.inclination_deg);
+  EXPECT_EQ(tie_on.azimuth_deg, tie_in.azimuth_deg);
+  const CsvColumns survey = station_rows(listing);
   const CsvColumns errors = read_csv_columns(run + "/survey_errors.csv");
   const std::size_t stations = survey.at("md_m").size();
   ASSERT_GE(stations, 3u);
@@ -140,7 +161,7 @@ TEST(SurveyAddsUp, ClientReproducesTheListingAndInsAgreesWithMinimumCurvature) {
     EXPECT_TRUE(std::isfinite(survey.at("md_sigma_m")[i])) << "station " << i;
     EXPECT_GT(survey.at("md_sigma_m")[i], 0.0) << "station " << i;
   }
-  EXPECT_LT(worst_client_difference_m(run, survey), 1e-6);
+  EXPECT_LT(worst_client_difference_m(tie_on, survey), 1e-6);
 
   const std::vector<ListedPosition> mc = listed_mc(survey);
   const double worst = worst_ins_vs_mc_sigmas(survey, mc);
@@ -169,7 +190,7 @@ TEST(SurveyAddsUp, ClientReproducesTheListingAndInsAgreesWithMinimumCurvature) {
   // The check has teeth: station MDs read 2 m deep against the tie-on (the raw tally with an
   // offset) put minimum curvature metres along the hole from the INS.
   const auto offset_mc =
-      stochnav::testing::client_minimum_curvature(listed_tie_on(run), listed_stations(survey, 2.0));
+      stochnav::testing::client_minimum_curvature(tie_on, listed_stations(survey, 2.0));
   const double worst_offset = worst_ins_vs_mc_sigmas(survey, offset_mc);
   std::printf("with station MDs 2 m deep: worst |INS - MC| %.1f sigma\n", worst_offset);
   EXPECT_GT(worst_offset, 3.0);

@@ -331,15 +331,16 @@ TEST(SurveyListing, SurveyCsvCarriesTheColumnsAfterTheQc) {
   auto files = write_survey_files(recorder, tie_on, dir.path(), false, options);
   for (auto& file : files) file->commit();
   const auto survey = read_lines(dir.path() / "survey.csv");
-  ASSERT_EQ(survey.size(), 2u);
+  ASSERT_EQ(survey.size(), 3u);  // the tie-on row, the station
   const std::string listing_columns =
       ",qc_flag,dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,closure_azimuth_deg,"
       "vertical_section_m,ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,ellipse_semi_minor_m,"
       "ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface,mc_north_m,"
-      "mc_east_m,mc_tvd_m,md_sigma_m";
+      "mc_east_m,mc_tvd_m,md_sigma_m,station_type";
   ASSERT_TRUE(survey[0].ends_with(listing_columns)) << survey[0];
   const auto header = split(survey[0]);
-  const auto row = split(survey[1]);
+  EXPECT_TRUE(survey[1].ends_with(",tie_on")) << survey[1];
+  const auto row = split(survey[2]);
   ASSERT_EQ(row.size(), header.size());
   const auto cell = [&](const std::string& name) {
     for (std::size_t i = 0; i < header.size(); ++i) {

@@ -61,12 +61,12 @@ TEST(SurveyStart, TieOnMdFarFromTheTallyNamesThePointerAndBothValues) {
 
 TEST(SurveyStart, TieOnMdFromTheTallyTakenToTheSensor) {
   const NavState start;
-  EXPECT_NEAR(survey_tie_on(config_with_tie_on_md(std::nullopt, 12.5), start, 500.0)
+  EXPECT_NEAR(survey_tie_on(config_with_tie_on_md(std::nullopt, 12.5), start, start, 500.0)
                   .measured_depth_m,
               487.5, 1e-12);
-  EXPECT_EQ(survey_tie_on(config_with_tie_on_md(480.0, 12.5), start, 500.0).measured_depth_m,
+  EXPECT_EQ(survey_tie_on(config_with_tie_on_md(480.0, 12.5), start, start, 500.0).measured_depth_m,
             480.0);
-  EXPECT_EQ(survey_tie_on(plugin::RunConfig{}, start, std::nullopt).measured_depth_m, 0.0);
+  EXPECT_EQ(survey_tie_on(plugin::RunConfig{}, start, start, std::nullopt).measured_depth_m, 0.0);
   EXPECT_EQ(sensor_md_m(config_with_tie_on_md(std::nullopt, 12.5), 1000.0), 987.5);
 }
 

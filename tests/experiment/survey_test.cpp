@@ -511,7 +511,7 @@ constexpr const char* kListingColumns =
     ",dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,closure_azimuth_deg,vertical_section_m,"
     "ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,ellipse_semi_minor_m,ellipse_azimuth_deg,"
     "tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface,mc_north_m,mc_east_m,mc_tvd_m,"
-    "md_sigma_m";
+    "md_sigma_m,station_type";
 
 // The first `count` cells of a CSV row.
 std::string first_cells(const std::string& row, int count) {
@@ -535,13 +535,20 @@ TEST(SurveyFiles, AppearOnlyOnCommit) {
   EXPECT_EQ(files_in(dir.path()), 4u);
 
   const auto survey = read_lines(dir.path() / "survey.csv");
-  ASSERT_EQ(survey.size(), 4u);
+  ASSERT_EQ(survey.size(), 5u);  // the tie-on row and three stations
   EXPECT_EQ(survey[0], std::string(kSurveyHeader) + kListingColumns);
+  // The tie-on without a recorded start: its MD at (0, 0, 0), attitude and sigmas unknown.
+  EXPECT_EQ(first_cells(survey[1], 13), "nan,1000,nan,nan,nan,0,0,0,nan,nan,nan,nan,nan")
+      << survey[1];
+  EXPECT_TRUE(survey[1].ends_with(",0,0,0.000000,0.000000,0.000000,0,tie_on")) << survey[1];
+  for (std::size_t i = 2; i < survey.size(); ++i) {
+    EXPECT_TRUE(survey[i].ends_with(",survey")) << survey[i];
+  }
   // The near-vertical first station has no azimuth sigma.
-  EXPECT_NE(first_cells(survey[1], 13).find(",nan,"), std::string::npos) << survey[1];
-  EXPECT_EQ(first_cells(survey[2], 13).find("nan"), std::string::npos) << survey[2];
+  EXPECT_NE(first_cells(survey[2], 13).find(",nan,"), std::string::npos) << survey[2];
+  EXPECT_EQ(first_cells(survey[3], 13).find("nan"), std::string::npos) << survey[3];
   // 9 significant digits: the time and depth read back to 1e-8 relative.
-  std::istringstream row(survey[2]);
+  std::istringstream row(survey[3]);
   std::string t, md;
   std::getline(row, t, ',');
   std::getline(row, md, ',');
@@ -565,7 +572,7 @@ TEST(SurveyFiles, AppearOnlyOnCommit) {
   EXPECT_EQ(well_path[1], "minimum_curvature,1000,0,0,0");
 }
 
-/// survey.csv's columns by name (numbers; "nan" as NaN).
+/// survey.csv's columns by name (numbers; "nan" and text as NaN).
 std::map<std::string, std::vector<double>> survey_columns(const std::filesystem::path& path) {
   const auto lines = read_lines(path);
   std::map<std::string, std::vector<double>> columns;
@@ -576,7 +583,9 @@ std::map<std::string, std::vector<double>> survey_columns(const std::filesystem:
     std::istringstream cells(lines[row]);
     std::string cell;
     for (std::size_t i = 0; i < names.size() && std::getline(cells, cell, ','); ++i) {
-      columns[names[i]].push_back(cell == "nan" ? std::nan("") : std::stod(cell));
+      const bool number = cell != "nan" && cell.find_first_of("_abcdefghijklmopqrsuvwxyz") ==
+                                               std::string::npos;
+      columns[names[i]].push_back(number ? std::stod(cell) : std::nan(""));
     }
   }
   return columns;
@@ -610,20 +619,24 @@ TEST(SurveyFiles, ClientMinimumCurvatureFromTheListingReproducesItsColumns) {
   auto files = write_survey_files(recorder, tie_on, dir.path(), false);
   for (auto& file : files) file->commit();
   const auto listing = survey_columns(dir.path() / "survey.csv");
+  // The tie-on row first (MD and attitude to 9 digits), then the stations.
+  const testing::ListedStation listed_tie_on{
+      listing.at("md_m")[0], listing.at("inclination_deg")[0], listing.at("azimuth_deg")[0]};
+  EXPECT_EQ(listed_tie_on.md_m, 2500.12346);
+  EXPECT_EQ(listed_tie_on.inclination_deg, 12.3456789);
+  EXPECT_EQ(listed_tie_on.azimuth_deg, 201.987654);
   std::vector<testing::ListedStation> listed;
-  for (std::size_t i = 0; i < listing.at("md_m").size(); ++i) {
+  for (std::size_t i = 1; i < listing.at("md_m").size(); ++i) {
     listed.push_back(
         {listing.at("md_m")[i], listing.at("inclination_deg")[i], listing.at("azimuth_deg")[i]});
   }
-  // The tie-on's MD and attitude as the WITSML tie-in point lists them (9 digits).
-  const testing::ListedStation listed_tie_on{2500.12346, 12.3456789, 201.987654};
   const auto client = testing::client_minimum_curvature(listed_tie_on, listed);
-  ASSERT_EQ(client.size(), listed.size());
+  ASSERT_EQ(client.size(), static_cast<std::size_t>(kStations));
   double worst_m = 0.0;
   for (std::size_t i = 0; i < client.size(); ++i) {
-    worst_m = std::max({worst_m, std::abs(client[i].north_m - listing.at("mc_north_m")[i]),
-                        std::abs(client[i].east_m - listing.at("mc_east_m")[i]),
-                        std::abs(client[i].tvd_m - listing.at("mc_tvd_m")[i])});
+    worst_m = std::max({worst_m, std::abs(client[i].north_m - listing.at("mc_north_m")[i + 1]),
+                        std::abs(client[i].east_m - listing.at("mc_east_m")[i + 1]),
+                        std::abs(client[i].tvd_m - listing.at("mc_tvd_m")[i + 1])});
   }
   std::printf("worst client-recomputation difference %.3g m over %d stations, %.0f m of hole\n",
               worst_m, kStations, listed.back().md_m - listed_tie_on.md_m);
@@ -631,6 +644,72 @@ TEST(SurveyFiles, ClientMinimumCurvatureFromTheListingReproducesItsColumns) {
   EXPECT_GT(std::abs(listing.at("mc_east_m").back()) + std::abs(listing.at("mc_north_m").back()),
             100.0)
       << "a well that goes somewhere";
+}
+
+// The tie-on row from the navigation's start: the tie-on's MD and direction, the start's
+// toolface, (0, 0, 0), the initial covariance's sigmas; and, with a sensor-to-bit offset, the
+// projection to the bit after the last station: straight along its attitude, MD + offset.
+TEST(SurveyFiles, TieOnRowFirstAndProjectionToTheBitLast) {
+  SurveyTieOn tie_on = kTieOn;
+  tie_on.direction = SurveyDirection{0.5, 30.0};
+  SurveyRecorder recorder(tie_on);
+  recorder.record_tie_on(state_at(-5.0, 3.0, 4.0, 5.0, attitude_deg(0.7, 15.0, 31.0)),
+                         known_covariance());
+  for (const Epoch& e : three_connections()) {
+    recorder.observe(
+        state_at(e.t_s, 0.0, 0.0, e.tvd_m, attitude_deg(e.t_s < 3.0 ? 0.5 : 40.0, 20.0, 60.0)),
+        known_covariance(), e.stationary, 1000.0 + e.tvd_m, nullptr);
+  }
+  recorder.finish();
+  const SurveyStation row = recorder.tie_on_station();
+  EXPECT_EQ(row.type, SurveyStationType::kTieOn);
+  EXPECT_EQ(row.t_s, -5.0);
+  EXPECT_EQ(row.md_m, 1000.0);
+  EXPECT_EQ(row.inclination_deg, 0.5) << "the tie-on's direction, not the state's 0.7";
+  EXPECT_EQ(row.azimuth_deg, 30.0);
+  EXPECT_EQ(row.north_m, 0.0);
+  EXPECT_EQ(row.tvd_m, 0.0);
+  EXPECT_DOUBLE_EQ(row.north_sigma_m, 3.0);  // known_covariance: N 9, E 4, U 16 m^2
+  EXPECT_DOUBLE_EQ(row.tvd_sigma_m, 4.0);
+  EXPECT_EQ(row.md_sigma_m, 0.0);
+
+  const testing::TempDir dir;
+  SurveyListingOptions options;
+  options.sensor_to_bit_m = 12.5;
+  auto files = write_survey_files(recorder, tie_on, dir.path(), false, options);
+  for (auto& file : files) file->commit();
+  const auto listing = survey_columns(dir.path() / "survey.csv");
+  const auto lines = read_lines(dir.path() / "survey.csv");
+  ASSERT_EQ(lines.size(), 1u + 1u + 3u + 1u);
+  EXPECT_TRUE(lines[1].ends_with(",tie_on"));
+  EXPECT_TRUE(lines[4].ends_with(",survey"));
+  EXPECT_TRUE(lines[5].ends_with(",projection_to_bit"));
+  const std::size_t last = 3, bit = 4;  // data rows: the tie-on, three stations, the bit
+  EXPECT_NEAR(listing.at("md_m")[bit], listing.at("md_m")[last] + 12.5, 1e-6);
+  const double along = 12.5;
+  const double inclination = 40.0 * kRadPerDeg, azimuth = 60.0 * kRadPerDeg;
+  for (const auto& [column, component] :
+       {std::pair{"north_m", std::sin(inclination) * std::cos(azimuth)},
+        std::pair{"east_m", std::sin(inclination) * std::sin(azimuth)},
+        std::pair{"tvd_m", std::cos(inclination)}}) {
+    EXPECT_NEAR(listing.at(column)[bit] - listing.at(column)[last], along * component, 1e-6)
+        << column;
+    const std::string mc = std::string("mc_") + column;
+    EXPECT_NEAR(listing.at(mc)[bit] - listing.at(mc)[last], along * component, 2e-6) << mc;
+  }
+  EXPECT_NEAR(listing.at("dls_deg_30m")[bit], 0.0, 1e-9) << "straight: no dogleg";
+  EXPECT_EQ(listing.at("inclination_sigma_deg")[bit], listing.at("inclination_sigma_deg")[last]);
+  EXPECT_TRUE(std::isnan(listing.at("qc_flag")[bit]));
+  // The tie-on row: no rates, the origin of closure, vertical section and minimum curvature.
+  EXPECT_TRUE(std::isnan(listing.at("dls_deg_30m")[0]));
+  EXPECT_EQ(listing.at("closure_m")[0], 0.0);
+  EXPECT_EQ(listing.at("mc_tvd_m")[0], 0.0);
+  // known_covariance's [[9, 1.5], [1.5, 4]] m^2: major eigenvalue 6.5 + hypot(2.5, 1.5).
+  EXPECT_NEAR(listing.at("ellipse_semi_major_m")[0],
+              std::sqrt(-2.0 * std::log(0.05)) * std::sqrt(6.5 + std::hypot(2.5, 1.5)), 1e-6);
+  // survey_errors.csv and trajectory.xml have the survey stations only (the tie-in point is
+  // trajectory.xml's own).
+  EXPECT_EQ(read_lines(dir.path() / "well_path.csv")[1], "minimum_curvature,1000,0,0,0");
 }
 
 TEST(SurveyFiles, UncommittedFilesLeaveNothing) {

@@ -21,6 +21,15 @@
 // A station is taken at the LAST stationary aid epoch of each connection (the filter has then
 // used every ZUPT of it); a record that ends while stationary yields a final station.
 //
+// Rows of survey.csv (column station_type, the last): first the TIE-ON ("tie_on": its MD, the
+// attitude known there (SurveyTieOn::direction; toolface from the start state), position
+// (0, 0, 0), the sigmas of the filter's initial covariance, md_sigma_m 0: the reference of the
+// others; QC and rates NaN), then one row per connection ("survey"), then, with a sensor-to-bit
+// offset X > 0, the PROJECTION TO THE BIT ("projection_to_bit": X m beyond the last station,
+// straight along its attitude (minimum curvature with no dogleg), its sigmas the last
+// station's: the projection's own error, the unknown curvature over X, is not in them).
+// metrics.json's station count counts the "survey" rows only; survey_errors.csv has those only.
+//
 // Without measured depth in the data, md_m is the tie-on MD plus the length of the INS path
 // (the sum of the 3-D distances between the positions of successive observe() calls, starting
 // at the first one, which is taken to be at the tie-on); position jitter while stationary
@@ -49,6 +58,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "stochnav/experiment/station_qc.hpp"
@@ -85,7 +95,15 @@ struct SurveyListingOptions {
   std::optional<double> datum_elevation_m;             ///< depth datum's elevation above MSL (m)
   /// The tie-on's TVD below the datum (m); absent: datum_elevation_m - tie_on.height_m.
   std::optional<double> tie_on_tvd_m;
+  /// The survey sensor's distance behind the bit (m), >= 0: > 0 adds the projection-to-bit row.
+  double sensor_to_bit_m = 0.0;
 };
+
+/// What a row of survey.csv is (its column station_type).
+enum class SurveyStationType { kTieOn, kSurvey, kProjectionToBit };
+
+/// The station_type text: "tie_on", "survey", "projection_to_bit".
+std::string_view station_type_name(SurveyStationType type);
 
 /// One survey station: exactly the columns of survey.csv, in that order.
 struct SurveyStation {
@@ -112,6 +130,7 @@ struct SurveyStation {
   /// 1-sigma of md_m relative to the tie-on (m), experiment/tally_smoother.hpp; NaN without
   /// depth readings or without the depth aid's stated sigma.
   double md_sigma_m = std::numeric_limits<double>::quiet_NaN();
+  SurveyStationType type = SurveyStationType::kSurvey;
 };
 
 /// The point of the minimum-curvature well path at a station.
@@ -121,6 +140,11 @@ struct WellPathPoint {
   double east_m = 0.0;
   double tvd_m = 0.0;
 };
+
+/// The projection of `last` (a survey station) `distance_m` ahead along its attitude: MD,
+/// north/east/TVD moved straight along its direction, everything else (attitude, sigmas,
+/// covariance, time) the station's; type kProjectionToBit, QC undefined.
+SurveyStation projected_to_bit(const SurveyStation& last, double distance_m);
 
 /// Minimum-curvature positions of the stations (inclination and azimuth in deg), from the
 /// tie-on at (0, 0, 0) and its measured depth; the first segment starts with the tie-on's
@@ -153,6 +177,18 @@ class SurveyRecorder final {
   void observe(const NavState& state, const Eigen::Matrix<double, 9, 9>& covariance,
                bool stationary, std::optional<double> measured_depth_m, const NavState* truth,
                const StaticSpan* static_span = nullptr);
+
+  /// Records the tie-on row (SurveyStationType::kTieOn) from the navigation's start:
+  ///   state:      the start's attitude (before any deliberate initial error; its position is
+  ///               not used: the row is at (0, 0, 0))
+  ///   covariance: the filter's initial 9 x 9 covariance (as observe()'s)
+  /// Inclination and azimuth are the tie-on's direction where known (so that minimum curvature
+  /// starts from what the row lists), else the state's. Call once, before the first observe().
+  void record_tie_on(const NavState& state, const Eigen::Matrix<double, 9, 9>& covariance);
+
+  /// The tie-on row: as recorded, else from the SurveyTieOn alone (its MD, its direction or NaN,
+  /// position (0, 0, 0), time, toolface and sigmas NaN).
+  SurveyStation tie_on_station() const;
 
   /// Closes an open connection at the end of the record (its last stationary epoch becomes a
   /// station). Call once, after the last epoch.
@@ -200,15 +236,19 @@ class SurveyRecorder final {
   bool last_path_point_is_extra_ = false;  ///< ins_path_.back() is the latest, off-stride epoch
   std::optional<SurveyStation> open_station_;
   std::optional<SurveyStation> open_error_;
+  std::optional<SurveyStation> tie_on_station_;
 };
 
 /// Writes the survey files into temporary files beside their final paths in out_dir and
 /// returns them uncommitted: the caller renames them into place (PendingFile::commit) together
 /// with the run's other files, so a failed run leaves none of them.
-///   survey.csv          the stations (header as DESIGN.md, then the QC columns, then the
-///                       listing's of experiment/survey_listing.hpp under `listing`)
-///   trajectory.xml      the same stations as a WITSML 1.4.1.1 trajectory, the tie-on first
-///                       (experiment/witsml_trajectory.hpp)
+///   survey.csv          the tie-on row, the stations and, with listing.sensor_to_bit_m > 0,
+///                       the projection to the bit (header as DESIGN.md, then the QC columns,
+///                       then the listing's of experiment/survey_listing.hpp under `listing`,
+///                       then station_type). MD, inclination and azimuth enter the derived
+///                       columns as printed (9 significant digits).
+///   trajectory.xml      the tie-on and the survey stations (not the projection) as a WITSML
+///                       1.4.1.1 trajectory (experiment/witsml_trajectory.hpp)
 ///   survey_errors.csv   the stations' errors (DESIGN.md's and the QC columns, not the
 ///                       listing's), only when there are any
 ///   well_path.csv       md_m, north/east/tvd by minimum curvature at the stations, and the INS

@@ -9,8 +9,9 @@
 //   turn_deg_30m         (A - A_previous, wrapped to (-180, 180]) / dMD * 30 m: azimuth rate,
 //                        positive turning right (clockwise from above)
 //                        The three rates are NaN on the first station when the tie-on's
-//                        attitude is not known (SurveyTieOn::direction: a configured initial
-//                        attitude, or the truth's at a start from truth), and on any station
+//                        attitude is not known (SurveyTieOn::direction: a run sets it from the
+//                        configured initial attitude, the aligned one after an alignment, or
+//                        the truth's at a start from truth), and on any station
 //                        whose MD does not exceed the previous one (dMD <= 0); the turn rate
 //                        also where either station is within 1 deg of vertical (the azimuth
 //                        undefined there).
@@ -34,7 +35,8 @@
 //   tvdss_m              TVD below mean sea level (subsea), POSITIVE DOWN (negative above
 //                        MSL): tvd_below_datum_m - datum_elevation_m (m)
 //                        Both NaN without a datum (SurveyListingOptions::datum_elevation_m).
-//   azimuth_defined      1 where the azimuth means something, 0 within 1 deg of vertical, where
+//   azimuth_defined      1 where the azimuth means something, 0 within 1 deg of vertical (or
+//                        where the azimuth is unknown: NaN, a tie-on without attitude), where
 //                        a tiny tilt swings it through any angle (azimuth_deg is then the MWD
 //                        convention's value, its sigma large or NaN, and no turn rate is given)
 //   gyro_toolface        1 where toolface_deg is the gyro ("north") toolface, the angle from
@@ -120,5 +122,12 @@ std::optional<double> tie_on_tvd_below_datum_m(const SurveyTieOn& tie_on,
 std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& stations,
                                            const SurveyTieOn& tie_on,
                                            const SurveyListingOptions& options);
+
+/// The derived columns of the tie-on row (SurveyRecorder::tie_on_station) listed before
+/// `stations`: no rates (NaN), closure and vertical section 0 at (0, 0, 0), the covariances and
+/// ellipse of its covariance, the datum depths of the tie-on, minimum curvature's origin.
+StationListing tie_on_listing(const SurveyStation& tie_on_row,
+                              const std::vector<SurveyStation>& stations,
+                              const SurveyTieOn& tie_on, const SurveyListingOptions& options);
 
 }  // namespace stochnav

@@ -192,8 +192,9 @@ struct OutputConfig {
 /// experiment/survey_listing.hpp). Every key optional.
 struct SurveyConfig {
   /// "vertical_section_azimuth_deg" (deg from true north), [0, 360). Absent: the tie-on's
-  /// azimuth when known ("initial_state/attitude", or truth's at a start from truth) and more
-  /// than 1 deg from vertical, else the closure azimuth of the last station.
+  /// azimuth ("initial_state/attitude", the aligned one after "alignment", or truth's at a start
+  /// from truth) when more than 1 deg from vertical, else the closure azimuth of the last
+  /// station.
   std::optional<double> vertical_section_azimuth_deg;
   /// "ellipse_confidence": the probability inside the horizontal error ellipse, (0, 1).
   double ellipse_confidence = 0.95;

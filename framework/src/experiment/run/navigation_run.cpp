@@ -291,6 +291,7 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
     filter = aligned.options;
     aligner.reset();  // the span's epochs are not needed again
   }
+  const NavState at_tie_on = initial;  // aligned, before the deliberate error: the tie-on row
   NavigationRunResult result;
   result.start = initial;
   const FilterStart start = filter_start(config, initial, filter);
@@ -317,10 +318,11 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   // The survey: tie-on at the start position, its MD and attitude (run/survey_start.hpp).
   const std::span<const double> aid_times = aid_data.time_s();
   const plugin::AidSchedule aid_rows = plugin::AidSchedule::at_rows(aid_times);
-  const SurveyTieOn tie_on = survey_tie_on(config, tie_on_state, tally_at_start_m);
+  const SurveyTieOn tie_on = survey_tie_on(config, tie_on_state, at_tie_on, tally_at_start_m);
   SurveyRecorder survey(
       tie_on, station_qc_budget(config, tie_on_state, *plugins.gyro, *plugins.accel, initial.t_s),
       stated_depth_sigma(config));
+  survey.record_tie_on(at_tie_on, navigator.covariance().topLeftCorner<9, 9>());
   StaticSpan since_aid_epoch;  // raw increments since the last aid epoch
   StaticSpan connection_span;  // of the current stationary span (a connection)
   bool was_stationary = false;
@@ -428,7 +430,8 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   if (files) {
     const SurveyListingOptions listing{config.survey.vertical_section_azimuth_deg,
                                        config.survey.ellipse_confidence,
-                                       config.survey.datum_elevation_m, config.survey.tie_on_tvd_m};
+                                       config.survey.datum_elevation_m, config.survey.tie_on_tvd_m,
+                                       config.survey.sensor_to_bit_m};
     files->commit(result, options.plot, survey, tie_on, listing);
   }
   return result;

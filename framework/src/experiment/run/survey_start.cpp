@@ -47,12 +47,12 @@ void check_tie_on_against_tally(const plugin::RunConfig& config,
       "/survey/sensor_to_bit_m {} m gives {:.3f} m, more than /survey/tie_on_md_tolerance_m {} "
       "m away; correct the tie-on MD or the sensor-to-bit offset (or leave measured_depth_m "
       "out to take it from the tally)",
-      kTieOnMdPointer, configured_m, *tally_at_start_m, config.survey.sensor_to_bit_m,
-      from_tally_m, config.survey.tie_on_md_tolerance_m));
+      kTieOnMdPointer, configured_m, *tally_at_start_m, config.survey.sensor_to_bit_m, from_tally_m,
+      config.survey.tie_on_md_tolerance_m));
 }
 
 SurveyTieOn survey_tie_on(const plugin::RunConfig& config, const NavState& start,
-                          std::optional<double> tally_at_start_m) {
+                          const NavState& attitude, std::optional<double> tally_at_start_m) {
   SurveyTieOn tie_on{start.latitude_rad, start.longitude_rad, start.height_m,
                      tally_at_start_m ? sensor_md_m(config, *tally_at_start_m) : 0.0};
   if (config.initial_state && config.initial_state->tie_on.measured_depth_m) {
@@ -61,11 +61,10 @@ SurveyTieOn survey_tie_on(const plugin::RunConfig& config, const NavState& start
   if (config.initial_state && config.initial_state->attitude) {
     tie_on.direction = SurveyDirection{config.initial_state->attitude->inclination_deg,
                                        config.initial_state->attitude->azimuth_deg};
-  } else if (!config.initial_state) {
-    // Started from truth: the tie-on's attitude is the truth's.
-    const MwdAttitude attitude = mwd_from_quaternion(start.q_nb);
+  } else {
+    const MwdAttitude angles = mwd_from_quaternion(attitude.q_nb);
     tie_on.direction =
-        SurveyDirection{attitude.inclination_rad * kDegPerRad, attitude.azimuth_rad * kDegPerRad};
+        SurveyDirection{angles.inclination_rad * kDegPerRad, angles.azimuth_rad * kDegPerRad};
   }
   return tie_on;
 }

@@ -30,12 +30,12 @@ std::optional<double> tally_md_at_start_m(const plugin::AidData& aid_data);
 void check_tie_on_against_tally(const plugin::RunConfig& config,
                                 std::optional<double> tally_at_start_m);
 
-/// The tie-on: the start state's position (before alignment and any deliberate error); MD as
-/// configured, else the tally at the start taken to the sensor, else 0; the hole's direction
-/// from the configured initial attitude, or from the start state when the run starts from truth
-/// (unknown after an alignment).
+/// The tie-on: the position of `start` (the state before alignment and any deliberate error);
+/// MD as configured, else the tally at the start taken to the sensor, else 0; the hole's
+/// direction from the configured initial attitude, else from `attitude` (the truth's first row
+/// at a start from truth, the aligned state after an alignment: the tool sits at the tie-on).
 SurveyTieOn survey_tie_on(const plugin::RunConfig& config, const NavState& start,
-                          std::optional<double> tally_at_start_m);
+                          const NavState& attitude, std::optional<double> tally_at_start_m);
 
 /// The stated 1-sigmas of the run's depth readings: the "pipe_length" aid's "sigma_random_m"
 /// and "sigma_scale" (its defaults 0.05 m and 1e-3 where absent); nullopt without that aid.

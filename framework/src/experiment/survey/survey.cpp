@@ -1,6 +1,7 @@
 #include "stochnav/experiment/survey.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "stochnav/core/angles.hpp"
@@ -34,6 +35,33 @@ bool keep_every_other_point(std::vector<WellPathPoint>& path) {
 }
 
 }  // namespace
+
+std::string_view station_type_name(SurveyStationType type) {
+  switch (type) {
+    case SurveyStationType::kTieOn:
+      return "tie_on";
+    case SurveyStationType::kSurvey:
+      return "survey";
+    case SurveyStationType::kProjectionToBit:
+      return "projection_to_bit";
+  }
+  return "survey";
+}
+
+SurveyStation projected_to_bit(const SurveyStation& last, double distance_m) {
+  SurveyStation projection = last;
+  projection.type = SurveyStationType::kProjectionToBit;
+  const Eigen::Vector3d step_ned =
+      distance_m * hole_direction_nev(last.inclination_deg * kRadPerDeg,
+                                      last.azimuth_deg * kRadPerDeg);
+  projection.md_m += distance_m;
+  projection.north_m += step_ned.x();
+  projection.east_m += step_ned.y();
+  projection.tvd_m += step_ned.z();
+  projection.qc = station_qc(StaticSpan{}, StationQcBudget{}, last.t_s, last.inclination_deg,
+                             last.inclination_sigma_deg, last.azimuth_deg, last.azimuth_sigma_deg);
+  return projection;
+}
 
 std::vector<WellPathPoint> minimum_curvature_path(
     const std::vector<SurveyStation>& stations, double tie_on_md_m,
@@ -158,6 +186,40 @@ void SurveyRecorder::observe(const NavState& state, const Eigen::Matrix<double, 
                  open_station_->azimuth_sigma_deg);
   open_error_.reset();
   if (truth != nullptr) open_error_ = station_error(*open_station_, state, *truth);
+}
+
+void SurveyRecorder::record_tie_on(const NavState& state,
+                                   const Eigen::Matrix<double, 9, 9>& covariance) {
+  SurveyStation row =
+      station_candidate(state, covariance, Eigen::Vector3d::Zero(), tie_on_.measured_depth_m);
+  row.type = SurveyStationType::kTieOn;
+  if (tie_on_.direction) {
+    row.inclination_deg = tie_on_.direction->inclination_deg;
+    row.azimuth_deg = tie_on_.direction->azimuth_deg;
+  }
+  row.md_sigma_m = 0.0;  // the reference of the others' MD sigmas
+  row.qc = station_qc(StaticSpan{}, StationQcBudget{}, state.t_s, row.inclination_deg,
+                      row.inclination_sigma_deg, row.azimuth_deg, row.azimuth_sigma_deg);
+  tie_on_station_ = row;
+}
+
+SurveyStation SurveyRecorder::tie_on_station() const {
+  if (tie_on_station_) return *tie_on_station_;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  SurveyStation row;
+  row.type = SurveyStationType::kTieOn;
+  row.t_s = nan;
+  row.md_m = tie_on_.measured_depth_m;
+  row.inclination_deg = tie_on_.direction ? tie_on_.direction->inclination_deg : nan;
+  row.azimuth_deg = tie_on_.direction ? tie_on_.direction->azimuth_deg : nan;
+  row.toolface_deg = nan;
+  row.inclination_sigma_deg = row.azimuth_sigma_deg = nan;
+  row.north_sigma_m = row.east_sigma_m = row.tvd_sigma_m = nan;
+  row.horizontal_covariance_m2.setConstant(nan);
+  row.position_covariance_nev_m2.setConstant(nan);
+  row.md_sigma_m = 0.0;
+  row.qc = station_qc(StaticSpan{}, StationQcBudget{}, nan, nan, nan, nan, nan);
+  return row;
 }
 
 void SurveyRecorder::finish() { close_open_station(); }

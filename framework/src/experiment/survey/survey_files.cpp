@@ -38,7 +38,9 @@ constexpr std::string_view kListingHeader =
     "tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface,"
     // The listing that adds up (issue #27): minimum curvature through the listed stations beside
     // the INS positions, and the smoothed MD's sigma.
-    "mc_north_m,mc_east_m,mc_tvd_m,md_sigma_m";
+    "mc_north_m,mc_east_m,mc_tvd_m,md_sigma_m,"
+    // What the row is (experiment/survey.hpp): tie_on | survey | projection_to_bit.
+    "station_type";
 constexpr std::string_view kWellPathHeader = "source,md_m,north_m,east_m,tvd_m";
 
 /// A CSV number: 9 significant digits (0.01 mm at 1 km, 1 ms at 200 h); any NaN as "nan" (the
@@ -67,6 +69,10 @@ std::vector<SurveyStation> as_listed(std::vector<SurveyStation> stations) {
     s.azimuth_deg = as_listed(s.azimuth_deg);
   }
   return stations;
+}
+
+SurveyStation as_listed(SurveyStation station) {
+  return std::move(as_listed(std::vector<SurveyStation>{std::move(station)}).front());
 }
 
 SurveyTieOn as_listed(SurveyTieOn tie_on) {
@@ -144,6 +150,8 @@ std::string stations_csv(const std::vector<SurveyStation>& stations,
         csv += ',' + csv_micrometres(metres);
       }
       append_cells(csv, std::span<const double>(&s.md_sigma_m, 1), true);
+      csv += ',';
+      csv += station_type_name(s.type);
     }
     csv += '\n';
   }
@@ -192,20 +200,34 @@ std::unique_ptr<PendingFile> pending_survey_plot(
 
 }  // namespace
 
-std::vector<std::unique_ptr<PendingFile>> write_survey_files(const SurveyRecorder& recorder,
-                                                             const SurveyTieOn& recorded_tie_on,
-                                                             const std::filesystem::path& out_dir,
-                                                             bool plot,
-                                                             const SurveyListingOptions& listing) {
+std::vector<std::unique_ptr<PendingFile>> write_survey_files(
+    const SurveyRecorder& recorder, const SurveyTieOn& recorded_tie_on,
+    const std::filesystem::path& out_dir, bool plot, const SurveyListingOptions& options) {
   const std::vector<SurveyStation> stations = as_listed(recorder.stations());
   const SurveyTieOn tie_on = as_listed(recorded_tie_on);
   const std::vector<WellPathPoint> minimum_curvature_stations =
       minimum_curvature_path(stations, tie_on.measured_depth_m, tie_on.direction);
+  // One vertical-section azimuth for every row and trajectory.xml: the survey stations' (a
+  // projection to the bit does not move it).
+  SurveyListingOptions listing = options;
+  listing.vertical_section_azimuth_deg = vertical_section_azimuth_deg(stations, tie_on, options);
   std::vector<std::unique_ptr<PendingFile>> files;
-  const std::vector<StationListing> listing_rows = survey_listing(stations, tie_on, listing);
-  files.push_back(pending_text_file(out_dir / "survey.csv", stations_csv(stations, &listing_rows)));
+  // survey.csv's rows: the tie-on, the stations, the projection to the bit.
+  std::vector<SurveyStation> rows = {as_listed(recorder.tie_on_station())};
+  rows.insert(rows.end(), stations.begin(), stations.end());
+  if (listing.sensor_to_bit_m > 0.0 && !stations.empty()) {
+    rows.push_back(as_listed(projected_to_bit(stations.back(), listing.sensor_to_bit_m)));
+  }
+  const std::vector<SurveyStation> listed_after_tie_on(rows.begin() + 1, rows.end());
+  const std::vector<StationListing> station_rows =
+      survey_listing(listed_after_tie_on, tie_on, listing);
+  std::vector<StationListing> listing_rows = {
+      tie_on_listing(rows.front(), listed_after_tie_on, tie_on, listing)};
+  listing_rows.insert(listing_rows.end(), station_rows.begin(), station_rows.end());
+  files.push_back(pending_text_file(out_dir / "survey.csv", stations_csv(rows, &listing_rows)));
+  // The tie-in point and the stations (their listing rows are station_rows' first ones).
   files.push_back(pending_text_file(
-      out_dir / "trajectory.xml", witsml_trajectory_xml(stations, listing_rows, tie_on, listing)));
+      out_dir / "trajectory.xml", witsml_trajectory_xml(stations, station_rows, tie_on, listing)));
   if (!recorder.station_errors().empty()) {
     files.push_back(
         pending_text_file(out_dir / "survey_errors.csv", stations_csv(recorder.station_errors())));
