@@ -380,7 +380,8 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
   nlohmann::json config = recording_config();
   config["survey"] = {{"vertical_section_azimuth_deg", 90},
                       {"ellipse_confidence", 0.95},
-                      {"datum_elevation_m", 30}};
+                      {"datum_elevation_m", 30},
+                      {"grid_convergence_deg", 1.25}};
   const fs::path out = dir_->path() / "out_listing";
   const auto result =
       run_cli("run '" + write_config("listing.json", config) + "' --out '" + out.string() +
@@ -397,7 +398,8 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
       ",qc_azimuth_sigmas,qc_flag,dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,"
       "closure_azimuth_deg,vertical_section_m,ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,"
       "ellipse_semi_minor_m,ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m,azimuth_defined,"
-      "gyro_toolface,mc_north_m,mc_east_m,mc_tvd_m,md_sigma_m,station_type"))
+      "gyro_toolface,mc_north_m,mc_east_m,mc_tvd_m,md_sigma_m,station_type,grid_azimuth_deg,"
+      "highside_sigma_m,lateral_sigma_m,alonghole_sigma_m"))
       << header_line;
   const std::vector<std::string> header = csv_cells(header_line);
   std::vector<std::vector<std::string>> rows;
@@ -413,14 +415,27 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
   };
   // The tie-on row first (no rates); after an aligned start the tie-on's attitude is the
   // aligned one, so the first station has rates from it.
-  EXPECT_EQ(rows[0].back(), "tie_on");
+  const auto type_of = [&](std::size_t row) {
+    const auto at = std::find(header.begin(), header.end(), "station_type");
+    return at == header.end() ? std::string()
+                              : rows[row][static_cast<std::size_t>(at - header.begin())];
+  };
+  EXPECT_EQ(type_of(0), "tie_on");
   EXPECT_TRUE(std::isnan(cell(0, "dls_deg_30m")));
   EXPECT_EQ(cell(0, "md_m"), 450.0);
   EXPECT_EQ(cell(0, "north_m"), 0.0);
   EXPECT_GT(cell(0, "north_sigma_m"), 0.0) << "the initial covariance's";
-  EXPECT_EQ(rows[1].back(), "survey");
+  EXPECT_EQ(type_of(1), "survey");
   EXPECT_TRUE(std::isfinite(cell(1, "dls_deg_30m")));
   const std::size_t r = rows.size() - 1;
+  // Grid north 1.25 deg east of true; the ellipse in the hole's frame keeps the variances' sum.
+  EXPECT_NEAR(cell(r, "grid_azimuth_deg"),
+              std::fmod(cell(r, "azimuth_deg") - 1.25 + 360.0, 360.0), 1e-6);
+  EXPECT_NEAR(std::pow(cell(r, "highside_sigma_m"), 2) + std::pow(cell(r, "lateral_sigma_m"), 2) +
+                  std::pow(cell(r, "alonghole_sigma_m"), 2),
+              std::pow(cell(r, "north_sigma_m"), 2) + std::pow(cell(r, "east_sigma_m"), 2) +
+                  std::pow(cell(r, "tvd_sigma_m"), 2),
+              1e-6);
   EXPECT_TRUE(std::isfinite(cell(r, "dls_deg_30m")));
   EXPECT_GE(cell(r, "dls_deg_30m"), 0.0);
   EXPECT_NEAR(cell(r, "closure_m"), std::hypot(cell(r, "north_m"), cell(r, "east_m")), 1e-6);
@@ -552,6 +567,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadRunCase{"survey_tie_on_tolerance_text",
                    R"({"survey": {"tie_on_md_tolerance_m": "5 m"}})", "",
                    "/survey/tie_on_md_tolerance_m"},
+        BadRunCase{"survey_grid_convergence_far", R"({"survey": {"grid_convergence_deg": 12}})",
+                   "", "/survey/grid_convergence_deg: 12"},
         BadRunCase{"survey_unknown_key", R"({"survey": {"vs_azimuth_deg": 10}})", "",
                    "/survey/vs_azimuth_deg: unknown key"},
         BadRunCase{"survey_not_object", R"({"survey": 3})", "", "/survey: not an object"},

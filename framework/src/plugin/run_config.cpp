@@ -293,6 +293,9 @@ SurveyConfig parse_survey(const nlohmann::json& json, const std::string& pointer
     }
     survey.tie_on_md_tolerance_m = tolerance;
   }
+  if (reader.has("grid_convergence_deg")) {
+    survey.grid_convergence_deg = number_in(reader, "grid_convergence_deg", -10.0, 10.0, "deg");
+  }
   reader.finish();
   return survey;
 }

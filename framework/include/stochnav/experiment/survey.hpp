@@ -97,6 +97,9 @@ struct SurveyListingOptions {
   std::optional<double> tie_on_tvd_m;
   /// The survey sensor's distance behind the bit (m), >= 0: > 0 adds the projection-to-bit row.
   double sensor_to_bit_m = 0.0;
+  /// Grid convergence (deg): grid north's angle from true north, clockwise positive (grid
+  /// azimuth = true azimuth - convergence); absent: no grid azimuth (NaN).
+  std::optional<double> grid_convergence_deg;
 };
 
 /// What a row of survey.csv is (its column station_type).

@@ -55,6 +55,15 @@
 //                        (its circular-arc assumption and the MD and angle errors), which the
 //                        *_sigma_m columns bound on the simulated runs of
 //                        tests/experiment/survey_adds_up_test.cpp.
+//   station_type         (experiment/survey.hpp) tie_on | survey | projection_to_bit
+//   grid_azimuth_deg     azimuth_deg - grid convergence, wrapped to [0, 360) (deg); NaN without
+//                        a convergence (SurveyListingOptions::grid_convergence_deg)
+//   highside_sigma_m, lateral_sigma_m, alonghole_sigma_m
+//                        the position's 1-sigma (m) along the hole's high side h = (cos I cos A,
+//                        cos I sin A, -sin I), its lateral (right) l = (-sin A, cos A, 0) and
+//                        along the hole t = (sin I cos A, sin I sin A, cos I), all in (north,
+//                        east, down): sqrt(x^T P x) with P the NEV covariance (I, A: the listed
+//                        inclination and azimuth; near vertical h and l turn with the azimuth)
 //
 // The vertical-section azimuth, when not given, is the tie-on's azimuth (the planned direction
 // at the start) when the tie-on's attitude is known and more than 1 deg from vertical, else the
@@ -89,7 +98,11 @@ struct StationListing {
   double gyro_toolface = 0.0;    ///< 1 or 0
   double mc_north_m = 0.0;       ///< minimum curvature through the listed stations (m)
   double mc_east_m = 0.0;
-  double mc_tvd_m = 0.0;  ///< positive down (m)
+  double mc_tvd_m = 0.0;         ///< positive down (m)
+  double grid_azimuth_deg = 0.0;   ///< deg from grid north, [0, 360); NaN without convergence
+  double highside_sigma_m = 0.0;   ///< 1-sigma along the high side (m)
+  double lateral_sigma_m = 0.0;    ///< 1-sigma across the hole, to the right (m)
+  double alonghole_sigma_m = 0.0;  ///< 1-sigma along the hole (m)
 };
 
 /// A horizontal error ellipse: semi-axes (m) and the major axis' azimuth, [0, 180) deg.

@@ -41,7 +41,8 @@
 //                "datum_elevation_m": 30,              // depth datum above MSL (m), optional
 //                "tie_on_tvd_m": 1200,                 // tie-on TVD below the datum, optional
 //                "sensor_to_bit_m": 12.5,              // survey sensor behind the bit, [0, 200]
-//                "tie_on_md_tolerance_m": 5}           // tie-on MD vs first tally, (0, 1000]
+//                "tie_on_md_tolerance_m": 5,           // tie-on MD vs first tally, (0, 1000]
+//                "grid_convergence_deg": 1.2}          // grid north from true, [-10, 10]
 //   }
 // Three-axis values accept a number (all axes) or [x, y, z]. With "fit", the noise model is
 // fitted to the calibration record by the plugin's fitter (params then hold its fit options).
@@ -215,6 +216,9 @@ struct SurveyConfig {
   /// (the mean of the depth data's leading readings flagged "zupt", else its first) minus
   /// sensor_to_bit_m is rejected (exit 2) before the run: one of them is wrong.
   double tie_on_md_tolerance_m = 5.0;
+  /// "grid_convergence_deg" (deg), [-10, 10]: grid north's angle from true north, clockwise
+  /// positive; survey.csv's grid_azimuth_deg = azimuth_deg - this. Absent: grid_azimuth_deg NaN.
+  std::optional<double> grid_convergence_deg;
 };
 
 struct RunConfig {

@@ -40,7 +40,9 @@ constexpr std::string_view kListingHeader =
     // the INS positions, and the smoothed MD's sigma.
     "mc_north_m,mc_east_m,mc_tvd_m,md_sigma_m,"
     // What the row is (experiment/survey.hpp): tie_on | survey | projection_to_bit.
-    "station_type";
+    "station_type,"
+    // Grid north and the ellipse in the hole's frame (experiment/survey_listing.hpp).
+    "grid_azimuth_deg,highside_sigma_m,lateral_sigma_m,alonghole_sigma_m";
 constexpr std::string_view kWellPathHeader = "source,md_m,north_m,east_m,tvd_m";
 
 /// A CSV number: 9 significant digits (0.01 mm at 1 km, 1 ms at 200 h); any NaN as "nan" (the
@@ -152,6 +154,9 @@ std::string stations_csv(const std::vector<SurveyStation>& stations,
       append_cells(csv, std::span<const double>(&s.md_sigma_m, 1), true);
       csv += ',';
       csv += station_type_name(s.type);
+      const double hole_frame_columns[] = {l.grid_azimuth_deg, l.highside_sigma_m,
+                                           l.lateral_sigma_m, l.alonghole_sigma_m};
+      append_cells(csv, hole_frame_columns, true);
     }
     csv += '\n';
   }

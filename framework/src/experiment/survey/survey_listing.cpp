@@ -53,6 +53,23 @@ void set_rates(StationListing& listing, double previous_inclination_deg,
           : std::remainder(station.azimuth_deg - previous_azimuth_deg, 360.0) * per_30m;
 }
 
+/// 1-sigmas (m) of the NEV covariance along the hole's high side, lateral and along-hole axes.
+void set_hole_frame_sigmas(StationListing& row, const SurveyStation& s) {
+  const double i = s.inclination_deg * kRadPerDeg;
+  const double a = s.azimuth_deg * kRadPerDeg;
+  const Eigen::Vector3d high_side(std::cos(i) * std::cos(a), std::cos(i) * std::sin(a),
+                                  -std::sin(i));
+  const Eigen::Vector3d lateral(-std::sin(a), std::cos(a), 0.0);
+  const Eigen::Vector3d along_hole = hole_direction_nev(i, a);
+  const Eigen::Matrix3d& p = s.position_covariance_nev_m2;
+  const auto sigma_along = [&](const Eigen::Vector3d& x) {
+    return std::sqrt(std::max(x.dot(p * x), 0.0));
+  };
+  row.highside_sigma_m = sigma_along(high_side);
+  row.lateral_sigma_m = sigma_along(lateral);
+  row.alonghole_sigma_m = sigma_along(along_hole);
+}
+
 /// The columns that follow from the station alone and the references: closure, vertical
 /// section, covariances, ellipse, the azimuth and toolface flags and the datum depths.
 void set_position_columns(StationListing& row, const SurveyStation& s, double vs_azimuth_rad,
@@ -81,6 +98,14 @@ void set_position_columns(StationListing& row, const SurveyStation& s, double vs
   } else {
     row.tvd_below_datum_m = row.tvdss_m = kUndefined;
   }
+  if (options.grid_convergence_deg) {
+    double grid = std::fmod(s.azimuth_deg - *options.grid_convergence_deg, 360.0);
+    if (grid < 0.0) grid += 360.0;
+    row.grid_azimuth_deg = grid >= 360.0 ? 0.0 : grid;
+  } else {
+    row.grid_azimuth_deg = kUndefined;
+  }
+  set_hole_frame_sigmas(row, s);
 }
 
 }  // namespace
