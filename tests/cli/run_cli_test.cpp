@@ -429,8 +429,8 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
   EXPECT_TRUE(std::isfinite(cell(1, "dls_deg_30m")));
   const std::size_t r = rows.size() - 1;
   // Grid north 1.25 deg east of true; the ellipse in the hole's frame keeps the variances' sum.
-  EXPECT_NEAR(cell(r, "grid_azimuth_deg"),
-              std::fmod(cell(r, "azimuth_deg") - 1.25 + 360.0, 360.0), 1e-6);
+  EXPECT_NEAR(cell(r, "grid_azimuth_deg"), std::fmod(cell(r, "azimuth_deg") - 1.25 + 360.0, 360.0),
+              1e-6);
   EXPECT_NEAR(std::pow(cell(r, "highside_sigma_m"), 2) + std::pow(cell(r, "lateral_sigma_m"), 2) +
                   std::pow(cell(r, "alonghole_sigma_m"), 2),
               std::pow(cell(r, "north_sigma_m"), 2) + std::pow(cell(r, "east_sigma_m"), 2) +
@@ -479,10 +479,10 @@ TEST_F(RunCli, TieOnMdIsCheckedAgainstTheTallyTakenToTheSensor) {
 
   config["survey"] = {{"sensor_to_bit_m", 50}};
   const fs::path out = dir_->path() / "out_sensor_behind_bit";
-  const auto accepted = run_cli("run '" + write_config("sensor_behind_bit.json", config) +
-                                    "' --out '" + out.string() + "' --data '" + data +
-                                    "' --no-plot",
-                                dir_->path());
+  const auto accepted =
+      run_cli("run '" + write_config("sensor_behind_bit.json", config) + "' --out '" +
+                  out.string() + "' --data '" + data + "' --no-plot",
+              dir_->path());
   ASSERT_EQ(accepted.exit_code, 0) << accepted.err;
   const auto survey = stochnav::testing::read_csv_columns((out / "survey.csv").string());
   const auto aids = stochnav::testing::read_csv_columns(data + "/aids.csv");
@@ -557,18 +557,17 @@ INSTANTIATE_TEST_SUITE_P(
                    "/survey/datum_elevation_m: 20000"},
         BadRunCase{"survey_tie_on_tvd_without_datum", R"({"survey": {"tie_on_tvd_m": 100}})", "",
                    "/survey/tie_on_tvd_m: given without datum_elevation_m"},
-        BadRunCase{"survey_sensor_to_bit_negative", R"({"survey": {"sensor_to_bit_m": -1}})",
-                   "", "/survey/sensor_to_bit_m: -1"},
+        BadRunCase{"survey_sensor_to_bit_negative", R"({"survey": {"sensor_to_bit_m": -1}})", "",
+                   "/survey/sensor_to_bit_m: -1"},
         BadRunCase{"survey_sensor_to_bit_far", R"({"survey": {"sensor_to_bit_m": 250}})", "",
                    "/survey/sensor_to_bit_m: 250"},
-        BadRunCase{"survey_tie_on_tolerance_zero",
-                   R"({"survey": {"tie_on_md_tolerance_m": 0}})", "",
-                   "/survey/tie_on_md_tolerance_m: 0"},
+        BadRunCase{"survey_tie_on_tolerance_zero", R"({"survey": {"tie_on_md_tolerance_m": 0}})",
+                   "", "/survey/tie_on_md_tolerance_m: 0"},
         BadRunCase{"survey_tie_on_tolerance_text",
                    R"({"survey": {"tie_on_md_tolerance_m": "5 m"}})", "",
                    "/survey/tie_on_md_tolerance_m"},
-        BadRunCase{"survey_grid_convergence_far", R"({"survey": {"grid_convergence_deg": 12}})",
-                   "", "/survey/grid_convergence_deg: 12"},
+        BadRunCase{"survey_grid_convergence_far", R"({"survey": {"grid_convergence_deg": 12}})", "",
+                   "/survey/grid_convergence_deg: 12"},
         BadRunCase{"survey_unknown_key", R"({"survey": {"vs_azimuth_deg": 10}})", "",
                    "/survey/vs_azimuth_deg: unknown key"},
         BadRunCase{"survey_not_object", R"({"survey": 3})", "", "/survey: not an object"},

@@ -282,8 +282,7 @@ TEST(SurveyListing, DatumColumnsArePositiveDownFromTheDatumAndMeanSeaLevel) {
 // line, where straight_hold also put the INS positions: the two solutions coincide.
 TEST(SurveyListing, MinimumCurvatureColumnsFollowTheListedStations) {
   const auto stations = straight_hold(30.0, 60.0);
-  const auto listing =
-      survey_listing(stations, tie_on_at(1000.0, SurveyDirection{30.0, 60.0}), {});
+  const auto listing = survey_listing(stations, tie_on_at(1000.0, SurveyDirection{30.0, 60.0}), {});
   ASSERT_EQ(listing.size(), stations.size());
   for (std::size_t i = 0; i < stations.size(); ++i) {
     EXPECT_NEAR(listing[i].mc_north_m, stations[i].north_m, 1e-9) << i;

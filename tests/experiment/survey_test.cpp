@@ -585,8 +585,8 @@ std::map<std::string, std::vector<double>> survey_columns(const std::filesystem:
     std::istringstream cells(lines[row]);
     std::string cell;
     for (std::size_t i = 0; i < names.size() && std::getline(cells, cell, ','); ++i) {
-      const bool number = cell != "nan" && cell.find_first_of("_abcdefghijklmopqrsuvwxyz") ==
-                                               std::string::npos;
+      const bool number =
+          cell != "nan" && cell.find_first_of("_abcdefghijklmopqrsuvwxyz") == std::string::npos;
       columns[names[i]].push_back(number ? std::stod(cell) : std::nan(""));
     }
   }

@@ -287,8 +287,7 @@ SurveyConfig parse_survey(const nlohmann::json& json, const std::string& pointer
   if (reader.has("tie_on_md_tolerance_m")) {
     const double tolerance = reader.number("tie_on_md_tolerance_m", Bound::kAny, "m");
     if (!(tolerance > 0.0 && tolerance <= 1000.0)) {
-      throw ConfigError(reader.pointer("tie_on_md_tolerance_m") + ": " +
-                        std::to_string(tolerance) +
+      throw ConfigError(reader.pointer("tie_on_md_tolerance_m") + ": " + std::to_string(tolerance) +
                         " m is out of range; expected a distance in (0, 1000] m, e.g. 5");
     }
     survey.tie_on_md_tolerance_m = tolerance;

@@ -98,7 +98,7 @@ struct StationListing {
   double gyro_toolface = 0.0;    ///< 1 or 0
   double mc_north_m = 0.0;       ///< minimum curvature through the listed stations (m)
   double mc_east_m = 0.0;
-  double mc_tvd_m = 0.0;         ///< positive down (m)
+  double mc_tvd_m = 0.0;           ///< positive down (m)
   double grid_azimuth_deg = 0.0;   ///< deg from grid north, [0, 360); NaN without convergence
   double highside_sigma_m = 0.0;   ///< 1-sigma along the high side (m)
   double lateral_sigma_m = 0.0;    ///< 1-sigma across the hole, to the right (m)
@@ -140,7 +140,7 @@ std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& sta
 /// `stations`: no rates (NaN), closure and vertical section 0 at (0, 0, 0), the covariances and
 /// ellipse of its covariance, the datum depths of the tie-on, minimum curvature's origin.
 StationListing tie_on_listing(const SurveyStation& tie_on_row,
-                              const std::vector<SurveyStation>& stations,
-                              const SurveyTieOn& tie_on, const SurveyListingOptions& options);
+                              const std::vector<SurveyStation>& stations, const SurveyTieOn& tie_on,
+                              const SurveyListingOptions& options);
 
 }  // namespace stochnav

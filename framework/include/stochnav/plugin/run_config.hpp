@@ -41,7 +41,7 @@
 //                "datum_elevation_m": 30,              // depth datum above MSL (m), optional
 //                "tie_on_tvd_m": 1200,                 // tie-on TVD below the datum, optional
 //                "sensor_to_bit_m": 12.5,              // survey sensor behind the bit, [0, 200]
-//                "tie_on_md_tolerance_m": 5,           // tie-on MD vs first tally, (0, 1000]
+//                "tie_on_md_tolerance_m": 5,           // tie-on MD vs the tally, (0, 1000]
 //                "grid_convergence_deg": 1.2}          // grid north from true, [-10, 10]
 //   }
 // Three-axis values accept a number (all axes) or [x, y, z]. With "fit", the noise model is

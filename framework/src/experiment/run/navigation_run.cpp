@@ -430,7 +430,8 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   if (files) {
     const SurveyListingOptions listing{config.survey.vertical_section_azimuth_deg,
                                        config.survey.ellipse_confidence,
-                                       config.survey.datum_elevation_m, config.survey.tie_on_tvd_m,
+                                       config.survey.datum_elevation_m,
+                                       config.survey.tie_on_tvd_m,
                                        config.survey.sensor_to_bit_m,
                                        config.survey.grid_convergence_deg};
     files->commit(result, options.plot, survey, tie_on, listing);

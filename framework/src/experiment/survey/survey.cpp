@@ -52,8 +52,8 @@ SurveyStation projected_to_bit(const SurveyStation& last, double distance_m) {
   SurveyStation projection = last;
   projection.type = SurveyStationType::kProjectionToBit;
   const Eigen::Vector3d step_ned =
-      distance_m * hole_direction_nev(last.inclination_deg * kRadPerDeg,
-                                      last.azimuth_deg * kRadPerDeg);
+      distance_m *
+      hole_direction_nev(last.inclination_deg * kRadPerDeg, last.azimuth_deg * kRadPerDeg);
   projection.md_m += distance_m;
   projection.north_m += step_ned.x();
   projection.east_m += step_ned.y();

@@ -205,9 +205,11 @@ std::unique_ptr<PendingFile> pending_survey_plot(
 
 }  // namespace
 
-std::vector<std::unique_ptr<PendingFile>> write_survey_files(
-    const SurveyRecorder& recorder, const SurveyTieOn& recorded_tie_on,
-    const std::filesystem::path& out_dir, bool plot, const SurveyListingOptions& options) {
+std::vector<std::unique_ptr<PendingFile>> write_survey_files(const SurveyRecorder& recorder,
+                                                             const SurveyTieOn& recorded_tie_on,
+                                                             const std::filesystem::path& out_dir,
+                                                             bool plot,
+                                                             const SurveyListingOptions& options) {
   const std::vector<SurveyStation> stations = as_listed(recorder.stations());
   const SurveyTieOn tie_on = as_listed(recorded_tie_on);
   const std::vector<WellPathPoint> minimum_curvature_stations =

@@ -88,8 +88,7 @@ void set_position_columns(StationListing& row, const SurveyStation& s, double vs
   row.ellipse_semi_major_m = ellipse.semi_major_m;
   row.ellipse_semi_minor_m = ellipse.semi_minor_m;
   row.ellipse_azimuth_deg = ellipse.azimuth_deg;
-  row.azimuth_defined =
-      std::isnan(s.azimuth_deg) || near_vertical(s.inclination_deg) ? 0.0 : 1.0;
+  row.azimuth_defined = std::isnan(s.azimuth_deg) || near_vertical(s.inclination_deg) ? 0.0 : 1.0;
   row.gyro_toolface =
       std::abs(std::sin(s.inclination_deg * kRadPerDeg)) < kNearVerticalSin ? 1.0 : 0.0;
   if (tie_on_tvd) {
@@ -182,8 +181,8 @@ std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& sta
 }
 
 StationListing tie_on_listing(const SurveyStation& tie_on_row,
-                              const std::vector<SurveyStation>& stations,
-                              const SurveyTieOn& tie_on, const SurveyListingOptions& options) {
+                              const std::vector<SurveyStation>& stations, const SurveyTieOn& tie_on,
+                              const SurveyListingOptions& options) {
   StationListing row;
   row.dls_deg_30m = row.build_deg_30m = row.turn_deg_30m = kUndefined;
   set_position_columns(row, tie_on_row,
