@@ -49,13 +49,22 @@ def read_columns(path):
     return columns
 
 
+def _survey_station_count(survey):
+    """The survey stations of survey.csv's columns: the rows of station_type "survey" (not the
+    tie-on row, nor a projection to the bit)."""
+    if "station_type" in survey:
+        return int(np.count_nonzero(survey["station_type"] == "survey"))
+    return len(survey.get("t_s", []))
+
+
 @dataclasses.dataclass
 class RunResult:
     """A navigation run (stochnav.run). Tables are dicts of numpy columns named as in the run's
     CSV files (docs/navigation.md): navigation (nav.csv: t, lat, lon (deg), h (m), ve, vn, vu
     (m/s), inclination, toolface, azimuth (deg)), biases, covariance (1-sigma of the core states),
     innovations (every update attempt), errors (None without truth: the nine errors, their
-    1-sigma and NEES), survey (stations at the connections). metrics is metrics.json."""
+    1-sigma and NEES), survey (survey.csv: the tie-on row, then the stations at the connections;
+    column station_type says which). metrics is metrics.json."""
 
     navigation: dict
     biases: dict
@@ -74,7 +83,7 @@ class RunResult:
     def __repr__(self):
         lines = [f"<RunResult: {self.epochs} epochs ({self.duration_s:.0f} s of data) in "
                  f"{self.wall_seconds:.2f} s; filter health {'ok' if self.filter_ok else 'TROUBLE'}"
-                 f"; {len(self.survey.get('t_s', []))} survey station(s)"
+                 f"; {_survey_station_count(self.survey)} survey station(s)"
                  f"{'; files in ' + self.out if self.out else ''}>"]
         metrics = self.metrics.get("metrics") or {}
         for name, values in metrics.items():

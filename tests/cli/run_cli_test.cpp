@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "csv_columns.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
 #include "stochnav/io/psins_imu.hpp"
-#include "csv_columns.hpp"
 #include "temp_dir.hpp"
 
 namespace stochnav {
@@ -380,7 +380,8 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
   nlohmann::json config = recording_config();
   config["survey"] = {{"vertical_section_azimuth_deg", 90},
                       {"ellipse_confidence", 0.95},
-                      {"datum_elevation_m", 30}};
+                      {"datum_elevation_m", 30},
+                      {"grid_convergence_deg", 1.25}};
   const fs::path out = dir_->path() / "out_listing";
   const auto result =
       run_cli("run '" + write_config("listing.json", config) + "' --out '" + out.string() +
@@ -397,7 +398,8 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
       ",qc_azimuth_sigmas,qc_flag,dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,"
       "closure_azimuth_deg,vertical_section_m,ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,"
       "ellipse_semi_minor_m,ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m,azimuth_defined,"
-      "gyro_toolface"))
+      "gyro_toolface,mc_north_m,mc_east_m,mc_tvd_m,md_sigma_m,station_type,grid_azimuth_deg,"
+      "highside_sigma_m,lateral_sigma_m,alonghole_sigma_m"))
       << header_line;
   const std::vector<std::string> header = csv_cells(header_line);
   std::vector<std::vector<std::string>> rows;
@@ -411,9 +413,29 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
     }
     return std::stod(rows[row][static_cast<std::size_t>(at - header.begin())]);
   };
-  // An aligned start: the tie-on's attitude is not configured, so the first station has no rates.
+  // The tie-on row first (no rates); after an aligned start the tie-on's attitude is the
+  // aligned one, so the first station has rates from it.
+  const auto type_of = [&](std::size_t row) {
+    const auto at = std::find(header.begin(), header.end(), "station_type");
+    return at == header.end() ? std::string()
+                              : rows[row][static_cast<std::size_t>(at - header.begin())];
+  };
+  EXPECT_EQ(type_of(0), "tie_on");
   EXPECT_TRUE(std::isnan(cell(0, "dls_deg_30m")));
+  EXPECT_EQ(cell(0, "md_m"), 450.0);
+  EXPECT_EQ(cell(0, "north_m"), 0.0);
+  EXPECT_GT(cell(0, "north_sigma_m"), 0.0) << "the initial covariance's";
+  EXPECT_EQ(type_of(1), "survey");
+  EXPECT_TRUE(std::isfinite(cell(1, "dls_deg_30m")));
   const std::size_t r = rows.size() - 1;
+  // Grid north 1.25 deg east of true; the ellipse in the hole's frame keeps the variances' sum.
+  EXPECT_NEAR(cell(r, "grid_azimuth_deg"), std::fmod(cell(r, "azimuth_deg") - 1.25 + 360.0, 360.0),
+              1e-6);
+  EXPECT_NEAR(std::pow(cell(r, "highside_sigma_m"), 2) + std::pow(cell(r, "lateral_sigma_m"), 2) +
+                  std::pow(cell(r, "alonghole_sigma_m"), 2),
+              std::pow(cell(r, "north_sigma_m"), 2) + std::pow(cell(r, "east_sigma_m"), 2) +
+                  std::pow(cell(r, "tvd_sigma_m"), 2),
+              1e-6);
   EXPECT_TRUE(std::isfinite(cell(r, "dls_deg_30m")));
   EXPECT_GE(cell(r, "dls_deg_30m"), 0.0);
   EXPECT_NEAR(cell(r, "closure_m"), std::hypot(cell(r, "north_m"), cell(r, "east_m")), 1e-6);
@@ -431,6 +453,57 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
   EXPECT_TRUE(std::isfinite(cell(r, "ne_m2")));
   EXPECT_TRUE(std::isfinite(cell(r, "nv_m2")));
   EXPECT_TRUE(std::isfinite(cell(r, "ev_m2")));
+}
+
+// The tally reads the bit's depth (450.45 m at the start: 450 m with the scenario's 1e-3 scale
+// error, averaged over the static start); a tie-on MD 50 m shallower is refused, naming both
+// values, unless the survey sensor sits 50 m behind the bit: then the stations' MDs are the
+// tally minus 50 m.
+TEST_F(RunCli, TieOnMdIsCheckedAgainstTheTallyTakenToTheSensor) {
+  nlohmann::json config = recording_config();
+  config["aids"] = {{{"plugin", "zupt"}}, {{"plugin", "pipe_length"}}};
+  config["initial_state"]["tie_on"]["measured_depth_m"] = 400;
+  const std::string data = (dir_->path() / "recording").string();
+  const fs::path refused = dir_->path() / "out_tie_on_refused";
+  const auto result = run_cli("run '" + write_config("tie_on_far.json", config) + "' --out '" +
+                                  refused.string() + "' --data '" + data + "' --no-plot",
+                              dir_->path());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << "one line: " << result.err;
+  EXPECT_NE(result.err.find("/initial_state/tie_on/measured_depth_m: 400 m, but the depth "
+                            "data's tally at the start (measured_depth_m, 450.4"),
+            std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find("/survey/sensor_to_bit_m"), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(refused));
+
+  config["survey"] = {{"sensor_to_bit_m", 50}};
+  const fs::path out = dir_->path() / "out_sensor_behind_bit";
+  const auto accepted =
+      run_cli("run '" + write_config("sensor_behind_bit.json", config) + "' --out '" +
+                  out.string() + "' --data '" + data + "' --no-plot",
+              dir_->path());
+  ASSERT_EQ(accepted.exit_code, 0) << accepted.err;
+  const auto survey = stochnav::testing::read_csv_columns((out / "survey.csv").string());
+  const auto aids = stochnav::testing::read_csv_columns(data + "/aids.csv");
+  ASSERT_GE(survey.at("md_m").size(), 3u);
+  const auto types =
+      stochnav::testing::read_csv_text_column((out / "survey.csv").string(), "station_type");
+  ASSERT_EQ(types.size(), survey.at("md_m").size());
+  EXPECT_EQ(types.front(), "tie_on");
+  EXPECT_EQ(types.back(), "projection_to_bit");
+  EXPECT_EQ(survey.at("md_m").front(), 400.0) << "the configured tie-on";
+  // The first station, at the end of the static start: the mean tally there, minus 50 m.
+  EXPECT_NEAR(survey.at("md_m")[1], aids.at("measured_depth_m").front() - 50.0, 0.2);
+  for (std::size_t i = 1; i + 1 < types.size(); ++i) {
+    EXPECT_EQ(types[i], "survey");
+    EXPECT_GT(survey.at("md_sigma_m")[i], 0.0);
+    EXPECT_LT(survey.at("md_sigma_m")[i], 0.06)
+        << "the pipe_length aid's 5 cm per reading, and its scale error";
+  }
+  // The projection to the bit: 50 m beyond the last station.
+  const std::size_t last = types.size() - 2;
+  EXPECT_NEAR(survey.at("md_m").back(), survey.at("md_m")[last] + 50.0, 1e-5);
 }
 
 class BadRun : public RunCli, public ::testing::WithParamInterface<BadRunCase> {};
@@ -484,6 +557,17 @@ INSTANTIATE_TEST_SUITE_P(
                    "/survey/datum_elevation_m: 20000"},
         BadRunCase{"survey_tie_on_tvd_without_datum", R"({"survey": {"tie_on_tvd_m": 100}})", "",
                    "/survey/tie_on_tvd_m: given without datum_elevation_m"},
+        BadRunCase{"survey_sensor_to_bit_negative", R"({"survey": {"sensor_to_bit_m": -1}})", "",
+                   "/survey/sensor_to_bit_m: -1"},
+        BadRunCase{"survey_sensor_to_bit_far", R"({"survey": {"sensor_to_bit_m": 250}})", "",
+                   "/survey/sensor_to_bit_m: 250"},
+        BadRunCase{"survey_tie_on_tolerance_zero", R"({"survey": {"tie_on_md_tolerance_m": 0}})",
+                   "", "/survey/tie_on_md_tolerance_m: 0"},
+        BadRunCase{"survey_tie_on_tolerance_text",
+                   R"({"survey": {"tie_on_md_tolerance_m": "5 m"}})", "",
+                   "/survey/tie_on_md_tolerance_m"},
+        BadRunCase{"survey_grid_convergence_far", R"({"survey": {"grid_convergence_deg": 12}})", "",
+                   "/survey/grid_convergence_deg: 12"},
         BadRunCase{"survey_unknown_key", R"({"survey": {"vs_azimuth_deg": 10}})", "",
                    "/survey/vs_azimuth_deg: unknown key"},
         BadRunCase{"survey_not_object", R"({"survey": 3})", "", "/survey: not an object"},

@@ -256,6 +256,26 @@ TEST(SurveyCli, TieOnBelowTheSurfaceWithItsTvdRuns) {
   EXPECT_GT(file.rows.at({560.0, "TOTAL"})[0], 0.0);
 }
 
+// A run's survey.csv: its tie_on row (at the depth of its first station, 1 mm deeper here) and
+// its projection_to_bit are not stations; the first survey station is the tie-on.
+TEST(SurveyCli, RunListingTieOnAndProjectionRowsAreSkipped) {
+  TempDir dir;
+  const std::string listing = dir.write(
+      "survey.csv",
+      "md_m,inclination_deg,azimuth_deg,station_type\n500.001,0,0,tie_on\n500,0,0,survey\n"
+      "530,1,10,survey\n560,2,10,survey\n572.5,2,10,projection_to_bit\n");
+  const std::string well = dir.write("well.json", well_with("tie_on_tvd_m", 499.5).dump());
+  const auto out = dir.path() / "out";
+  const auto result = run_cli("survey --listing '" + listing + "' --well '" + well +
+                                  "' --model mwd_rev4 --out '" + out.string() + "'",
+                              dir.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto file = read_survey_covariance_file(out / "iscwsa_covariance.csv");
+  EXPECT_EQ(file.row_count, 3u * 28u);
+  EXPECT_EQ(file.rows.at({500.0, "TOTAL"}), std::vector<double>(6, 0.0)) << "the tie-on is exact";
+  EXPECT_EQ(file.rows.count({572.5, "TOTAL"}), 0u);
+}
+
 TEST(SurveyCli, MissingListingFileNamesIt) {
   TempDir dir;
   const std::string well = dir.write("well.json", example_well_json().dump());

@@ -278,6 +278,52 @@ TEST(SurveyListing, DatumColumnsArePositiveDownFromTheDatumAndMeanSeaLevel) {
   EXPECT_NEAR(listing[0].tvdss_m, 1070.0, 1e-9);
 }
 
+// On a straight hold from a tie-on with the same attitude, minimum curvature is the straight
+// line, where straight_hold also put the INS positions: the two solutions coincide.
+TEST(SurveyListing, MinimumCurvatureColumnsFollowTheListedStations) {
+  const auto stations = straight_hold(30.0, 60.0);
+  const auto listing = survey_listing(stations, tie_on_at(1000.0, SurveyDirection{30.0, 60.0}), {});
+  ASSERT_EQ(listing.size(), stations.size());
+  for (std::size_t i = 0; i < stations.size(); ++i) {
+    EXPECT_NEAR(listing[i].mc_north_m, stations[i].north_m, 1e-9) << i;
+    EXPECT_NEAR(listing[i].mc_east_m, stations[i].east_m, 1e-9) << i;
+    EXPECT_NEAR(listing[i].mc_tvd_m, stations[i].tvd_m, 1e-9) << i;
+  }
+  // From a vertical tie-on the first segment bends: the columns follow minimum_curvature_path
+  // with the tie-on's direction, not the INS positions.
+  const SurveyTieOn vertical = tie_on_at(1000.0, SurveyDirection{0.0, 0.0});
+  const auto bent = survey_listing(stations, vertical, {});
+  const auto path = minimum_curvature_path(stations, 1000.0, vertical.direction);
+  EXPECT_NEAR(bent[0].mc_tvd_m, path[0].tvd_m, 1e-12);
+  EXPECT_NEAR(bent[2].mc_east_m, path[2].east_m, 1e-12);
+  EXPECT_GT(bent[0].mc_tvd_m, stations[0].tvd_m + 0.1);
+}
+
+// Grid azimuth: true azimuth minus the convergence, wrapped; the position sigmas in the hole's
+// frame: on a hole inclined 90 deg towards east, high side is up (the TVD sigma), lateral is
+// south (the north sigma) and along-hole is east (the east sigma).
+TEST(SurveyListing, GridAzimuthAndTheEllipseInTheHolesFrame) {
+  std::vector<SurveyStation> stations = {station_at(1030.0, 90.0, 90.0),
+                                         station_at(1060.0, 45.0, 0.5)};
+  for (SurveyStation& s : stations) {
+    s.position_covariance_nev_m2 << 4.0, 1.0, 0.5, 1.0, 9.0, 0.3, 0.5, 0.3, 16.0;
+  }
+  SurveyListingOptions options;
+  options.grid_convergence_deg = 1.5;
+  const auto listing = survey_listing(stations, tie_on_at(1000.0), options);
+  EXPECT_NEAR(listing[0].grid_azimuth_deg, 88.5, 1e-12);
+  EXPECT_NEAR(listing[1].grid_azimuth_deg, 359.0, 1e-12);
+  EXPECT_NEAR(listing[0].highside_sigma_m, 4.0, 1e-12);
+  EXPECT_NEAR(listing[0].lateral_sigma_m, 2.0, 1e-12);
+  EXPECT_NEAR(listing[0].alonghole_sigma_m, 3.0, 1e-12);
+  // The rotation keeps the trace: the three variances sum to NN + EE + VV.
+  const StationListing& r = listing[1];
+  EXPECT_NEAR(r.highside_sigma_m * r.highside_sigma_m + r.lateral_sigma_m * r.lateral_sigma_m +
+                  r.alonghole_sigma_m * r.alonghole_sigma_m,
+              29.0, 1e-9);
+  EXPECT_TRUE(std::isnan(survey_listing(stations, tie_on_at(1000.0), {})[0].grid_azimuth_deg));
+}
+
 // ---------------------------------------------------------------- file
 
 std::vector<std::string> read_lines(const std::filesystem::path& path) {
@@ -309,14 +355,17 @@ TEST(SurveyListing, SurveyCsvCarriesTheColumnsAfterTheQc) {
   auto files = write_survey_files(recorder, tie_on, dir.path(), false, options);
   for (auto& file : files) file->commit();
   const auto survey = read_lines(dir.path() / "survey.csv");
-  ASSERT_EQ(survey.size(), 2u);
+  ASSERT_EQ(survey.size(), 3u);  // the tie-on row, the station
   const std::string listing_columns =
       ",qc_flag,dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,closure_azimuth_deg,"
       "vertical_section_m,ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,ellipse_semi_minor_m,"
-      "ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface";
+      "ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface,mc_north_m,"
+      "mc_east_m,mc_tvd_m,md_sigma_m,station_type,grid_azimuth_deg,highside_sigma_m,"
+      "lateral_sigma_m,alonghole_sigma_m";
   ASSERT_TRUE(survey[0].ends_with(listing_columns)) << survey[0];
   const auto header = split(survey[0]);
-  const auto row = split(survey[1]);
+  EXPECT_NE(survey[1].find(",tie_on,"), std::string::npos) << survey[1];
+  const auto row = split(survey[2]);
   ASSERT_EQ(row.size(), header.size());
   const auto cell = [&](const std::string& name) {
     for (std::size_t i = 0; i < header.size(); ++i) {

@@ -4,15 +4,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "client_minimum_curvature.hpp"
 #include "stochnav/core/angles.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
@@ -151,6 +154,22 @@ TEST(MinimumCurvature, TinyDoglegStaysFiniteAndStraight) {
   EXPECT_NEAR(path[1].north_m, 0.0, 1e-9);
 }
 
+TEST(MinimumCurvature, TieOnDirectionStartsTheFirstSegment) {
+  // From a vertical tie-on, a circular build to 30 deg over the first 300 m of MD (the arc of
+  // radius R = 300 / (pi/6)): minimum curvature is exact on it. Without the tie-on's
+  // direction the first segment is straight along the station's 30 deg instead.
+  const double arc_m = 300.0;
+  const double radius_m = arc_m / (30.0 * kRadPerDeg);
+  const std::vector<SurveyStation> stations = {station_at(1000.0 + arc_m, 30.0, 90.0)};
+  const auto arc = minimum_curvature_path(stations, 1000.0, SurveyDirection{0.0, 0.0});
+  ASSERT_EQ(arc.size(), 1u);
+  EXPECT_NEAR(arc[0].east_m, radius_m * (1.0 - std::cos(30.0 * kRadPerDeg)), 1e-9);
+  EXPECT_NEAR(arc[0].north_m, 0.0, 1e-9);
+  EXPECT_NEAR(arc[0].tvd_m, radius_m * std::sin(30.0 * kRadPerDeg), 1e-9);
+  const auto straight = minimum_curvature_path(stations, 1000.0);
+  EXPECT_NEAR(straight[0].east_m, arc_m * std::sin(30.0 * kRadPerDeg), 1e-9);
+}
+
 TEST(MinimumCurvature, NoStationsGiveNoPoints) {
   EXPECT_TRUE(minimum_curvature_path({}, 100.0).empty());
 }
@@ -220,9 +239,12 @@ TEST(SurveyRecorder, StationsAtTheLastStationaryEpochWithGivenDepth) {
   const auto& stations = recorder.stations();
   ASSERT_EQ(stations.size(), 3u);
   const double expected_t[] = {2.0, 8.0, 12.0};
+  // The MD is the mean of the span's readings (t = 0-2, 6-8, 11-12): at its mean time here.
+  const double mean_span_t[] = {1.0, 7.0, 11.5};
   for (std::size_t i = 0; i < 3; ++i) {
     EXPECT_EQ(stations[i].t_s, expected_t[i]);
-    EXPECT_DOUBLE_EQ(stations[i].md_m, 1000.0 + 10.0 * expected_t[i]);
+    EXPECT_DOUBLE_EQ(stations[i].md_m, 1000.0 + 10.0 * mean_span_t[i]);
+    EXPECT_TRUE(std::isnan(stations[i].md_sigma_m)) << "no stated depth sigma";
   }
   EXPECT_NEAR(stations[0].tvd_m, 0.0, 1e-6);
   EXPECT_NEAR(stations[1].tvd_m, 15.0, 1e-6);
@@ -262,6 +284,54 @@ TEST(SurveyRecorder, OneStationPerConnectionWhenAZuptIsRejectedInIt) {
   for (std::size_t i = 1; i < stations.size(); ++i) {
     EXPECT_GT(stations[i].md_m, stations[i - 1].md_m + SurveyRecorder::kSameConnectionMd_m);
   }
+}
+
+// The tally smoother (experiment/tally_smoother.hpp): a station's MD is the mean of its
+// connection's readings, its sigma sqrt(random^2 / n + (scale dMD)^2); readings of a span
+// before the tool moved do not leak into the next one.
+TEST(SurveyRecorder, StationDepthIsTheMeanOfItsSpanWithTheStatedSigma) {
+  const DepthReadingSigma stated{0.05, 1e-3};
+  SurveyRecorder recorder(kTieOn, std::nullopt, stated);
+  const auto covariance = known_covariance();
+  struct Step {
+    double tvd_m, md_m;
+    bool stationary;
+  };
+  const Step steps[] = {{0, 1000.02, true}, {0, 999.98, true},   {0, 1000.06, true},
+                        {0, 999.94, true},  {15, 1015.0, false}, {30, 1030.0, false},
+                        {30, 1030.1, true}, {30, 1029.9, true},  {30, std::nan(""), true}};
+  double t_s = 0.0;
+  for (const Step& step : steps) {
+    const NavState state = state_at(t_s++, 0.0, 0.0, step.tvd_m, attitude_deg(0.0, 0.0, 0.0));
+    recorder.observe(state, covariance, step.stationary,
+                     std::isnan(step.md_m) ? std::nullopt : std::optional<double>(step.md_m),
+                     nullptr);
+  }
+  recorder.finish();
+  const auto& stations = recorder.stations();
+  ASSERT_EQ(stations.size(), 2u);
+  EXPECT_NEAR(stations[0].md_m, 1000.0, 1e-12);
+  EXPECT_NEAR(stations[0].md_sigma_m, 0.05 / 2.0, 1e-12);  // 4 readings at the tie-on's MD
+  EXPECT_EQ(stations[1].t_s, 8.0) << "the last stationary epoch, without a reading";
+  EXPECT_NEAR(stations[1].md_m, 1030.0, 1e-12);
+  EXPECT_NEAR(stations[1].md_sigma_m, std::hypot(0.05 / std::sqrt(2.0), 1e-3 * 30.0), 1e-12);
+}
+
+TEST(StationaryDepthMean, MeanAboutTheFirstReadingAndItsSigma) {
+  StationaryDepthMean mean;
+  EXPECT_EQ(mean.count(), 0u);
+  EXPECT_TRUE(std::isnan(mean.mean_m()));
+  EXPECT_TRUE(std::isnan(mean.sigma_m({0.05, 1e-3}, 0.0)));
+  // Depths of 5 km read to 0.1 mm: the mean keeps the tenths of a millimetre.
+  for (double reading : {5000.0001, 5000.0003, std::nan(""), 5000.0002}) mean.add(reading);
+  EXPECT_EQ(mean.count(), 3u) << "a non-finite reading is ignored";
+  EXPECT_NEAR(mean.mean_m(), 5000.0002, 1e-10);
+  EXPECT_NEAR(mean.sigma_m({0.03, 0.0}, 0.0), 0.03 / std::sqrt(3.0), 1e-15);
+  EXPECT_NEAR(mean.sigma_m({0.0, 2e-3}, 4000.0), 2e-3 * 1000.0002, 1e-12);
+  mean.reset();
+  EXPECT_EQ(mean.count(), 0u);
+  mean.add(12.0);
+  EXPECT_EQ(mean.mean_m(), 12.0);
 }
 
 TEST(SurveyRecorder, DepthFromTheInsPathWhenNotGiven) {
@@ -440,7 +510,8 @@ constexpr const char* kSurveyHeader =
 constexpr const char* kListingColumns =
     ",dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,closure_azimuth_deg,vertical_section_m,"
     "ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,ellipse_semi_minor_m,ellipse_azimuth_deg,"
-    "tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface";
+    "tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface,mc_north_m,mc_east_m,mc_tvd_m,"
+    "md_sigma_m,station_type,grid_azimuth_deg,highside_sigma_m,lateral_sigma_m,alonghole_sigma_m";
 
 // The first `count` cells of a CSV row.
 std::string first_cells(const std::string& row, int count) {
@@ -464,13 +535,22 @@ TEST(SurveyFiles, AppearOnlyOnCommit) {
   EXPECT_EQ(files_in(dir.path()), 4u);
 
   const auto survey = read_lines(dir.path() / "survey.csv");
-  ASSERT_EQ(survey.size(), 4u);
+  ASSERT_EQ(survey.size(), 5u);  // the tie-on row and three stations
   EXPECT_EQ(survey[0], std::string(kSurveyHeader) + kListingColumns);
+  // The tie-on without a recorded start: its MD at (0, 0, 0), attitude and sigmas unknown.
+  EXPECT_EQ(first_cells(survey[1], 13), "nan,1000,nan,nan,nan,0,0,0,nan,nan,nan,nan,nan")
+      << survey[1];
+  EXPECT_NE(survey[1].find(",0,0,0.000000,0.000000,0.000000,0,tie_on,nan,nan,nan,nan"),
+            std::string::npos)
+      << survey[1];
+  for (std::size_t i = 2; i < survey.size(); ++i) {
+    EXPECT_NE(survey[i].find(",survey,nan,"), std::string::npos) << survey[i];
+  }
   // The near-vertical first station has no azimuth sigma.
-  EXPECT_NE(first_cells(survey[1], 13).find(",nan,"), std::string::npos) << survey[1];
-  EXPECT_EQ(first_cells(survey[2], 13).find("nan"), std::string::npos) << survey[2];
+  EXPECT_NE(first_cells(survey[2], 13).find(",nan,"), std::string::npos) << survey[2];
+  EXPECT_EQ(first_cells(survey[3], 13).find("nan"), std::string::npos) << survey[3];
   // 9 significant digits: the time and depth read back to 1e-8 relative.
-  std::istringstream row(survey[2]);
+  std::istringstream row(survey[3]);
   std::string t, md;
   std::getline(row, t, ',');
   std::getline(row, md, ',');
@@ -492,6 +572,146 @@ TEST(SurveyFiles, AppearOnlyOnCommit) {
   EXPECT_EQ(ins_rows, recorder.ins_path().size());
   EXPECT_EQ(well_path.size(), 1u + minimum_curvature_rows + ins_rows);
   EXPECT_EQ(well_path[1], "minimum_curvature,1000,0,0,0");
+}
+
+/// survey.csv's columns by name (numbers; "nan" and text as NaN).
+std::map<std::string, std::vector<double>> survey_columns(const std::filesystem::path& path) {
+  const auto lines = read_lines(path);
+  std::map<std::string, std::vector<double>> columns;
+  std::vector<std::string> names;
+  std::istringstream header(lines.at(0));
+  for (std::string name; std::getline(header, name, ',');) names.push_back(name);
+  for (std::size_t row = 1; row < lines.size(); ++row) {
+    std::istringstream cells(lines[row]);
+    std::string cell;
+    for (std::size_t i = 0; i < names.size() && std::getline(cells, cell, ','); ++i) {
+      const bool number =
+          cell != "nan" && cell.find_first_of("_abcdefghijklmopqrsuvwxyz") == std::string::npos;
+      columns[names[i]].push_back(number ? std::stod(cell) : std::nan(""));
+    }
+  }
+  return columns;
+}
+
+// Issue #27, "a listing that adds up": a client recomputing minimum curvature from survey.csv's
+// md_m, inclination_deg and azimuth_deg (and the tie-on's MD and attitude) gets its mc_*
+// columns to 1e-6 m, on a 3-km well of 120 stations turning through every quadrant below a
+// tie-on at MD 2500 m: the columns are computed from the numbers as printed.
+TEST(SurveyFiles, ClientMinimumCurvatureFromTheListingReproducesItsColumns) {
+  SurveyTieOn tie_on = kTieOn;
+  tie_on.measured_depth_m = 2500.123456789;
+  tie_on.direction = SurveyDirection{12.3456789123, 201.987654321};
+  SurveyRecorder recorder(tie_on);
+  const auto covariance = known_covariance();
+  constexpr int kStations = 120;
+  for (int k = 1; k <= kStations; ++k) {
+    const double md_m = tie_on.measured_depth_m + 25.0 * k + 0.123456789 * std::sin(k);
+    const double inclination_deg = 45.0 + 44.0 * std::sin(0.05 * k) + 1e-7 / 3.0;
+    const double azimuth_deg = std::fmod(3.1234567891 * k + 10.0, 360.0);
+    const MwdAttitude attitude = attitude_deg(inclination_deg, 0.0, azimuth_deg);
+    // A moving epoch then a stationary one: one station per k, at an arbitrary INS position.
+    recorder.observe(state_at(2.0 * k, 0.0, 0.0, md_m - 2500.0, attitude), covariance, false,
+                     md_m - 10.0, nullptr);
+    recorder.observe(state_at(2.0 * k + 1.0, 0.0, 0.0, md_m - 2500.0, attitude), covariance, true,
+                     md_m, nullptr);
+  }
+  recorder.finish();
+  ASSERT_EQ(recorder.stations().size(), static_cast<std::size_t>(kStations));
+  const testing::TempDir dir;
+  auto files = write_survey_files(recorder, tie_on, dir.path(), false);
+  for (auto& file : files) file->commit();
+  const auto listing = survey_columns(dir.path() / "survey.csv");
+  // The tie-on row first (MD and attitude to 9 digits), then the stations.
+  const testing::ListedStation listed_tie_on{
+      listing.at("md_m")[0], listing.at("inclination_deg")[0], listing.at("azimuth_deg")[0]};
+  EXPECT_EQ(listed_tie_on.md_m, 2500.12346);
+  EXPECT_EQ(listed_tie_on.inclination_deg, 12.3456789);
+  EXPECT_EQ(listed_tie_on.azimuth_deg, 201.987654);
+  std::vector<testing::ListedStation> listed;
+  for (std::size_t i = 1; i < listing.at("md_m").size(); ++i) {
+    listed.push_back(
+        {listing.at("md_m")[i], listing.at("inclination_deg")[i], listing.at("azimuth_deg")[i]});
+  }
+  const auto client = testing::client_minimum_curvature(listed_tie_on, listed);
+  ASSERT_EQ(client.size(), static_cast<std::size_t>(kStations));
+  double worst_m = 0.0;
+  for (std::size_t i = 0; i < client.size(); ++i) {
+    worst_m = std::max({worst_m, std::abs(client[i].north_m - listing.at("mc_north_m")[i + 1]),
+                        std::abs(client[i].east_m - listing.at("mc_east_m")[i + 1]),
+                        std::abs(client[i].tvd_m - listing.at("mc_tvd_m")[i + 1])});
+  }
+  std::printf("worst client-recomputation difference %.3g m over %d stations, %.0f m of hole\n",
+              worst_m, kStations, listed.back().md_m - listed_tie_on.md_m);
+  EXPECT_LT(worst_m, 1e-6);
+  EXPECT_GT(std::abs(listing.at("mc_east_m").back()) + std::abs(listing.at("mc_north_m").back()),
+            100.0)
+      << "a well that goes somewhere";
+}
+
+// The tie-on row from the navigation's start: the tie-on's MD and direction, the start's
+// toolface, (0, 0, 0), the initial covariance's sigmas; and, with a sensor-to-bit offset, the
+// projection to the bit after the last station: straight along its attitude, MD + offset.
+TEST(SurveyFiles, TieOnRowFirstAndProjectionToTheBitLast) {
+  SurveyTieOn tie_on = kTieOn;
+  tie_on.direction = SurveyDirection{0.5, 30.0};
+  SurveyRecorder recorder(tie_on);
+  recorder.record_tie_on(state_at(-5.0, 3.0, 4.0, 5.0, attitude_deg(0.7, 15.0, 31.0)),
+                         known_covariance());
+  for (const Epoch& e : three_connections()) {
+    recorder.observe(
+        state_at(e.t_s, 0.0, 0.0, e.tvd_m, attitude_deg(e.t_s < 3.0 ? 0.5 : 40.0, 20.0, 60.0)),
+        known_covariance(), e.stationary, 1000.0 + e.tvd_m, nullptr);
+  }
+  recorder.finish();
+  const SurveyStation row = recorder.tie_on_station();
+  EXPECT_EQ(row.type, SurveyStationType::kTieOn);
+  EXPECT_EQ(row.t_s, -5.0);
+  EXPECT_EQ(row.md_m, 1000.0);
+  EXPECT_EQ(row.inclination_deg, 0.5) << "the tie-on's direction, not the state's 0.7";
+  EXPECT_EQ(row.azimuth_deg, 30.0);
+  EXPECT_EQ(row.north_m, 0.0);
+  EXPECT_EQ(row.tvd_m, 0.0);
+  EXPECT_DOUBLE_EQ(row.north_sigma_m, 3.0);  // known_covariance: N 9, E 4, U 16 m^2
+  EXPECT_DOUBLE_EQ(row.tvd_sigma_m, 4.0);
+  EXPECT_EQ(row.md_sigma_m, 0.0);
+
+  const testing::TempDir dir;
+  SurveyListingOptions options;
+  options.sensor_to_bit_m = 12.5;
+  auto files = write_survey_files(recorder, tie_on, dir.path(), false, options);
+  for (auto& file : files) file->commit();
+  const auto listing = survey_columns(dir.path() / "survey.csv");
+  const auto lines = read_lines(dir.path() / "survey.csv");
+  ASSERT_EQ(lines.size(), 1u + 1u + 3u + 1u);
+  EXPECT_NE(lines[1].find(",tie_on,"), std::string::npos);
+  EXPECT_NE(lines[4].find(",survey,"), std::string::npos);
+  EXPECT_NE(lines[5].find(",projection_to_bit,"), std::string::npos);
+  const std::size_t last = 3, bit = 4;  // data rows: the tie-on, three stations, the bit
+  EXPECT_NEAR(listing.at("md_m")[bit], listing.at("md_m")[last] + 12.5, 1e-6);
+  const double along = 12.5;
+  const double inclination = 40.0 * kRadPerDeg, azimuth = 60.0 * kRadPerDeg;
+  for (const auto& [column, component] :
+       {std::pair{"north_m", std::sin(inclination) * std::cos(azimuth)},
+        std::pair{"east_m", std::sin(inclination) * std::sin(azimuth)},
+        std::pair{"tvd_m", std::cos(inclination)}}) {
+    EXPECT_NEAR(listing.at(column)[bit] - listing.at(column)[last], along * component, 1e-6)
+        << column;
+    const std::string mc = std::string("mc_") + column;
+    EXPECT_NEAR(listing.at(mc)[bit] - listing.at(mc)[last], along * component, 2e-6) << mc;
+  }
+  EXPECT_NEAR(listing.at("dls_deg_30m")[bit], 0.0, 1e-9) << "straight: no dogleg";
+  EXPECT_EQ(listing.at("inclination_sigma_deg")[bit], listing.at("inclination_sigma_deg")[last]);
+  EXPECT_TRUE(std::isnan(listing.at("qc_flag")[bit]));
+  // The tie-on row: no rates, the origin of closure, vertical section and minimum curvature.
+  EXPECT_TRUE(std::isnan(listing.at("dls_deg_30m")[0]));
+  EXPECT_EQ(listing.at("closure_m")[0], 0.0);
+  EXPECT_EQ(listing.at("mc_tvd_m")[0], 0.0);
+  // known_covariance's [[9, 1.5], [1.5, 4]] m^2: major eigenvalue 6.5 + hypot(2.5, 1.5).
+  EXPECT_NEAR(listing.at("ellipse_semi_major_m")[0],
+              std::sqrt(-2.0 * std::log(0.05)) * std::sqrt(6.5 + std::hypot(2.5, 1.5)), 1e-6);
+  // survey_errors.csv and trajectory.xml have the survey stations only (the tie-in point is
+  // trajectory.xml's own).
+  EXPECT_EQ(read_lines(dir.path() / "well_path.csv")[1], "minimum_curvature,1000,0,0,0");
 }
 
 TEST(SurveyFiles, UncommittedFilesLeaveNothing) {

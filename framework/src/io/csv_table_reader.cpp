@@ -49,6 +49,18 @@ CsvTableReader::CsvTableReader(const std::string& path, std::span<const std::str
   }
 }
 
+std::string CsvTableReader::text_cell(std::string_view column) const {
+  std::size_t index = 0;
+  while (index < header_.size() && header_[index] != column) ++index;
+  if (index == header_.size()) {
+    throw InputError(lines_.path() + ": no column '" + std::string(column) +
+                     "' (columns: " + joined(header_) + "); write the file with that column");
+  }
+  std::vector<std::string_view> cells;
+  split_cells(row_, ',', cells);
+  return index < cells.size() ? std::string(trim(cells[index])) : std::string();
+}
+
 bool CsvTableReader::has_column(std::string_view name) const {
   for (const auto& column : header_) {
     if (column == name) return true;
@@ -81,6 +93,7 @@ bool CsvTableReader::next(std::span<double> values) {
   std::string_view line;
   while (lines_.next(line)) {
     if (trim(line).empty() || line.front() == '#') continue;
+    row_ = line;
     if (plain_rows_ && parse_plain_row(line, values)) return true;
     // Anything else (blanks or '+' around a number, a bad cell, a short row) takes the general
     // path, which accepts what parse_number accepts or names the problem.

@@ -281,6 +281,20 @@ SurveyConfig parse_survey(const nlohmann::json& json, const std::string& pointer
     }
     survey.tie_on_tvd_m = number_in(reader, "tie_on_tvd_m", -20000.0, 20000.0, "m");
   }
+  if (reader.has("sensor_to_bit_m")) {
+    survey.sensor_to_bit_m = number_in(reader, "sensor_to_bit_m", 0.0, 200.0, "m");
+  }
+  if (reader.has("tie_on_md_tolerance_m")) {
+    const double tolerance = reader.number("tie_on_md_tolerance_m", Bound::kAny, "m");
+    if (!(tolerance > 0.0 && tolerance <= 1000.0)) {
+      throw ConfigError(reader.pointer("tie_on_md_tolerance_m") + ": " + std::to_string(tolerance) +
+                        " m is out of range; expected a distance in (0, 1000] m, e.g. 5");
+    }
+    survey.tie_on_md_tolerance_m = tolerance;
+  }
+  if (reader.has("grid_convergence_deg")) {
+    survey.grid_convergence_deg = number_in(reader, "grid_convergence_deg", -10.0, 10.0, "deg");
+  }
   reader.finish();
   return survey;
 }

@@ -54,7 +54,14 @@ std::vector<ListingStation> read_survey_listing(const std::string& path) {
   CsvTableReader reader(path, kColumns);
   std::vector<ListingStation> stations;
   std::array<double, 3> row{};
+  const bool typed_rows = reader.has_column("station_type");
   while (reader.next(row)) {
+    // A run's survey.csv: its tie-on row (at the depth of its first station, taken at rest at
+    // the tie-on) and its projection to the bit are not survey stations.
+    if (typed_rows) {
+      const std::string type = reader.text_cell("station_type");
+      if (type == "tie_on" || type == "projection_to_bit") continue;
+    }
     const auto where = [&] { return path + ":" + std::to_string(reader.line_number()) + ": "; };
     const auto [md_m, inclination_deg, azimuth_deg] = row;
     if (!stations.empty() && !(md_m > stations.back().md_m)) {

@@ -48,7 +48,10 @@
 // truth's first row (every compare variant starts equal, so comparisons measure the noise
 // models, not the initialisation). Truth, when present, only scores. "initial_error" then
 // offsets the estimate from that start. The survey's tie-on is the start position (before the
-// deliberate error) with the configured MD, else the aid data's first "measured_depth_m", else 0.
+// deliberate error) with the configured MD, else the tally at the start ("measured_depth_m" at
+// rest) minus "survey/sensor_to_bit_m", else 0; a configured MD farther than
+// "survey/tie_on_md_tolerance_m" from that tally is a ConfigError before the run
+// (run/survey_start.hpp).
 
 #include <array>
 #include <cstdint>

@@ -3,8 +3,11 @@
 // the filter's attitude and position become one station, as an MWD survey reports it.
 //
 // Conventions (DESIGN.md, `survey.csv`):
-//   md_m          measured depth along the hole (m): from the aid data's "measured_depth_m" at the
-//                 station when the run has it, else the tie-on depth plus the INS path length
+//   md_m          measured depth of the survey SENSOR along the hole (m): with depth readings
+//                 (the aid data's "measured_depth_m", a pipe tally of the BIT's depth, minus the
+//                 run config's "survey/sensor_to_bit_m"), the mean of the readings of the
+//                 station's stationary span (experiment/tally_smoother.hpp); else the tie-on
+//                 depth plus the INS path length
 //   inclination   angle of the tool axis from vertical down (deg), [0, 180]
 //   azimuth       direction of the tool axis' horizontal projection from TRUE north, clockwise
 //                 towards east (deg), [0, 360)
@@ -17,6 +20,15 @@
 //                 angles about the estimate; position sigmas from the ENU position block)
 // A station is taken at the LAST stationary aid epoch of each connection (the filter has then
 // used every ZUPT of it); a record that ends while stationary yields a final station.
+//
+// Rows of survey.csv (column station_type, the last): first the TIE-ON ("tie_on": its MD, the
+// attitude known there (SurveyTieOn::direction; toolface from the start state), position
+// (0, 0, 0), the sigmas of the filter's initial covariance, md_sigma_m 0: the reference of the
+// others; QC and rates NaN), then one row per connection ("survey"), then, with a sensor-to-bit
+// offset X > 0, the PROJECTION TO THE BIT ("projection_to_bit": X m beyond the last station,
+// straight along its attitude (minimum curvature with no dogleg), its sigmas the last
+// station's: the projection's own error, the unknown curvature over X, is not in them).
+// metrics.json's station count counts the "survey" rows only; survey_errors.csv has those only.
 //
 // Without measured depth in the data, md_m is the tie-on MD plus the length of the INS path
 // (the sum of the 3-D distances between the positions of successive observe() calls, starting
@@ -43,11 +55,14 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "stochnav/experiment/station_qc.hpp"
+#include "stochnav/experiment/tally_smoother.hpp"
 #include "stochnav/ins/nav_state.hpp"
 #include "stochnav/io/atomic_file.hpp"
 
@@ -80,7 +95,18 @@ struct SurveyListingOptions {
   std::optional<double> datum_elevation_m;             ///< depth datum's elevation above MSL (m)
   /// The tie-on's TVD below the datum (m); absent: datum_elevation_m - tie_on.height_m.
   std::optional<double> tie_on_tvd_m;
+  /// The survey sensor's distance behind the bit (m), >= 0: > 0 adds the projection-to-bit row.
+  double sensor_to_bit_m = 0.0;
+  /// Grid convergence (deg): grid north's angle from true north, clockwise positive (grid
+  /// azimuth = true azimuth - convergence); absent: no grid azimuth (NaN).
+  std::optional<double> grid_convergence_deg;
 };
+
+/// What a row of survey.csv is (its column station_type).
+enum class SurveyStationType { kTieOn, kSurvey, kProjectionToBit };
+
+/// The station_type text: "tie_on", "survey", "projection_to_bit".
+std::string_view station_type_name(SurveyStationType type);
 
 /// One survey station: exactly the columns of survey.csv, in that order.
 struct SurveyStation {
@@ -104,6 +130,10 @@ struct SurveyStation {
   /// The QC of the station from its connection's static data alone (experiment/station_qc.hpp):
   /// the survey.csv columns after the DESIGN.md ones.
   StationQc qc;
+  /// 1-sigma of md_m relative to the tie-on (m), experiment/tally_smoother.hpp; NaN without
+  /// depth readings or without the depth aid's stated sigma.
+  double md_sigma_m = std::numeric_limits<double>::quiet_NaN();
+  SurveyStationType type = SurveyStationType::kSurvey;
 };
 
 /// The point of the minimum-curvature well path at a station.
@@ -114,31 +144,54 @@ struct WellPathPoint {
   double tvd_m = 0.0;
 };
 
+/// The projection of `last` (a survey station) `distance_m` ahead along its attitude: MD,
+/// north/east/TVD moved straight along its direction, everything else (attitude, sigmas,
+/// covariance, time) the station's; type kProjectionToBit, QC undefined.
+SurveyStation projected_to_bit(const SurveyStation& last, double distance_m);
+
 /// Minimum-curvature positions of the stations (inclination and azimuth in deg), from the
-/// tie-on at (0, 0, 0) and its measured depth; the first segment uses the first station's
-/// attitude at both ends. One point per station.
-std::vector<WellPathPoint> minimum_curvature_path(const std::vector<SurveyStation>& stations,
-                                                  double tie_on_md_m);
+/// tie-on at (0, 0, 0) and its measured depth; the first segment starts with the tie-on's
+/// direction when given, else with the first station's (a straight first segment). One point
+/// per station.
+std::vector<WellPathPoint> minimum_curvature_path(
+    const std::vector<SurveyStation>& stations, double tie_on_md_m,
+    const std::optional<SurveyDirection>& tie_on_direction = std::nullopt);
 
 /// Collects stations while a run goes, and an INS path (thinned) for the plot.
 class SurveyRecorder final {
  public:
   /// With a budget, every station gets its static QC (StationQc) from the span observe() is
-  /// given; without, the QC columns are NaN.
+  /// given; without, the QC columns are NaN. With the depth aid's stated sigma, stations with
+  /// depth readings get md_sigma_m; without, it is NaN.
   explicit SurveyRecorder(const SurveyTieOn& tie_on,
-                          std::optional<StationQcBudget> qc_budget = std::nullopt);
+                          std::optional<StationQcBudget> qc_budget = std::nullopt,
+                          std::optional<DepthReadingSigma> depth_sigma = std::nullopt);
 
   /// Call at every epoch at which any aid measured (and may be called at others).
   ///   state:        the navigator's state after the epoch's updates
   ///   covariance:   the 9 x 9 top-left block of P (dr ENU m, dv ENU m/s, phi rad)
   ///   stationary:   a zero-velocity update was accepted at this epoch
-  ///   measured_depth_m: the aid data's measured depth at this epoch, if the run has one
+  ///   measured_depth_m: the SENSOR's measured depth read at this epoch (the tally minus the
+  ///                 sensor-to-bit offset), if the run has one; a station's md_m is the mean
+  ///                 of its stationary span's readings
   ///   truth:        the true state at this epoch, when there is truth (for survey_errors.csv)
   ///   static_span:  the raw increments of the connection's stationary span so far (its first
   ///                 stationary aid epoch to this one), for the station's QC; may be null
   void observe(const NavState& state, const Eigen::Matrix<double, 9, 9>& covariance,
                bool stationary, std::optional<double> measured_depth_m, const NavState* truth,
                const StaticSpan* static_span = nullptr);
+
+  /// Records the tie-on row (SurveyStationType::kTieOn) from the navigation's start:
+  ///   state:      the start's attitude (before any deliberate initial error; its position is
+  ///               not used: the row is at (0, 0, 0))
+  ///   covariance: the filter's initial 9 x 9 covariance (as observe()'s)
+  /// Inclination and azimuth are the tie-on's direction where known (so that minimum curvature
+  /// starts from what the row lists), else the state's. Call once, before the first observe().
+  void record_tie_on(const NavState& state, const Eigen::Matrix<double, 9, 9>& covariance);
+
+  /// The tie-on row: as recorded, else from the SurveyTieOn alone (its MD, its direction or NaN,
+  /// position (0, 0, 0), time, toolface and sigmas NaN).
+  SurveyStation tie_on_station() const;
 
   /// Closes an open connection at the end of the record (its last stationary epoch becomes a
   /// station). Call once, after the last epoch.
@@ -172,8 +225,10 @@ class SurveyRecorder final {
 
   SurveyTieOn tie_on_;
   std::optional<StationQcBudget> qc_budget_;
-  double north_m_per_rad_ = 0.0;  ///< (R_M(lat0) + h0): latitude change to north metres
-  double east_m_per_rad_ = 0.0;   ///< (R_N(lat0) + h0) cos(lat0): longitude change to east metres
+  std::optional<DepthReadingSigma> depth_sigma_;
+  StationaryDepthMean span_depth_;  ///< the readings of the current stationary span
+  double north_m_per_rad_ = 0.0;    ///< (R_M(lat0) + h0): latitude change to north metres
+  double east_m_per_rad_ = 0.0;     ///< (R_N(lat0) + h0) cos(lat0): longitude change to east metres
   std::vector<SurveyStation> stations_;
   std::vector<SurveyStation> errors_;
   std::vector<WellPathPoint> ins_path_;
@@ -184,15 +239,19 @@ class SurveyRecorder final {
   bool last_path_point_is_extra_ = false;  ///< ins_path_.back() is the latest, off-stride epoch
   std::optional<SurveyStation> open_station_;
   std::optional<SurveyStation> open_error_;
+  std::optional<SurveyStation> tie_on_station_;
 };
 
 /// Writes the survey files into temporary files beside their final paths in out_dir and
 /// returns them uncommitted: the caller renames them into place (PendingFile::commit) together
 /// with the run's other files, so a failed run leaves none of them.
-///   survey.csv          the stations (header as DESIGN.md, then the QC columns, then the
-///                       listing's of experiment/survey_listing.hpp under `listing`)
-///   trajectory.xml      the same stations as a WITSML 1.4.1.1 trajectory, the tie-on first
-///                       (experiment/witsml_trajectory.hpp)
+///   survey.csv          the tie-on row, the stations and, with listing.sensor_to_bit_m > 0,
+///                       the projection to the bit (header as DESIGN.md, then the QC columns,
+///                       then the listing's of experiment/survey_listing.hpp under `listing`,
+///                       then station_type). MD, inclination and azimuth enter the derived
+///                       columns as printed (9 significant digits).
+///   trajectory.xml      the tie-on and the survey stations (not the projection) as a WITSML
+///                       1.4.1.1 trajectory (experiment/witsml_trajectory.hpp)
 ///   survey_errors.csv   the stations' errors (DESIGN.md's and the QC columns, not the
 ///                       listing's), only when there are any
 ///   well_path.csv       md_m, north/east/tvd by minimum curvature at the stations, and the INS

@@ -9,8 +9,9 @@
 //   turn_deg_30m         (A - A_previous, wrapped to (-180, 180]) / dMD * 30 m: azimuth rate,
 //                        positive turning right (clockwise from above)
 //                        The three rates are NaN on the first station when the tie-on's
-//                        attitude is not known (SurveyTieOn::direction: a configured initial
-//                        attitude, or the truth's at a start from truth), and on any station
+//                        attitude is not known (SurveyTieOn::direction: a run sets it from the
+//                        configured initial attitude, the aligned one after an alignment, or
+//                        the truth's at a start from truth), and on any station
 //                        whose MD does not exceed the previous one (dMD <= 0); the turn rate
 //                        also where either station is within 1 deg of vertical (the azimuth
 //                        undefined there).
@@ -34,13 +35,35 @@
 //   tvdss_m              TVD below mean sea level (subsea), POSITIVE DOWN (negative above
 //                        MSL): tvd_below_datum_m - datum_elevation_m (m)
 //                        Both NaN without a datum (SurveyListingOptions::datum_elevation_m).
-//   azimuth_defined      1 where the azimuth means something, 0 within 1 deg of vertical, where
+//   azimuth_defined      1 where the azimuth means something, 0 within 1 deg of vertical (or
+//                        where the azimuth is unknown: NaN, a tie-on without attitude), where
 //                        a tiny tilt swings it through any angle (azimuth_deg is then the MWD
 //                        convention's value, its sigma large or NaN, and no turn rate is given)
 //   gyro_toolface        1 where toolface_deg is the gyro ("north") toolface, the angle from
 //                        North: at sin(inclination) < kNearVerticalSin (ins/mwd_attitude.hpp),
 //                        where the high-side toolface is undefined; 0 where it is the high-side
 //                        toolface
+//   mc_north_m, mc_east_m, mc_tvd_m
+//                        the station's position by MINIMUM CURVATURE (survey.hpp,
+//                        minimum_curvature_path) through the listed md_m, inclination_deg and
+//                        azimuth_deg from the tie-on at (0, 0, 0), TVD positive down (m): what a
+//                        client recomputing the listing gets. The first segment starts with the
+//                        tie-on's attitude when known (SurveyTieOn::direction), else straight
+//                        along the first station's. north_m/east_m/tvd_m are the INS filter's
+//                        positions, a second, independent solution of the same stations: the
+//                        two differ by the filter's position error plus minimum curvature's
+//                        (its circular-arc assumption and the MD and angle errors), which the
+//                        *_sigma_m columns bound on the simulated runs of
+//                        tests/experiment/survey_adds_up_test.cpp.
+//   station_type         (experiment/survey.hpp) tie_on | survey | projection_to_bit
+//   grid_azimuth_deg     azimuth_deg - grid convergence, wrapped to [0, 360) (deg); NaN without
+//                        a convergence (SurveyListingOptions::grid_convergence_deg)
+//   highside_sigma_m, lateral_sigma_m, alonghole_sigma_m
+//                        the position's 1-sigma (m) along the hole's high side h = (cos I cos A,
+//                        cos I sin A, -sin I), its lateral (right) l = (-sin A, cos A, 0) and
+//                        along the hole t = (sin I cos A, sin I sin A, cos I), all in (north,
+//                        east, down): sqrt(x^T P x) with P the NEV covariance (I, A: the listed
+//                        inclination and azimuth; near vertical h and l turn with the azimuth)
 //
 // The vertical-section azimuth, when not given, is the tie-on's azimuth (the planned direction
 // at the start) when the tie-on's attitude is known and more than 1 deg from vertical, else the
@@ -73,6 +96,13 @@ struct StationListing {
   double tvdss_m = 0.0;
   double azimuth_defined = 1.0;  ///< 1 or 0 (a CSV number)
   double gyro_toolface = 0.0;    ///< 1 or 0
+  double mc_north_m = 0.0;       ///< minimum curvature through the listed stations (m)
+  double mc_east_m = 0.0;
+  double mc_tvd_m = 0.0;           ///< positive down (m)
+  double grid_azimuth_deg = 0.0;   ///< deg from grid north, [0, 360); NaN without convergence
+  double highside_sigma_m = 0.0;   ///< 1-sigma along the high side (m)
+  double lateral_sigma_m = 0.0;    ///< 1-sigma across the hole, to the right (m)
+  double alonghole_sigma_m = 0.0;  ///< 1-sigma along the hole (m)
 };
 
 /// A horizontal error ellipse: semi-axes (m) and the major axis' azimuth, [0, 180) deg.
@@ -105,5 +135,12 @@ std::optional<double> tie_on_tvd_below_datum_m(const SurveyTieOn& tie_on,
 std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& stations,
                                            const SurveyTieOn& tie_on,
                                            const SurveyListingOptions& options);
+
+/// The derived columns of the tie-on row (SurveyRecorder::tie_on_station) listed before
+/// `stations`: no rates (NaN), closure and vertical section 0 at (0, 0, 0), the covariances and
+/// ellipse of its covariance, the datum depths of the tie-on, minimum curvature's origin.
+StationListing tie_on_listing(const SurveyStation& tie_on_row,
+                              const std::vector<SurveyStation>& stations, const SurveyTieOn& tie_on,
+                              const SurveyListingOptions& options);
 
 }  // namespace stochnav

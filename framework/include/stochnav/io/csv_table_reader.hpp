@@ -23,6 +23,11 @@ class CsvTableReader final {
   /// or a NaN / infinite value.
   bool next(std::span<double> values);
 
+  /// The current row's (the last next()'s) cell of `column` as text, trimmed: a text column
+  /// beside the numbers (survey.csv's station_type). Throws InputError when the header has no
+  /// such column; "" when the row is short.
+  std::string text_cell(std::string_view column) const;
+
   /// Whether the header has this column.
   bool has_column(std::string_view name) const;
   const std::vector<std::string>& header() const { return header_; }
@@ -41,6 +46,7 @@ class CsvTableReader final {
   std::vector<int> slot_of_column_;   // per header column: its place in next()'s values, or -1
   bool plain_rows_ = true;            // parse_plain_row usable (no column requested twice)
   std::vector<std::string_view> cells_;
+  std::string_view row_;  // the current row (valid until the next read)
 };
 
 }  // namespace stochnav

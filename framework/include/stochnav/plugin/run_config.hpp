@@ -40,7 +40,10 @@
 //     "survey": {"vertical_section_azimuth_deg": 45,   // [0, 360); default: see SurveyConfig
 //                "ellipse_confidence": 0.95,           // (0, 1), the horizontal ellipse's
 //                "datum_elevation_m": 30,              // depth datum above MSL (m), optional
-//                "tie_on_tvd_m": 1200}                 // tie-on TVD below the datum, optional
+//                "tie_on_tvd_m": 1200,                 // tie-on TVD below the datum, optional
+//                "sensor_to_bit_m": 12.5,              // survey sensor behind the bit, [0, 200]
+//                "tie_on_md_tolerance_m": 5,           // tie-on MD vs the tally, (0, 1000]
+//                "grid_convergence_deg": 1.2}          // grid north from true, [-10, 10]
 //   }
 // Three-axis values accept a number (all axes) or [x, y, z]. With "fit", the noise model is
 // fitted to the calibration record by the plugin's fitter (params then hold its fit options).
@@ -122,7 +125,9 @@ struct TieOnConfig {
   double longitude_deg = 0.0;               ///< "longitude_deg", required
   double height_m = 0.0;                    ///< "height_m", ellipsoidal, required
   std::optional<double> measured_depth_m;   ///< "measured_depth_m" (m), optional: absent, the
-                                            ///< aid data's first measured_depth_m, else 0
+                                            ///< tally at the start (the aid data's leading
+                                            ///< measured_depth_m at rest) minus
+                                            ///< "survey/sensor_to_bit_m", else 0
 };
 
 /// "initial_state/attitude": a known attitude (deg; ins/mwd_attitude.hpp conventions).
@@ -189,8 +194,9 @@ struct OutputConfig {
 /// experiment/survey_listing.hpp). Every key optional.
 struct SurveyConfig {
   /// "vertical_section_azimuth_deg" (deg from true north), [0, 360). Absent: the tie-on's
-  /// azimuth when known ("initial_state/attitude", or truth's at a start from truth) and more
-  /// than 1 deg from vertical, else the closure azimuth of the last station.
+  /// azimuth ("initial_state/attitude", the aligned one after "alignment", or truth's at a start
+  /// from truth) when more than 1 deg from vertical, else the closure azimuth of the last
+  /// station.
   std::optional<double> vertical_section_azimuth_deg;
   /// "ellipse_confidence": the probability inside the horizontal error ellipse, (0, 1).
   double ellipse_confidence = 0.95;
@@ -201,6 +207,19 @@ struct SurveyConfig {
   /// with datum_elevation_m. Absent: datum_elevation_m - the tie-on's height_m (the ellipsoidal
   /// height taken as the elevation above MSL: the geoid undulation, tens of metres, ignored).
   std::optional<double> tie_on_tvd_m;
+  /// "sensor_to_bit_m" (m): how far the survey sensor sits behind the bit, finite, [0, 200].
+  /// The depth data's "measured_depth_m" (a pipe tally) is the BIT's depth: a station's MD is
+  /// the tally minus this (experiment/tally_smoother.hpp), and so is the tie-on's MD when it is
+  /// not configured.
+  double sensor_to_bit_m = 0.0;
+  /// "tie_on_md_tolerance_m" (m), (0, 1000]: a configured tie-on MD
+  /// ("initial_state/tie_on/measured_depth_m") farther than this from the tally at the start
+  /// (the mean of the depth data's leading readings flagged "zupt", else its first) minus
+  /// sensor_to_bit_m is rejected (exit 2) before the run: one of them is wrong.
+  double tie_on_md_tolerance_m = 5.0;
+  /// "grid_convergence_deg" (deg), [-10, 10]: grid north's angle from true north, clockwise
+  /// positive; survey.csv's grid_azimuth_deg = azimuth_deg - this. Absent: grid_azimuth_deg NaN.
+  std::optional<double> grid_convergence_deg;
 };
 
 struct RunConfig {

@@ -17,6 +17,10 @@ namespace stochnav::survey_error {
 /// is), then one row per station, the tie-on first. Blank lines and '#' lines are skipped.
 /// Requires at least two stations, MD strictly increasing, inclination in [0, 180] deg,
 /// azimuth in [0, 360) deg, no NaN. Returns radians.
+/// Rows whose column station_type is a `stochnav run` survey.csv's "tie_on" or
+/// "projection_to_bit" are skipped: the first survey station is the error model's tie-on, as
+/// in a listing without them (the run's tie-on row sits at the depth of its first station,
+/// taken at rest there). Other station_type values are read like any row.
 std::vector<ListingStation> read_survey_listing(const std::string& path);
 
 /// The well's parameters from a JSON object with exactly these keys (angles in degrees):

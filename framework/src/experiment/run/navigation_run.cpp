@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "run/run_files.hpp"
+#include "run/survey_start.hpp"
 #include "stochnav/core/angles.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/progress_bar.hpp"
@@ -274,6 +275,11 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
 
   plugin::AidData aid_data =
       config.data.aids ? plugin::read_aid_data(*config.data.aids) : plugin::AidData();
+  const bool has_md = aid_data.has(kMeasuredDepthColumn);
+  const std::span<const double> tally_md =
+      has_md ? aid_data.column(kMeasuredDepthColumn, "/data/aids") : std::span<const double>();
+  const std::optional<double> tally_at_start_m = tally_md_at_start_m(aid_data);
+  check_tie_on_against_tally(config, tally_at_start_m);
   AidEpochs aid_epochs(aid_data, 1.0 / imu.rate_hz());
   const plugin::PluginRegistry registry(plugin::default_search_path(config.config_dir));
   plugin::RunPlugins plugins =
@@ -285,6 +291,7 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
     filter = aligned.options;
     aligner.reset();  // the span's epochs are not needed again
   }
+  const NavState at_tie_on = initial;  // aligned, before the deliberate error: the tie-on row
   NavigationRunResult result;
   result.start = initial;
   const FilterStart start = filter_start(config, initial, filter);
@@ -308,29 +315,14 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
       });
   result.heading_hypotheses = {{"initial", navigator.initial_hypotheses()}};
 
-  // The survey: tie-on at the start position, MD from the config, else the aid data's first
-  // measured depth, else 0.
+  // The survey: tie-on at the start position, its MD and attitude (run/survey_start.hpp).
   const std::span<const double> aid_times = aid_data.time_s();
-  const bool has_md = aid_data.has(kMeasuredDepthColumn);
-  const std::span<const double> aid_md =
-      has_md ? aid_data.column(kMeasuredDepthColumn, "/data/aids") : std::span<const double>();
   const plugin::AidSchedule aid_rows = plugin::AidSchedule::at_rows(aid_times);
-  SurveyTieOn tie_on{tie_on_state.latitude_rad, tie_on_state.longitude_rad, tie_on_state.height_m,
-                     has_md && !aid_md.empty() ? aid_md.front() : 0.0};
-  if (config.initial_state && config.initial_state->tie_on.measured_depth_m) {
-    tie_on.measured_depth_m = *config.initial_state->tie_on.measured_depth_m;
-  }
-  if (config.initial_state && config.initial_state->attitude) {
-    tie_on.direction = SurveyDirection{config.initial_state->attitude->inclination_deg,
-                                       config.initial_state->attitude->azimuth_deg};
-  } else if (!config.initial_state) {
-    // Started from truth: the tie-on's attitude is the truth's.
-    const MwdAttitude tie_on_attitude = mwd_from_quaternion(tie_on_state.q_nb);
-    tie_on.direction = SurveyDirection{tie_on_attitude.inclination_rad * kDegPerRad,
-                                       tie_on_attitude.azimuth_rad * kDegPerRad};
-  }
+  const SurveyTieOn tie_on = survey_tie_on(config, tie_on_state, at_tie_on, tally_at_start_m);
   SurveyRecorder survey(
-      tie_on, station_qc_budget(config, tie_on_state, *plugins.gyro, *plugins.accel, initial.t_s));
+      tie_on, station_qc_budget(config, tie_on_state, *plugins.gyro, *plugins.accel, initial.t_s),
+      stated_depth_sigma(config));
+  survey.record_tie_on(at_tie_on, navigator.covariance().topLeftCorner<9, 9>());
   StaticSpan since_aid_epoch;  // raw increments since the last aid epoch
   StaticSpan connection_span;  // of the current stationary span (a connection)
   bool was_stationary = false;
@@ -381,7 +373,9 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
       }
       std::optional<double> md;
       if (has_md) {
-        if (const auto row = aid_rows.row_at(increment.t_s)) md = aid_md[*row];
+        if (const auto row = aid_rows.row_at(increment.t_s)) {
+          md = sensor_md_m(config, tally_md[*row]);
+        }
       }
       if (stationary) {
         // A span continues across consecutive ZUPT epochs only: an aid that measures only at
@@ -436,7 +430,10 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   if (files) {
     const SurveyListingOptions listing{config.survey.vertical_section_azimuth_deg,
                                        config.survey.ellipse_confidence,
-                                       config.survey.datum_elevation_m, config.survey.tie_on_tvd_m};
+                                       config.survey.datum_elevation_m,
+                                       config.survey.tie_on_tvd_m,
+                                       config.survey.sensor_to_bit_m,
+                                       config.survey.grid_convergence_deg};
     files->commit(result, options.plot, survey, tie_on, listing);
   }
   return result;

@@ -1,6 +1,7 @@
 #include "stochnav/experiment/survey.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "stochnav/core/angles.hpp"
@@ -35,18 +36,50 @@ bool keep_every_other_point(std::vector<WellPathPoint>& path) {
 
 }  // namespace
 
-std::vector<WellPathPoint> minimum_curvature_path(const std::vector<SurveyStation>& stations,
-                                                  double tie_on_md_m) {
+std::string_view station_type_name(SurveyStationType type) {
+  switch (type) {
+    case SurveyStationType::kTieOn:
+      return "tie_on";
+    case SurveyStationType::kSurvey:
+      return "survey";
+    case SurveyStationType::kProjectionToBit:
+      return "projection_to_bit";
+  }
+  return "survey";
+}
+
+SurveyStation projected_to_bit(const SurveyStation& last, double distance_m) {
+  SurveyStation projection = last;
+  projection.type = SurveyStationType::kProjectionToBit;
+  const Eigen::Vector3d step_ned =
+      distance_m *
+      hole_direction_nev(last.inclination_deg * kRadPerDeg, last.azimuth_deg * kRadPerDeg);
+  projection.md_m += distance_m;
+  projection.north_m += step_ned.x();
+  projection.east_m += step_ned.y();
+  projection.tvd_m += step_ned.z();
+  projection.qc = station_qc(StaticSpan{}, StationQcBudget{}, last.t_s, last.inclination_deg,
+                             last.inclination_sigma_deg, last.azimuth_deg, last.azimuth_sigma_deg);
+  return projection;
+}
+
+std::vector<WellPathPoint> minimum_curvature_path(
+    const std::vector<SurveyStation>& stations, double tie_on_md_m,
+    const std::optional<SurveyDirection>& tie_on_direction) {
   std::vector<WellPathPoint> path;
   path.reserve(stations.size());
   WellPathPoint point{tie_on_md_m, 0.0, 0.0, 0.0};
   Eigen::Vector3d previous_direction;
+  if (tie_on_direction) {
+    previous_direction = hole_direction_nev(tie_on_direction->inclination_deg * kRadPerDeg,
+                                            tie_on_direction->azimuth_deg * kRadPerDeg);
+  }
   for (std::size_t i = 0; i < stations.size(); ++i) {
-    const Eigen::Vector3d direction = hole_direction_nev(
-        stations[i].inclination_deg * kRadPerDeg, stations[i].azimuth_deg * kRadPerDeg);
-    // The tie-on has no attitude of its own: the first segment is straight along the first
+    const Eigen::Vector3d direction = hole_direction_nev(stations[i].inclination_deg * kRadPerDeg,
+                                                         stations[i].azimuth_deg * kRadPerDeg);
+    // A tie-on without an attitude of its own: the first segment is straight along the first
     // station's direction.
-    if (i == 0) previous_direction = direction;
+    if (i == 0 && !tie_on_direction) previous_direction = direction;
     const double md_step_m = stations[i].md_m - point.md_m;
     const Eigen::Vector3d step_ned =
         minimum_curvature_step(previous_direction, direction, md_step_m);
@@ -58,8 +91,9 @@ std::vector<WellPathPoint> minimum_curvature_path(const std::vector<SurveyStatio
   return path;
 }
 
-SurveyRecorder::SurveyRecorder(const SurveyTieOn& tie_on, std::optional<StationQcBudget> qc_budget)
-    : tie_on_(tie_on), qc_budget_(qc_budget) {
+SurveyRecorder::SurveyRecorder(const SurveyTieOn& tie_on, std::optional<StationQcBudget> qc_budget,
+                               std::optional<DepthReadingSigma> depth_sigma)
+    : tie_on_(tie_on), qc_budget_(qc_budget), depth_sigma_(depth_sigma) {
   const EarthRadii radii = earth_radii(tie_on.latitude_rad);
   north_m_per_rad_ = radii.meridian_m + tie_on.height_m;
   east_m_per_rad_ = (radii.transverse_m + tie_on.height_m) * std::cos(tie_on.latitude_rad);
@@ -132,11 +166,19 @@ void SurveyRecorder::observe(const NavState& state, const Eigen::Matrix<double, 
 
   if (!stationary) {
     close_open_station();
+    span_depth_.reset();
     return;
   }
+  if (measured_depth_m) span_depth_.add(*measured_depth_m);
   // Still in the connection: this epoch replaces the previous candidate, so the station ends
-  // up at the connection's last stationary epoch, after all of its ZUPTs.
-  open_station_ = station_candidate(state, covariance, position_m, md_m);
+  // up at the connection's last stationary epoch, after all of its ZUPTs, at the mean depth
+  // of its readings so far.
+  const bool has_readings = span_depth_.count() > 0;
+  open_station_ =
+      station_candidate(state, covariance, position_m, has_readings ? span_depth_.mean_m() : md_m);
+  if (has_readings && depth_sigma_) {
+    open_station_->md_sigma_m = span_depth_.sigma_m(*depth_sigma_, tie_on_.measured_depth_m);
+  }
   open_station_->qc =
       station_qc(qc_budget_ && static_span ? *static_span : StaticSpan{},
                  qc_budget_.value_or(StationQcBudget{}), state.t_s, open_station_->inclination_deg,
@@ -144,6 +186,40 @@ void SurveyRecorder::observe(const NavState& state, const Eigen::Matrix<double, 
                  open_station_->azimuth_sigma_deg);
   open_error_.reset();
   if (truth != nullptr) open_error_ = station_error(*open_station_, state, *truth);
+}
+
+void SurveyRecorder::record_tie_on(const NavState& state,
+                                   const Eigen::Matrix<double, 9, 9>& covariance) {
+  SurveyStation row =
+      station_candidate(state, covariance, Eigen::Vector3d::Zero(), tie_on_.measured_depth_m);
+  row.type = SurveyStationType::kTieOn;
+  if (tie_on_.direction) {
+    row.inclination_deg = tie_on_.direction->inclination_deg;
+    row.azimuth_deg = tie_on_.direction->azimuth_deg;
+  }
+  row.md_sigma_m = 0.0;  // the reference of the others' MD sigmas
+  row.qc = station_qc(StaticSpan{}, StationQcBudget{}, state.t_s, row.inclination_deg,
+                      row.inclination_sigma_deg, row.azimuth_deg, row.azimuth_sigma_deg);
+  tie_on_station_ = row;
+}
+
+SurveyStation SurveyRecorder::tie_on_station() const {
+  if (tie_on_station_) return *tie_on_station_;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  SurveyStation row;
+  row.type = SurveyStationType::kTieOn;
+  row.t_s = nan;
+  row.md_m = tie_on_.measured_depth_m;
+  row.inclination_deg = tie_on_.direction ? tie_on_.direction->inclination_deg : nan;
+  row.azimuth_deg = tie_on_.direction ? tie_on_.direction->azimuth_deg : nan;
+  row.toolface_deg = nan;
+  row.inclination_sigma_deg = row.azimuth_sigma_deg = nan;
+  row.north_sigma_m = row.east_sigma_m = row.tvd_sigma_m = nan;
+  row.horizontal_covariance_m2.setConstant(nan);
+  row.position_covariance_nev_m2.setConstant(nan);
+  row.md_sigma_m = 0.0;
+  row.qc = station_qc(StaticSpan{}, StationQcBudget{}, nan, nan, nan, nan, nan);
+  return row;
 }
 
 void SurveyRecorder::finish() { close_open_station(); }

@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <iterator>
 #include <span>
 #include <string>
@@ -34,7 +35,14 @@ constexpr std::string_view kSurveyHeader =
 constexpr std::string_view kListingHeader =
     ",dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,closure_azimuth_deg,vertical_section_m,"
     "ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,ellipse_semi_minor_m,ellipse_azimuth_deg,"
-    "tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface";
+    "tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface,"
+    // The listing that adds up (issue #27): minimum curvature through the listed stations beside
+    // the INS positions, and the smoothed MD's sigma.
+    "mc_north_m,mc_east_m,mc_tvd_m,md_sigma_m,"
+    // What the row is (experiment/survey.hpp): tie_on | survey | projection_to_bit.
+    "station_type,"
+    // Grid north and the ellipse in the hole's frame (experiment/survey_listing.hpp).
+    "grid_azimuth_deg,highside_sigma_m,lateral_sigma_m,alonghole_sigma_m";
 constexpr std::string_view kWellPathHeader = "source,md_m,north_m,east_m,tvd_m";
 
 /// A CSV number: 9 significant digits (0.01 mm at 1 km, 1 ms at 200 h); any NaN as "nan" (the
@@ -42,6 +50,40 @@ constexpr std::string_view kWellPathHeader = "source,md_m,north_m,east_m,tvd_m";
 std::string csv_number(double value) {
   if (std::isnan(value)) return "nan";
   return fmt::format("{:.9g}", value);
+}
+
+/// A length (m) with 6 decimals (to the micrometre); NaN as "nan".
+std::string csv_micrometres(double metres) {
+  if (std::isnan(metres)) return "nan";
+  return fmt::format("{:.6f}", metres);
+}
+
+/// The value as survey.csv lists it (csv_number's 9 significant digits, read back).
+double as_listed(double value) { return std::strtod(csv_number(value).c_str(), nullptr); }
+
+/// The stations with md_m, inclination and azimuth as listed: the derived columns (rates,
+/// minimum curvature) are computed from the printed numbers, so that a client recomputing them
+/// from survey.csv gets the same values whatever the well's length.
+std::vector<SurveyStation> as_listed(std::vector<SurveyStation> stations) {
+  for (SurveyStation& s : stations) {
+    s.md_m = as_listed(s.md_m);
+    s.inclination_deg = as_listed(s.inclination_deg);
+    s.azimuth_deg = as_listed(s.azimuth_deg);
+  }
+  return stations;
+}
+
+SurveyStation as_listed(SurveyStation station) {
+  return std::move(as_listed(std::vector<SurveyStation>{std::move(station)}).front());
+}
+
+SurveyTieOn as_listed(SurveyTieOn tie_on) {
+  tie_on.measured_depth_m = as_listed(tie_on.measured_depth_m);
+  if (tie_on.direction) {
+    tie_on.direction->inclination_deg = as_listed(tie_on.direction->inclination_deg);
+    tie_on.direction->azimuth_deg = as_listed(tie_on.direction->azimuth_deg);
+  }
+  return tie_on;
 }
 
 void append_cells(std::string& csv, std::span<const double> cells, bool leading_comma) {
@@ -105,6 +147,16 @@ std::string stations_csv(const std::vector<SurveyStation>& stations,
                                         l.azimuth_defined,
                                         l.gyro_toolface};
       append_cells(csv, listing_columns, true);
+      // Micrometres, whatever the well's size: a client's recomputation compares to 1e-6 m.
+      for (double metres : {l.mc_north_m, l.mc_east_m, l.mc_tvd_m}) {
+        csv += ',' + csv_micrometres(metres);
+      }
+      append_cells(csv, std::span<const double>(&s.md_sigma_m, 1), true);
+      csv += ',';
+      csv += station_type_name(s.type);
+      const double hole_frame_columns[] = {l.grid_azimuth_deg, l.highside_sigma_m,
+                                           l.lateral_sigma_m, l.alonghole_sigma_m};
+      append_cells(csv, hole_frame_columns, true);
     }
     csv += '\n';
   }
@@ -154,20 +206,35 @@ std::unique_ptr<PendingFile> pending_survey_plot(
 }  // namespace
 
 std::vector<std::unique_ptr<PendingFile>> write_survey_files(const SurveyRecorder& recorder,
-                                                             const SurveyTieOn& tie_on,
+                                                             const SurveyTieOn& recorded_tie_on,
                                                              const std::filesystem::path& out_dir,
                                                              bool plot,
-                                                             const SurveyListingOptions& listing) {
+                                                             const SurveyListingOptions& options) {
+  const std::vector<SurveyStation> stations = as_listed(recorder.stations());
+  const SurveyTieOn tie_on = as_listed(recorded_tie_on);
   const std::vector<WellPathPoint> minimum_curvature_stations =
-      minimum_curvature_path(recorder.stations(), tie_on.measured_depth_m);
+      minimum_curvature_path(stations, tie_on.measured_depth_m, tie_on.direction);
+  // One vertical-section azimuth for every row and trajectory.xml: the survey stations' (a
+  // projection to the bit does not move it).
+  SurveyListingOptions listing = options;
+  listing.vertical_section_azimuth_deg = vertical_section_azimuth_deg(stations, tie_on, options);
   std::vector<std::unique_ptr<PendingFile>> files;
-  const std::vector<StationListing> listing_rows =
-      survey_listing(recorder.stations(), tie_on, listing);
-  files.push_back(
-      pending_text_file(out_dir / "survey.csv", stations_csv(recorder.stations(), &listing_rows)));
+  // survey.csv's rows: the tie-on, the stations, the projection to the bit.
+  std::vector<SurveyStation> rows = {as_listed(recorder.tie_on_station())};
+  rows.insert(rows.end(), stations.begin(), stations.end());
+  if (listing.sensor_to_bit_m > 0.0 && !stations.empty()) {
+    rows.push_back(as_listed(projected_to_bit(stations.back(), listing.sensor_to_bit_m)));
+  }
+  const std::vector<SurveyStation> listed_after_tie_on(rows.begin() + 1, rows.end());
+  const std::vector<StationListing> station_rows =
+      survey_listing(listed_after_tie_on, tie_on, listing);
+  std::vector<StationListing> listing_rows = {
+      tie_on_listing(rows.front(), listed_after_tie_on, tie_on, listing)};
+  listing_rows.insert(listing_rows.end(), station_rows.begin(), station_rows.end());
+  files.push_back(pending_text_file(out_dir / "survey.csv", stations_csv(rows, &listing_rows)));
+  // The tie-in point and the stations (their listing rows are station_rows' first ones).
   files.push_back(pending_text_file(
-      out_dir / "trajectory.xml",
-      witsml_trajectory_xml(recorder.stations(), listing_rows, tie_on, listing)));
+      out_dir / "trajectory.xml", witsml_trajectory_xml(stations, station_rows, tie_on, listing)));
   if (!recorder.station_errors().empty()) {
     files.push_back(
         pending_text_file(out_dir / "survey_errors.csv", stations_csv(recorder.station_errors())));

@@ -53,6 +53,60 @@ void set_rates(StationListing& listing, double previous_inclination_deg,
           : std::remainder(station.azimuth_deg - previous_azimuth_deg, 360.0) * per_30m;
 }
 
+/// 1-sigmas (m) of the NEV covariance along the hole's high side, lateral and along-hole axes.
+void set_hole_frame_sigmas(StationListing& row, const SurveyStation& s) {
+  const double i = s.inclination_deg * kRadPerDeg;
+  const double a = s.azimuth_deg * kRadPerDeg;
+  const Eigen::Vector3d high_side(std::cos(i) * std::cos(a), std::cos(i) * std::sin(a),
+                                  -std::sin(i));
+  const Eigen::Vector3d lateral(-std::sin(a), std::cos(a), 0.0);
+  const Eigen::Vector3d along_hole = hole_direction_nev(i, a);
+  const Eigen::Matrix3d& p = s.position_covariance_nev_m2;
+  const auto sigma_along = [&](const Eigen::Vector3d& x) {
+    return std::sqrt(std::max(x.dot(p * x), 0.0));
+  };
+  row.highside_sigma_m = sigma_along(high_side);
+  row.lateral_sigma_m = sigma_along(lateral);
+  row.alonghole_sigma_m = sigma_along(along_hole);
+}
+
+/// The columns that follow from the station alone and the references: closure, vertical
+/// section, covariances, ellipse, the azimuth and toolface flags and the datum depths.
+void set_position_columns(StationListing& row, const SurveyStation& s, double vs_azimuth_rad,
+                          const std::optional<double>& tie_on_tvd,
+                          const SurveyListingOptions& options) {
+  row.closure_m = std::hypot(s.north_m, s.east_m);
+  row.closure_azimuth_deg = azimuth_deg_of(s.north_m, s.east_m);
+  row.vertical_section_m =
+      s.north_m * std::cos(vs_azimuth_rad) + s.east_m * std::sin(vs_azimuth_rad);
+  const Eigen::Matrix3d& p = s.position_covariance_nev_m2;
+  row.ne_m2 = p(0, 1);
+  row.nv_m2 = p(0, 2);
+  row.ev_m2 = p(1, 2);
+  const HorizontalEllipse ellipse =
+      horizontal_ellipse(p.topLeftCorner<2, 2>(), options.ellipse_confidence);
+  row.ellipse_semi_major_m = ellipse.semi_major_m;
+  row.ellipse_semi_minor_m = ellipse.semi_minor_m;
+  row.ellipse_azimuth_deg = ellipse.azimuth_deg;
+  row.azimuth_defined = std::isnan(s.azimuth_deg) || near_vertical(s.inclination_deg) ? 0.0 : 1.0;
+  row.gyro_toolface =
+      std::abs(std::sin(s.inclination_deg * kRadPerDeg)) < kNearVerticalSin ? 1.0 : 0.0;
+  if (tie_on_tvd) {
+    row.tvd_below_datum_m = *tie_on_tvd + s.tvd_m;
+    row.tvdss_m = row.tvd_below_datum_m - *options.datum_elevation_m;
+  } else {
+    row.tvd_below_datum_m = row.tvdss_m = kUndefined;
+  }
+  if (options.grid_convergence_deg) {
+    double grid = std::fmod(s.azimuth_deg - *options.grid_convergence_deg, 360.0);
+    if (grid < 0.0) grid += 360.0;
+    row.grid_azimuth_deg = grid >= 360.0 ? 0.0 : grid;
+  } else {
+    row.grid_azimuth_deg = kUndefined;
+  }
+  set_hole_frame_sigmas(row, s);
+}
+
 }  // namespace
 
 double ellipse_scale(double confidence) { return std::sqrt(-2.0 * std::log1p(-confidence)); }
@@ -103,10 +157,15 @@ std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& sta
   const double vs_azimuth_rad =
       vertical_section_azimuth_deg(stations, tie_on, options) * kRadPerDeg;
   const std::optional<double> tie_on_tvd = tie_on_tvd_below_datum_m(tie_on, options);
+  const std::vector<WellPathPoint> minimum_curvature =
+      minimum_curvature_path(stations, tie_on.measured_depth_m, tie_on.direction);
   std::vector<StationListing> listing(stations.size());
   for (std::size_t i = 0; i < stations.size(); ++i) {
     const SurveyStation& s = stations[i];
     StationListing& row = listing[i];
+    row.mc_north_m = minimum_curvature[i].north_m;
+    row.mc_east_m = minimum_curvature[i].east_m;
+    row.mc_tvd_m = minimum_curvature[i].tvd_m;
     if (i > 0) {
       set_rates(row, stations[i - 1].inclination_deg, stations[i - 1].azimuth_deg, s,
                 s.md_m - stations[i - 1].md_m);
@@ -116,30 +175,21 @@ std::vector<StationListing> survey_listing(const std::vector<SurveyStation>& sta
     } else {
       row.dls_deg_30m = row.build_deg_30m = row.turn_deg_30m = kUndefined;
     }
-    row.closure_m = std::hypot(s.north_m, s.east_m);
-    row.closure_azimuth_deg = azimuth_deg_of(s.north_m, s.east_m);
-    row.vertical_section_m =
-        s.north_m * std::cos(vs_azimuth_rad) + s.east_m * std::sin(vs_azimuth_rad);
-    const Eigen::Matrix3d& p = s.position_covariance_nev_m2;
-    row.ne_m2 = p(0, 1);
-    row.nv_m2 = p(0, 2);
-    row.ev_m2 = p(1, 2);
-    const HorizontalEllipse ellipse =
-        horizontal_ellipse(p.topLeftCorner<2, 2>(), options.ellipse_confidence);
-    row.ellipse_semi_major_m = ellipse.semi_major_m;
-    row.ellipse_semi_minor_m = ellipse.semi_minor_m;
-    row.ellipse_azimuth_deg = ellipse.azimuth_deg;
-    row.azimuth_defined = near_vertical(s.inclination_deg) ? 0.0 : 1.0;
-    row.gyro_toolface =
-        std::abs(std::sin(s.inclination_deg * kRadPerDeg)) < kNearVerticalSin ? 1.0 : 0.0;
-    if (tie_on_tvd) {
-      row.tvd_below_datum_m = *tie_on_tvd + s.tvd_m;
-      row.tvdss_m = row.tvd_below_datum_m - *options.datum_elevation_m;
-    } else {
-      row.tvd_below_datum_m = row.tvdss_m = kUndefined;
-    }
+    set_position_columns(row, s, vs_azimuth_rad, tie_on_tvd, options);
   }
   return listing;
+}
+
+StationListing tie_on_listing(const SurveyStation& tie_on_row,
+                              const std::vector<SurveyStation>& stations, const SurveyTieOn& tie_on,
+                              const SurveyListingOptions& options) {
+  StationListing row;
+  row.dls_deg_30m = row.build_deg_30m = row.turn_deg_30m = kUndefined;
+  set_position_columns(row, tie_on_row,
+                       vertical_section_azimuth_deg(stations, tie_on, options) * kRadPerDeg,
+                       tie_on_tvd_below_datum_m(tie_on, options), options);
+  row.mc_north_m = row.mc_east_m = row.mc_tvd_m = 0.0;  // the origin of minimum curvature
+  return row;
 }
 
 }  // namespace stochnav
