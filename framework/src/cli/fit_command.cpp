@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "command_support.hpp"
@@ -119,9 +120,14 @@ void run_fit(const FitArguments& arguments) {
   if (!windowed) {
     // The record integrated into phase where it was read: one array (a 72 M-sample record in
     // 0.6 GB, not 1.1).
-    const PhaseRecord input = read_phase_record(arguments.input.to_read_options());
+    ReadOptions read_options = arguments.input.to_read_options();
+    const auto reading = reading_progress("fit: reading", read_options);
+    const PhaseRecord input = read_phase_record(read_options);
+    reading->finish();
+    ProgressTicker fitting("fit: fitting", 0, standard_error_is_terminal());
     const WholeRecordFit whole = fit_whole_record(input.phase(), input.record, input.samples,
                                                   spacing, options);
+    fitting.finish();
     // A failed fit is no result a script may take for one: exit 2 naming the term and the
     // reason, unless the user asked for it (flagged in the output).
     if (whole.fit.diagnostics.failed() && !arguments.keep_failed) {
@@ -134,7 +140,10 @@ void run_fit(const FitArguments& arguments) {
   }
 
   // Windows need the rate samples (DAVAR) beside the whole record's phase.
-  const Record record = read_record(arguments.input.to_read_options());
+  ReadOptions read_options = arguments.input.to_read_options();
+  const auto reading = reading_progress("fit: reading", read_options);
+  const Record record = read_record(read_options);
+  reading->finish();
   const std::vector<double> phase = record.kind == DataKind::kPhase
                                         ? record.values
                                         : phase_from_rate(record.values, record.tau0());
@@ -167,9 +176,13 @@ void run_fit(const FitArguments& arguments) {
   }
   // The windows' fits are independent: spread over the stats threads, each result in its slot.
   std::vector<FitResult> fits(davar.adev.size());
+  ProgressTicker fitting("fit: windows", fits.size(), standard_error_is_terminal());
+  std::atomic<std::uint64_t>* const fitted = fitting.counter();
   parallel_for(fits.size(), [&](std::size_t k) {
     fits[k] = fit_window(davar.adev[k], davar, edf, record, options);
+    if (fitted != nullptr) fitted->fetch_add(1, std::memory_order_relaxed);
   });
+  fitting.finish();
   std::size_t failed_windows = 0;
   std::size_t first_failed = 0;
   for (std::size_t k = fits.size(); k-- > 0;) {
