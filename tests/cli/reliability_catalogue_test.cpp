@@ -290,13 +290,15 @@ class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
     d.write("duplicate_columns.csv", "t,x,x\n0,1,2\n1,2,3\n2,3,4\n3,4,5\n");
     d.write("quoted_header.csv", [] {
       std::string record = "\"t\",\"x\"\n";
-      for (int i = 0; i < 200; ++i) record += std::to_string(i) + "," + std::to_string(i % 3) + "\n";
+      for (int i = 0; i < 200; ++i) {
+        record += std::to_string(i) + "," + std::to_string(i % 3) + "\n";
+      }
       return record;
     }());
     d.write("long_cell.csv", "t,x\n0,1\n1," + std::string(1'000'000, '9') + "x\n2,3\n");
-    d.write("axes.json", R"({"axes": {
-        "x": {"units": "deg/h", "rate_hz": 10, "terms": [{"type": "angle_random_walk", "N": 0.1}]},
-        "y": {"units": "deg/h", "rate_hz": 10, "terms": [{"type": "angle_random_walk", "N": 0.1}]}}})");
+    const std::string axis =
+        R"({"units": "deg/h", "rate_hz": 10, "terms": [{"type": "angle_random_walk", "N": 0.1}]})";
+    d.write("axes.json", R"({"axes": {"x": )" + axis + R"(, "y": )" + axis + "}}");
     // A socket: no output may be written there.
     const int socket_fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
     sockaddr_un address{};

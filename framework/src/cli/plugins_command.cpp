@@ -3,8 +3,8 @@
 // --params, whether its factory builds a noise model that has every property of
 // plugin/noise_model_checks.hpp, or an aid that has every property of plugin/aid_checks.hpp at
 // a true state (--state) with aid data consistent with it (--aid-data), exit code 2 with one
-// line naming the first failure (all of them listed on standard output); and the plugins a run config builds (validated, fitted where asked) with the
-// error-state layout they give.
+// line naming the first failure (all of them listed on standard output); and the plugins a run
+// config builds (validated, fitted where asked) with the error-state layout they give.
 
 #include <fmt/format.h>
 

@@ -104,8 +104,9 @@ struct DiagnoseOptions {
   /// and the gap does not widen).
   bool joint_refit = true;
   /// When set, one is added per stage done (the measured statistics, the model's assessment,
-  /// each iteration, the final choice): diagnose_stage_count(max_iterations) in all, fewer when the
-  /// loop stops early. A progress display's counter (core/progress_bar.hpp, ProgressTicker).
+  /// each iteration, the final choice): diagnose_stage_count(max_iterations) in all, fewer
+  /// when the loop stops early. A progress display's counter (core/progress_bar.hpp,
+  /// ProgressTicker).
   std::atomic<std::uint64_t>* stages_done = nullptr;
 
   /// Empty when valid; otherwise the reason, naming the option.
@@ -135,7 +136,7 @@ struct CandidateOutcome {
   bool exact = false;       ///< assessed with its own estimator covariance
   bool immaterial = false;  ///< left out: below DiagnoseOptions::min_term_share everywhere
   /// Parameters its fit left on a search bound ("gauss_markov.tau_c"); a kept candidate's are
-  /// flagged in the step's evidence and in report.json ("at_bound").
+  /// flagged in the step's evidence and in report.json ("added_term_at_bound").
   std::vector<std::string> at_bound = {};
 };
 
