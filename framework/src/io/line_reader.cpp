@@ -38,8 +38,8 @@ void check_gzip_state(gzFile gz, const std::string& path) {
 void refuse_folder(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) {
-    throw InputError(path + ": is a folder, not a record file; give the file itself (--input " +
-                     "FOLDER/NAME.csv)");
+    throw InputError(path + ": is a folder, not a record file; give the file itself, not the "
+                     "folder that holds it");
   }
 }
 
