@@ -284,6 +284,21 @@ class Catalogue : public ::testing::TestWithParam<CatalogueCase> {
       }
       return record;
     }());
+    // Misleading messages (issue #26 item 10).
+    d.write("nul.csv", std::string("t,x\n0,1\n1,") + '\0' + "2\n2,3\n");
+    fs::create_directories(d.path() / "folder.json.f64");
+    d.write("duplicate_columns.csv", "t,x,x\n0,1,2\n1,2,3\n2,3,4\n3,4,5\n");
+    d.write("quoted_header.csv", [] {
+      std::string record = "\"t\",\"x\"\n";
+      for (int i = 0; i < 200; ++i) {
+        record += std::to_string(i) + "," + std::to_string(i % 3) + "\n";
+      }
+      return record;
+    }());
+    d.write("long_cell.csv", "t,x\n0,1\n1," + std::string(1'000'000, '9') + "x\n2,3\n");
+    const std::string axis =
+        R"({"units": "deg/h", "rate_hz": 10, "terms": [{"type": "angle_random_walk", "N": 0.1}]})";
+    d.write("axes.json", R"({"axes": {"x": )" + axis + R"(, "y": )" + axis + "}}");
     // A socket: no output may be written there.
     const int socket_fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
     sockaddr_un address{};
@@ -667,8 +682,97 @@ INSTANTIATE_TEST_SUITE_P(
                       "tiny.csv: the largest sample magnitude is 4e-170, below 1e-100"},
         CatalogueCase{"causal_davar_values_1e_minus_170",
                       "davar --input @/tiny.csv --window 20 --step 10 --causal", 2,
-                      "tiny.csv: the largest sample magnitude is 4e-170, below 1e-100"}),
+                      "tiny.csv: the largest sample magnitude is 4e-170, below 1e-100"},
+        // Item 10: messages that said the wrong thing, or too much.
+        CatalogueCase{"nul_byte_in_record", "allan --input @/nul.csv", 2,
+                      "nul.csv:3: a NUL byte in column 'x': the file holds binary data, not text"},
+        CatalogueCase{"folder_as_record", "allan --input @/folder.json --rate 1", 2,
+                      "folder.json: is a folder, not a record file"},
+        CatalogueCase{"folder_as_binary_record", "fit --input @/folder.json.f64 --rate 1", 2,
+                      "folder.json.f64: is a folder, not a record file"},
+        CatalogueCase{"davar_window_2_pow_64_minus_1",
+                      "davar --input @/good.csv --window 18446744073709551615 --step 1", 2,
+                      "--window 18446744073709551615 is longer than any record can be"},
+        CatalogueCase{"plugins_check_imu_rate_0",
+                      "plugins check @/stochnav_noise_mymodel.so --imu-rate 0", 2,
+                      "--imu-rate: '0' is not a positive, finite number"},
+        CatalogueCase{"diagnose_seeds_1",
+                      "diagnose --input @/good.csv --model @/model.json --seeds 1 --out @/d", 2,
+                      "--seeds 1; expected 0 (no simulated band) or 2 to 1000", {"@/d"}},
+        CatalogueCase{"csv_duplicate_column_names", "allan --input @/duplicate_columns.csv", 2,
+                      "duplicate_columns.csv:1: the header names column 'x' twice (columns 1 and "
+                      "2)"},
+        CatalogueCase{"csv_quoted_header_names",
+                      "allan --input @/quoted_header.csv --column x --format csv", 0, "m,tau,n"},
+        CatalogueCase{"long_cell_echo_cut", "allan --input @/long_cell.csv", 2,
+                      "'999999999999999999999999999999999999999999999999999999999999... "
+                      "(1000001 characters)' in column 'x' is not a number"},
+        CatalogueCase{"simulate_column_twice",
+                      "simulate noise --model @/axes.json --duration 10 --rate 10 --seed 1 "
+                      "--column x --column x --out @/n.csv",
+                      2, "--column x: given to two axes", {"@/n.csv"}}),
     [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
+
+// Issue #26 item 10: an error message echoes at most 60 characters of a cell; a 1 MB cell gave a
+// 1 MB line.
+TEST_F(Catalogue, EchoedCellsAreCut) {
+  const std::string dir = dir_->path().string();
+  const CliResult result = testing::run_cli(replace_at("allan --input @/long_cell.csv", dir), dir);
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_LT(result.err.size(), 400u) << result.err.substr(0, 400);
+}
+
+// `stochnav ARGUMENTS > stdout_path` on a pseudo-terminal (script(1)): what it drew there.
+std::string run_on_terminal(const std::string& arguments, const std::string& stdout_path) {
+  const std::string inner =
+      std::string("'") + STOCHNAV_CLI_PATH + "' " + arguments + " > '" + stdout_path + "'";
+  std::string quoted;
+  for (char c : inner) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  const std::string command = "script -qec '" + quoted + "' /dev/null";
+  std::string drawn;
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return drawn;
+  std::array<char, 4096> chunk{};
+  while (std::fgets(chunk.data(), chunk.size(), pipe) != nullptr) drawn += chunk.data();
+  ::pclose(pipe);
+  return drawn;
+}
+
+std::string file_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// Issue #26: allan, davar, fit and diagnose draw a progress bar on a terminal's standard error,
+// and print nothing on stderr into a file or a pipe; standard output is byte for byte the same.
+TEST_F(Catalogue, ProgressBarsOnlyOnATerminal) {
+  if (std::system("command -v script > /dev/null 2>&1") != 0) GTEST_SKIP() << "no script(1)";
+  const std::string dir = dir_->path().string();
+  struct Case {
+    std::string arguments;
+    std::string bar;  ///< the start of the progress line drawn
+  };
+  const std::vector<Case> cases = {
+      {"allan --input @/long.csv --format csv", "allan: reading ["},
+      {"davar --input @/long.csv --window 100 --step 50", "davar ["},
+      {"fit --input @/long.csv --format json", "fit: reading ["},
+      {"fit --input @/long.csv --window 500 --step 250 --terms angle_random_walk --keep-failed",
+       "fit: windows ["},
+      {"diagnose --input @/long.csv --model @/model.json --plots none --out @/progress",
+       "diagnose ["},
+  };
+  for (const Case& c : cases) {
+    const std::string arguments = replace_at(c.arguments, dir);
+    const CliResult plain = testing::run_cli(arguments, dir);
+    EXPECT_EQ(plain.exit_code, 0) << arguments << ": " << plain.err;
+    EXPECT_EQ(plain.err, "") << arguments;
+    const std::string drawn = run_on_terminal(arguments, dir + "/terminal_stdout.txt");
+    EXPECT_NE(drawn.find(c.bar), std::string::npos) << arguments << ": " << drawn;
+    EXPECT_NE(drawn.find("100.0 %"), std::string::npos) << arguments << ": " << drawn;
+    EXPECT_EQ(file_text(dir + "/terminal_stdout.txt"), plain.out) << arguments;
+  }
+  fs::remove(dir + "/terminal_stdout.txt");
+}
 
 // Issue #26: the sinusoid fit finds a clean sinusoid (it returned A = 0.70, f = 0.0715 Hz).
 TEST_F(Catalogue, FitFindsACleanSinusoid) {

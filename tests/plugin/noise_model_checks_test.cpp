@@ -1,5 +1,6 @@
 // The property checks of plugin/noise_model_checks.hpp find broken models, in process and through
-// `stochnav plugins check LIB --params JSON` (exit code 2, one line per failure).
+// `stochnav plugins check LIB --params JSON` (exit code 2, one line naming the first failure;
+// each failure a line of the report on standard output).
 
 #include "stochnav/plugin/noise_model_checks.hpp"
 
@@ -60,9 +61,19 @@ TEST(PluginsCommand, CheckWithParamsRunsThePropertiesAndReportsEachFailure) {
       "plugins check '" + kBroken.string() + "' --params '{\"N\": 0.1}' --times 1,2",
       scratch.path().string());
   EXPECT_EQ(broken.exit_code, 2) << broken.err;
-  // Composition of Qw at both times, and the round trip (twice: equal neither way).
-  EXPECT_EQ(std::count(broken.err.begin(), broken.err.end(), '\n'), 4) << broken.err;
-  EXPECT_NE(broken.err.find("composition at t = 2 s"), std::string::npos) << broken.err;
+  // Composition of Qw at both times, and the round trip (twice: equal neither way): each a
+  // line of the report on standard output, one line on stderr naming the first and the count.
+  EXPECT_EQ(std::count(broken.err.begin(), broken.err.end(), '\n'), 1) << broken.err;
+  EXPECT_NE(broken.err.find("4 property checks failed, the first: composition at t = 1 s"),
+            std::string::npos)
+      << broken.err;
+  EXPECT_NE(broken.out.find("failed: composition at t = 2 s"), std::string::npos) << broken.out;
+  std::size_t listed = 0;
+  for (std::size_t at = broken.out.find("\nfailed: "); at != std::string::npos;
+       at = broken.out.find("\nfailed: ", at + 1)) {
+    ++listed;
+  }
+  EXPECT_EQ(listed, 4u) << broken.out;
 
   const fs::path gauss_markov = bundled_plugin_dir() / "stochnav_noise_gauss_markov.so";
   const auto good =

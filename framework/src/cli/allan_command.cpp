@@ -87,7 +87,10 @@ void run_allan(const AllanArguments& arguments) {
   if (!arguments.plot.empty()) check_plot_request(arguments.plot);
 
   // One array of the data: rate samples are integrated into phase where they were read.
-  const PhaseRecord input = read_phase_record(arguments.input.to_read_options());
+  ReadOptions read_options = arguments.input.to_read_options();
+  const auto reading = reading_progress("allan: reading", read_options);
+  const PhaseRecord input = read_phase_record(read_options);
+  reading->finish();
   const Record& record = input.record;
   const std::span<const double> phase = input.phase();
   const auto m_values = averaging_factors(kind, spacing, phase.size(), record.tau0());
@@ -96,7 +99,10 @@ void run_allan(const AllanArguments& arguments) {
                      " samples are too few for any " + std::string(deviation_name(kind)) +
                      " averaging time; use a longer record");
   }
+  ProgressTicker computing("allan: " + std::string(deviation_name(kind)), 0,
+                           standard_error_is_terminal());
   const auto points = compute_deviation(kind, phase, record.tau0(), m_values);
+  computing.finish();
 
   std::string text;
   switch (format) {

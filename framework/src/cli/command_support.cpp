@@ -1,9 +1,11 @@
 #include "command_support.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <fstream>
+#include <string_view>
 
 #include "stochnav/core/errors.hpp"
 #include "standard_output.hpp"
@@ -26,6 +28,16 @@ ReadOptions InputArguments::to_read_options() const {
   options.unit = parse_unit(unit);
   options.binary_channels = binary_channels;
   return options;
+}
+
+std::unique_ptr<ProgressTicker> reading_progress(const std::string& label, ReadOptions& options) {
+  std::error_code error;
+  const bool compressed = std::string_view(options.path).ends_with(".gz");
+  const auto size = compressed ? 0 : std::filesystem::file_size(options.path, error);
+  auto ticker = std::make_unique<ProgressTicker>(label, error ? 0 : size,
+                                                 standard_error_is_terminal());
+  options.bytes_read = ticker->counter();
+  return ticker;
 }
 
 void add_input_options(CLI::App& command, InputArguments& arguments) {
@@ -112,6 +124,20 @@ CLI::Validator positive_count() {
         return "'" + text + "' is not a whole number >= 1";
       },
       "COUNT >= 1");
+}
+
+CLI::Validator positive_number() {
+  return CLI::Validator(
+      [](const std::string& text) -> std::string {
+        double value = 0.0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error == std::errc() && end == text.data() + text.size() && value > 0.0 &&
+            std::isfinite(value)) {
+          return {};
+        }
+        return "'" + text + "' is not a positive, finite number";
+      },
+      "NUMBER > 0");
 }
 
 }  // namespace stochnav::cli

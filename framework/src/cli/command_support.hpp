@@ -3,8 +3,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <memory>
 #include <optional>
 #include <string>
+
+#include "stochnav/core/progress_bar.hpp"
 
 #include "stochnav/io/record.hpp"
 
@@ -24,12 +27,20 @@ struct InputArguments {
 
 void add_input_options(CLI::App& command, InputArguments& arguments);
 
+/// Progress of reading `options`' file, shown only when standard error is a terminal: a bar
+/// over its bytes (a count of bytes for .gz, whose length is known only at its end), counted
+/// through options.bytes_read. `label` names the command ("allan: reading").
+std::unique_ptr<ProgressTicker> reading_progress(const std::string& label, ReadOptions& options);
+
 enum class OutputFormat { kTable, kCsv, kJson };
 void add_format_option(CLI::App& command, std::string& format);
 
 /// Accepts a whole number >= 1 as typed ("-5" is refused, not wrapped into a huge count).
 CLI::Validator positive_count();
 
+/// Accepts a finite number > 0 (a rate), with a message that says so (CLI11's PositiveNumber
+/// printed its bound, the largest double, in 309 digits).
+CLI::Validator positive_number();
 /// Accepts a whole number in [0, 2^64 - 1] as typed: digits only, so "-5" is refused instead of
 /// wrapped into 2^64 - 5 (seeds).
 CLI::Validator whole_number();

@@ -101,7 +101,9 @@ void run_davar(const DavarArguments& arguments) {
                        .causal = arguments.causal, .m_values = {}};
   if (const auto problem = options.validate(0); !problem.empty()) throw ConfigError(problem);
 
-  const ReadOptions read_options = arguments.input.to_read_options();
+  ReadOptions read_options = arguments.input.to_read_options();
+  // The windows are computed as the blocks are read: the bytes read measure the whole run.
+  const auto progress = reading_progress("davar", read_options);
   SampleReader reader(read_options);
   std::vector<double> block;
   // Blocks of 2^18 samples (2 MB): few hand-overs to the DAVAR threads, memory still flat.
@@ -137,6 +139,7 @@ void run_davar(const DavarArguments& arguments) {
     throw ConfigError(read_options.path + ": " + options.validate(reader.samples_read()));
   }
   writer.end();
+  progress->finish();
   if (plotting) {
     plot_data.tau_s = tau_s;
     plot_davar(plot_data, read_options.path + " [" + reader.column_name() + "]",

@@ -9,6 +9,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <string_view>
+#include <utility>
 
 #include <filesystem>
 #include <optional>
@@ -81,6 +84,32 @@ class StagingFolder final {
   std::optional<TemporaryPath> registration_;  // removed on SIGINT/SIGTERM too
 };
 
+// DiagnoseOptions::validate's reason ("seeds: 1; ...") naming the option a user typed.
+std::string with_option_name(const std::string& problem) {
+  static const std::array<std::pair<const char*, const char*>, 4> kOptions{{
+      {"seeds: ", "--seeds "},
+      {"max_iterations: ", "--max-iterations "},
+      {"alpha: ", "--alpha "},
+      {"windows: ", "--windows "},
+  }};
+  for (const auto& [field, option] : kOptions) {
+    if (problem.starts_with(field)) return option + problem.substr(std::string_view(field).size());
+  }
+  return problem;
+}
+
+// diagnose() with its stages drawn as a bar when standard error is a terminal; an early end of
+// the loop completes the bar.
+DiagnoseResult diagnose_with_progress(const Record& record, const NoiseModel& model,
+                                      DiagnoseOptions options, const std::vector<AuxChannel>& aux) {
+  ProgressTicker progress("diagnose", diagnose_stage_count(options.max_iterations),
+                          standard_error_is_terminal());
+  options.stages_done = progress.counter();
+  DiagnoseResult result = diagnose(record, model, options, aux);
+  progress.finish();
+  return result;
+}
+
 void run_diagnose(const DiagnoseArguments& arguments) {
   if (arguments.plots != "png" && arguments.plots != "svg" && arguments.plots != "none") {
     throw ConfigError("--plots '" + arguments.plots + "': use png, svg or none");
@@ -89,13 +118,16 @@ void run_diagnose(const DiagnoseArguments& arguments) {
   ReadOptions read_options = arguments.input.to_read_options();
   if (!arguments.unit_given) read_options.unit = model.unit;
   if (const auto problem = arguments.options.validate(); !problem.empty()) {
-    throw ConfigError(problem);
+    throw ConfigError(with_option_name(problem));
   }
   const fs::path out(arguments.out_dir);
   const std::string extension = "." + arguments.plots;
   const bool plotting = arguments.plots != "none";
   if (plotting) check_plot_request(out / ("allan_initial" + extension));
+  const auto reading = reading_progress("diagnose: reading", read_options);
   const Record record = read_record(read_options);
+  reading->finish();
+  read_options.bytes_read = nullptr;  // the auxiliary channels: read again, not counted
   if (quantity_of(model.unit) != quantity_of(record.unit)) {
     throw ConfigError(arguments.model_path + ": the model is in " + unit_name(model.unit) +
                       " but the record in " + unit_name(record.unit) +
@@ -117,7 +149,7 @@ void run_diagnose(const DiagnoseArguments& arguments) {
     aux_options.unit = Unit::kPlain;
     aux.push_back({name, read_record(aux_options).values});
   }
-  const DiagnoseResult result = diagnose(record, model, arguments.options, aux);
+  const DiagnoseResult result = diagnose_with_progress(record, model, arguments.options, aux);
 
   OutputFolder out_folder(out);
   StagingFolder staging(out);

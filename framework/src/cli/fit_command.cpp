@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "command_support.hpp"
@@ -81,15 +82,21 @@ struct WholeRecordFit {
   FitResult fit;
 };
 
-WholeRecordFit fit_whole_record(std::span<const double> phase, const Record& record,
-                                std::size_t samples, TauSpacing spacing,
-                                const FitOptions& options) {
-  const auto m_values =
-      averaging_factors(Deviation::kOadev, spacing, phase.size(), record.tau0());
+// The OADEV averaging factors of the whole record's fit; InputError when there are too few.
+std::vector<std::size_t> whole_record_factors(std::size_t phase_points, const Record& record,
+                                              std::size_t samples, TauSpacing spacing) {
+  auto m_values = averaging_factors(Deviation::kOadev, spacing, phase_points, record.tau0());
   if (m_values.size() < 2) {
     throw InputError(record.source + ": too short for a fit (" + std::to_string(samples) +
                      " samples); use a longer record");
   }
+  return m_values;
+}
+
+WholeRecordFit fit_whole_record(std::span<const double> phase, const Record& record,
+                                std::size_t samples, TauSpacing spacing,
+                                const FitOptions& options) {
+  const auto m_values = whole_record_factors(phase.size(), record, samples, spacing);
   WholeRecordFit result;
   result.points = compute_deviation(Deviation::kOadev, phase, record.tau0(), m_values);
   result.fit = fit_noise_terms(
@@ -119,9 +126,14 @@ void run_fit(const FitArguments& arguments) {
   if (!windowed) {
     // The record integrated into phase where it was read: one array (a 72 M-sample record in
     // 0.6 GB, not 1.1).
-    const PhaseRecord input = read_phase_record(arguments.input.to_read_options());
+    ReadOptions read_options = arguments.input.to_read_options();
+    const auto reading = reading_progress("fit: reading", read_options);
+    const PhaseRecord input = read_phase_record(read_options);
+    reading->finish();
+    ProgressTicker fitting("fit: fitting", 0, standard_error_is_terminal());
     const WholeRecordFit whole = fit_whole_record(input.phase(), input.record, input.samples,
                                                   spacing, options);
+    fitting.finish();
     // A failed fit is no result a script may take for one: exit 2 naming the term and the
     // reason, unless the user asked for it (flagged in the output).
     if (whole.fit.diagnostics.failed() && !arguments.keep_failed) {
@@ -133,13 +145,26 @@ void run_fit(const FitArguments& arguments) {
     return;
   }
 
-  // Windows need the rate samples (DAVAR) beside the whole record's phase.
-  const Record record = read_record(arguments.input.to_read_options());
-  const std::vector<double> phase = record.kind == DataKind::kPhase
-                                        ? record.values
-                                        : phase_from_rate(record.values, record.tau0());
+  // One array of the record (item 11 of issue #26): the windows' DAVAR reads the rate
+  // samples, which are then integrated into the whole record's phase in place (room for its
+  // first point is read in front of them).
+  ReadOptions read_options = arguments.input.to_read_options();
+  const auto reading = reading_progress("fit: reading", read_options);
+  const std::size_t leading = read_options.kind == DataKind::kRate ? 1 : 0;
+  Record record = read_record(read_options, leading);
+  reading->finish();
+  const std::size_t samples = record.values.size() - leading;
+  whole_record_factors(record.values.size(), record, samples, spacing);
+  if (const auto problem = davar_options.validate(samples); !problem.empty()) {
+    throw ConfigError(record.source + ": " + problem);
+  }
+  const DavarResult davar =
+      dynamic_allan_deviation(std::span<const double>(record.values).subspan(leading),
+                              record.kind, record.rate_hz, record.start_time_s, davar_options,
+                              record.source);
+  if (leading > 0) phase_from_rate_in_place(record.values, record.tau0());
   const WholeRecordFit whole_record =
-      fit_whole_record(phase, record, record.values.size(), spacing, options);
+      fit_whole_record(record.values, record, samples, spacing, options);
   const FitResult& whole = whole_record.fit;
   const std::vector<DeviationPoint>& points = whole_record.points;
 
@@ -147,14 +172,10 @@ void run_fit(const FitArguments& arguments) {
   // is one continuous time series. The whole record's fit only chooses them: a record that
   // needs windows is one no constant model describes (its chi-square fails), and each window's
   // own fit is checked below.
-  if (const auto problem = davar_options.validate(record.values.size()); !problem.empty()) {
-    throw ConfigError(record.source + ": " + problem);
-  }
   options.terms = whole.diagnostics.chosen_terms;
   // Every window keeps every term, so each coefficient stays one series; a window that leaves
   // a term on its bound is a failed window.
   options.drop_terms_at_bound = false;
-  const DavarResult davar = dynamic_allan_deviation(record, davar_options);
   std::vector<double> edf;
   for (std::size_t m : davar.m) {
     int alpha = 0;
@@ -167,9 +188,13 @@ void run_fit(const FitArguments& arguments) {
   }
   // The windows' fits are independent: spread over the stats threads, each result in its slot.
   std::vector<FitResult> fits(davar.adev.size());
+  ProgressTicker fitting("fit: windows", fits.size(), standard_error_is_terminal());
+  std::atomic<std::uint64_t>* const fitted = fitting.counter();
   parallel_for(fits.size(), [&](std::size_t k) {
     fits[k] = fit_window(davar.adev[k], davar, edf, record, options);
+    if (fitted != nullptr) fitted->fetch_add(1, std::memory_order_relaxed);
   });
+  fitting.finish();
   std::size_t failed_windows = 0;
   std::size_t first_failed = 0;
   for (std::size_t k = fits.size(); k-- > 0;) {

@@ -3,17 +3,17 @@
 // --params, whether its factory builds a noise model that has every property of
 // plugin/noise_model_checks.hpp, or an aid that has every property of plugin/aid_checks.hpp at
 // a true state (--state) with aid data consistent with it (--aid-data), exit code 2 with one
-// line per failure; and the plugins a run config builds (validated, fitted where asked) with the
-// error-state layout they give.
+// line naming the first failure (all of them listed on standard output); and the plugins a run
+// config builds (validated, fitted where asked) with the error-state layout they give.
 
 #include <fmt/format.h>
 
 #include <array>
 #include <filesystem>
-#include <iostream>
 #include <memory>
 #include <optional>
 
+#include "command_support.hpp"
 #include "commands.hpp"
 #include "plugins_doc.hpp"
 #include "standard_output.hpp"
@@ -133,8 +133,20 @@ nlohmann::json parse_params_option(const std::string& text) {
   return parse_json_document(text, "--params");
 }
 
-// Builds the model with the library's factory and runs the property checks. Every failure is
-// one line on stderr; the last is thrown, so the CLI exits with code 2.
+// The failed property checks, if any: each one a line "failed: ..." of the report on standard
+// output, and one error (exit code 2) naming the first and how many there are.
+void report_failures(const std::string& where, const std::vector<std::string>& failures) {
+  if (failures.empty()) return;
+  std::string report;
+  for (const std::string& failure : failures) report += "failed: " + failure + '\n';
+  write_standard_output(report);
+  if (failures.size() == 1) throw ConfigError(where + failures.front());
+  throw ConfigError(fmt::format("{}{} property checks failed, the first: {}; all of them are "
+                                "listed on standard output",
+                                where, failures.size(), failures.front()));
+}
+
+// Builds the model with the library's factory and runs the property checks (report_failures).
 void check_noise_model_properties(const PluginsArguments& arguments,
                                   const plugin::PluginDescriptor& descriptor) {
   const auto group = plugin::parse_sensor_group(arguments.group);
@@ -155,11 +167,7 @@ void check_noise_model_properties(const PluginsArguments& arguments,
   const auto model = build(parse_params_option(arguments.params));
   const std::vector<std::string> failures =
       plugin::check_noise_model(*model, build, arguments.checks);
-  const std::string where = fmt::format("{} ({}): ", arguments.library, arguments.group);
-  for (std::size_t i = 0; i + 1 < failures.size(); ++i) {
-    std::cerr << "stochnav: error: " << where << failures[i] << '\n';
-  }
-  if (!failures.empty()) throw ConfigError(where + failures.back());
+  report_failures(fmt::format("{} ({}): ", arguments.library, arguments.group), failures);
   std::string times;
   for (double t : arguments.checks.times_s)
     times += (times.empty() ? "" : ", ") + fmt::format("{}", t);
@@ -169,7 +177,7 @@ void check_noise_model_properties(const PluginsArguments& arguments,
 }
 
 // Builds the aid with the library's factory on the aid data and runs the aid checks at the true
-// state. Every failure is one line on stderr; the last is thrown, so the CLI exits with code 2.
+// state (report_failures).
 void check_aid_properties(const PluginsArguments& arguments,
                           const plugin::PluginDescriptor& descriptor) {
   if (!(arguments.interval_s >= 0.0)) {
@@ -196,12 +204,8 @@ void check_aid_properties(const PluginsArguments& arguments,
       plugin::steady_imu_sample(truth, arguments.at_s,
                                 aid->measures_interval_mean() ? arguments.interval_s : 0.0)};
   const std::vector<std::string> failures = plugin::check_aid(*aid, build, params, at);
-  const std::string where =
-      fmt::format("{} (aid at t = {} s): ", arguments.library, arguments.at_s);
-  for (std::size_t i = 0; i + 1 < failures.size(); ++i) {
-    std::cerr << "stochnav: error: " << where << failures[i] << '\n';
-  }
-  if (!failures.empty()) throw ConfigError(where + failures.back());
+  report_failures(fmt::format("{} (aid at t = {} s): ", arguments.library, arguments.at_s),
+                  failures);
   write_standard_output(fmt::format(
       "aid: {}\nproperties: sizes, covariance, residual at the truth, jacobian, params round trip "
       "hold at t = {} s\n",
@@ -261,7 +265,7 @@ void add_plugins_command(CLI::App& app) {
       ->capture_default_str();
   check->add_option("--imu-rate", arguments->imu_rate_hz, "IMU rate given to the factory (Hz)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   check
       ->add_option("--times", arguments->checks.times_s,
                    "Start times of the checks (s); put a time-varying model's changes among them")

@@ -1,10 +1,10 @@
 // stochnav simulate noise | scenario: records with known truth.
 
-#include <algorithm>
 #include <fmt/format.h>
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <fstream>
@@ -105,6 +105,11 @@ std::vector<Axis> read_axes(const NoiseArguments& arguments) {
     if (name.empty() || name.find_first_of(",\"\r\n") != std::string::npos) {
       throw ConfigError("--column '" + name + "': a column name must be non-empty without "
                         "commas, quotes or line breaks; choose another name");
+    }
+    if (std::count_if(axes.begin(), axes.end(), [&](const Axis& a) { return a.column == name; }) >
+        1) {
+      throw ConfigError("--column " + name + ": given to two axes; the record would read back "
+                        "only one of them: give each axis its own name");
     }
   }
   return axes;

@@ -56,12 +56,44 @@ void ProgressBar::draw(std::uint64_t done, bool last) {
     bar.resize(kWidth, '.');
     std::fprintf(stderr, "\r%s [%s] %5.1f %%  %.0f s", label_.c_str(), bar.c_str(),
                  100.0 * fraction, elapsed);
-  } else {
+  } else if (done > 0) {
     std::fprintf(stderr, "\r%s %llu  %.0f s", label_.c_str(),
                  static_cast<unsigned long long>(done), elapsed);
+  } else {
+    std::fprintf(stderr, "\r%s ...  %.0f s", label_.c_str(), elapsed);  // a stage, not counted
   }
   if (last) std::fputc('\n', stderr);
   std::fflush(stderr);
+}
+
+bool standard_error_is_terminal() { return ::isatty(STDERR_FILENO) != 0; }
+
+ProgressTicker::ProgressTicker(std::string label, std::uint64_t total, bool enabled)
+    : bar_(std::move(label), total, enabled), total_(total), enabled_(enabled) {
+  if (!enabled_) return;
+  thread_ = std::thread([this] {
+    std::unique_lock lock(mutex_);
+    while (!wake_.wait_for(lock, std::chrono::milliseconds(100), [this] { return stopping_; })) {
+      bar_.show(done_.load(std::memory_order_relaxed));
+    }
+  });
+}
+
+ProgressTicker::~ProgressTicker() { stop(); }
+
+void ProgressTicker::stop() {
+  if (!thread_.joinable()) return;
+  {
+    const std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_one();
+  thread_.join();
+}
+
+void ProgressTicker::finish() {
+  stop();
+  bar_.finish(total_ > 0 ? total_ : done_.load(std::memory_order_relaxed));
 }
 
 }  // namespace stochnav

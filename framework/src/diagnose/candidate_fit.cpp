@@ -27,6 +27,7 @@ std::optional<CandidateFit> fit_candidate(const NoiseModel& model, const FitData
   const double back = 1.0 / std::sqrt(equivalent.variance_factor);
   CandidateFit result;
   result.refitted = refit;
+  result.at_bound = fitted.diagnostics.at_bound;
   result.model = NoiseModel{model.unit, model.rate_hz, {}};
   const NonstationaryTerm* nonstationary = find_nonstationary(model);
   if (!refit) {

@@ -87,8 +87,10 @@ std::vector<Trial> screen_candidates(const ModelAssessment& current,
         trials.push_back(std::move(failed));
         continue;
       }
-      trials.push_back(screened_trial(std::move(fitted->model), std::move(fitted->term), type,
-                                      refit, before.avar, context));
+      Trial trial = screened_trial(std::move(fitted->model), std::move(fitted->term), type, refit,
+                                   before.avar, context);
+      trial.outcome.at_bound = std::move(fitted->at_bound);
+      trials.push_back(std::move(trial));
     }
   }
   return trials;

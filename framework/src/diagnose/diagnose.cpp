@@ -12,8 +12,9 @@ namespace stochnav {
 
 std::string DiagnoseOptions::validate() const {
   if (seeds < 0 || seeds == 1 || seeds > limits::kMaxDiagnoseSeeds) {
-    return fmt::format("seeds: {}; expected 0 or 2 to {} (the limit on work)", seeds,
-                       limits::kMaxDiagnoseSeeds);
+    return fmt::format("seeds: {}; expected 0 (no simulated band) or 2 to {} (a band needs two "
+                       "records at least; {} is the limit on work)",
+                       seeds, limits::kMaxDiagnoseSeeds, limits::kMaxDiagnoseSeeds);
   }
   if (max_iterations < 0 || max_iterations > limits::kMaxDiagnoseIterations) {
     return fmt::format("max_iterations: {}; expected 0 to {} (the limit on work)", max_iterations,
@@ -80,6 +81,11 @@ std::string conclusion_before_steps(const DiagnoseResult& result, const RandomWa
                    result.iterations.size(), current.gap.value);
 }
 
+// One stage of diagnose() done, for a progress display (DiagnoseOptions::stages_done).
+void count_diagnose_stage(const DiagnoseOptions& options) {
+  if (options.stages_done != nullptr) options.stages_done->fetch_add(1, std::memory_order_relaxed);
+}
+
 bool added_stochastic_term(const DiagnoseResult& result) {
   return std::any_of(result.iterations.begin(), result.iterations.end(),
                      [](const DiagnoseIteration& step) { return !is_deterministic(step.effect); });
@@ -100,7 +106,9 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
   result.measured = measure_record(
       result.deterministic.empty() ? record : residuals.record_without(result.deterministic),
       options.windows);
+  count_diagnose_stage(options);
   result.initial = assess_model(split.stochastic, result.measured, options);
+  count_diagnose_stage(options);
 
   // Deterministic effects (before step 2), found in the time domain and removed from the record.
   const std::vector<DeterministicFinding> findings =
@@ -125,6 +133,7 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
       break;
     }
     result.iterations.push_back(std::move(*step.iteration));
+    count_diagnose_stage(options);
     const ModelAssessment& current = result.iterations.back().after;
     walk = walk_test(current.model);
     if (current.gap.consistent && !walk.significant) {
@@ -151,6 +160,7 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     }
   }
   result.final_walk_test = walk;
+  count_diagnose_stage(options);
   const ModelAssessment& last = result.final_assessment();
   result.final_signature = stages::signature_of(last.gap, last.model, result.measured);
   return result;

@@ -26,13 +26,17 @@ nlohmann::json diagnose_report_json(const DiagnoseResult& result) {
             to_reported(quantity_of(step.after.model.unit), spec.dimension, sigma);
       }
     }
-    iterations.push_back({{"effect", std::string(term_type_name(step.effect))},
-                          {"evidence", step.evidence},
-                          {"tau_range_s", range_json(step.tau_range_s)},
-                          {"time_range_s", range_json(step.time_range_s)},
-                          {"added_term", std::move(added)},
-                          {"gap_before", step.gap_before},
-                          {"gap_after", step.gap_after}});
+    nlohmann::json iteration = {{"effect", std::string(term_type_name(step.effect))},
+                                {"evidence", step.evidence},
+                                {"tau_range_s", range_json(step.tau_range_s)},
+                                {"time_range_s", range_json(step.time_range_s)},
+                                {"added_term", std::move(added)},
+                                {"gap_before", step.gap_before},
+                                {"gap_after", step.gap_after}};
+    if (!step.added_term_at_bound.empty()) {
+      iteration["added_term_at_bound"] = step.added_term_at_bound;
+    }
+    iterations.push_back(std::move(iteration));
   }
   return {{"consistent", result.consistent},
           {"gap_initial", result.initial.gap.value},

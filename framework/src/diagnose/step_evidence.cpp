@@ -34,6 +34,34 @@ std::optional<std::array<double, 2>> segment_time_range(const NoiseTerm& term,
   return range;
 }
 
+namespace {
+
+// The best other candidate by the gap the kept one is reported with: the exact gap. The
+// screening gaps of the candidates never assessed exactly are a cheaper approximation on
+// another scale, so they are not compared with it.
+std::string runner_up_text(const std::vector<CandidateOutcome>& outcomes, TermType effect) {
+  const CandidateOutcome* runner = nullptr;
+  for (const auto& outcome : outcomes) {
+    if (!outcome.usable || !outcome.exact || outcome.type == effect) continue;
+    if (runner == nullptr || outcome.gap < runner->gap) runner = &outcome;
+  }
+  if (runner == nullptr) return " (no other candidate was assessed exactly)";
+  return fmt::format(" (next best, assessed the same way: {} at {:.3g})",
+                     term_type_name(runner->type), runner->gap);
+}
+
+// A kept term whose fit ended on a search bound: flagged, never silently added.
+std::string at_bound_text(const std::vector<std::string>& at_bound) {
+  if (at_bound.empty()) return {};
+  std::string names;
+  for (const auto& name : at_bound) names += (names.empty() ? "" : ", ") + name;
+  return " Flagged: " + names + " ended on the search bound of the fit: a limit of the range "
+         "searched, not an estimate; read the term with care (a longer record, or a term of "
+         "another type, may describe the effect).";
+}
+
+}  // namespace
+
 std::string evidence_text(const Signature& signature, const Gap& before, const Trial& kept,
                           const std::vector<CandidateOutcome>& outcomes,
                           const std::optional<std::array<double, 2>>& time_range, Unit unit) {
@@ -67,25 +95,13 @@ std::string evidence_text(const Signature& signature, const Gap& before, const T
         "together they do (AVAR reduced chi-square {:.2f}). ",
         signature.max_abs_z, before.avar.reduced_chi_square);
   }
-  // The ranking of the candidates.
-  std::vector<CandidateOutcome> ranked;
-  for (const auto& outcome : outcomes) {
-    if (outcome.usable) ranked.push_back(outcome);
-  }
-  std::sort(ranked.begin(), ranked.end(),
-            [](const auto& a, const auto& b) { return a.gap < b.gap; });
   text += fmt::format("Of {} candidate fits, {} ({}) shrinks the gap most: {:.3g} -> {:.3g}",
                       outcomes.size(), term_type_name(effect),
                       kept.outcome.refitted ? "other terms refitted" : "other terms held",
                       before.value, kept.gap.value);
-  if (ranked.size() > 1) {
-    const auto runner =
-        std::find_if(ranked.begin(), ranked.end(), [&](const auto& o) { return o.type != effect; });
-    if (runner != ranked.end()) {
-      text += fmt::format(" (next best: {} at {:.3g})", term_type_name(runner->type), runner->gap);
-    }
-  }
+  text += runner_up_text(outcomes, effect);
   text += ". Added: " + describe_term_short(kept.term, unit) + ".";
+  text += at_bound_text(kept.outcome.at_bound);
   if (effect != TermType::kNonstationary && signature.found && signature.above &&
       signature.suggested != effect) {
     text += fmt::format(" The signature alone suggested {}; the fits decided.",

@@ -199,6 +199,7 @@ StepResult take_stochastic_step(const ModelAssessment& current, const RandomWalk
   step.effect = best.outcome.type;
   step.refitted = best.outcome.refitted;
   step.added_term = best.term;
+  step.added_term_at_bound = best.outcome.at_bound;
   step.gap_before = before.value;
   step.gap_after = best.gap.value;
   step.signature = signature;

@@ -12,7 +12,7 @@ namespace {
 
 std::string joined(const std::vector<std::string>& names) {
   std::string out;
-  for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
+  for (const auto& name : names) out += (out.empty() ? "" : ", ") + echoed_text(name);
   return out;
 }
 
@@ -108,8 +108,9 @@ bool CsvTableReader::next(std::span<double> values) {
     for (std::size_t i = 0; i < indices_.size(); ++i) {
       double value = 0.0;
       if (!parse_number(cells_[indices_[i]], value)) {
-        throw InputError(where() + "column " + header_[indices_[i]] + " is not a number ('" +
-                         std::string(trim(cells_[indices_[i]])) + "'); fix the cell");
+        throw InputError(where() + "column " + echoed_text(header_[indices_[i]]) +
+                         " is not a number ('" + echoed_text(trim(cells_[indices_[i]])) +
+                         "'); fix the cell");
       }
       if (!std::isfinite(value)) {
         throw InputError(where() + "column " + header_[indices_[i]] +

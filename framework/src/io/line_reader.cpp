@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <cerrno>
+#include <filesystem>
 #include <cstring>
 
 #include "stochnav/core/errors.hpp"
@@ -34,7 +35,16 @@ void check_gzip_state(gzFile gz, const std::string& path) {
 
 }  // namespace
 
+void refuse_folder(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throw InputError(path + ": is a folder, not a record file; give the file itself, not the "
+                     "folder that holds it");
+  }
+}
+
 LineReader::LineReader(const std::string& path) : path_(path), buffer_(kChunkBytes) {
+  refuse_folder(path);
   if (path.ends_with(".gz")) {
     gz_ = gzopen(path.c_str(), "rb");
     if (gz_ != nullptr) gzbuffer(static_cast<gzFile>(gz_), 1 << 17);

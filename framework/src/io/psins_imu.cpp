@@ -26,7 +26,7 @@ std::array<double, 6> six_numbers(LineReader& lines, std::string_view line,
   for (std::size_t i = 0; i < 6; ++i) {
     if (!parse_number(cells[i], values[i]) || !std::isfinite(values[i])) {
       throw InputError(lines.path() + ":" + std::to_string(lines.line_number()) + ": '" +
-                       std::string(cells[i]) + "' is not a number; fix the row");
+                       echoed_text(trim(cells[i])) + "' is not a number; fix the row");
     }
   }
   return values;

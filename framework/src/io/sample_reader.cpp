@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 #include <string_view>
+#include <unordered_map>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/huge_page_buffer.hpp"
@@ -70,8 +71,32 @@ std::optional<std::size_t> parse_index(std::string_view text) {
 
 std::string join(const std::vector<std::string>& names) {
   std::string out;
-  for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
+  for (const auto& name : names) out += (out.empty() ? "" : ", ") + echoed_text(name);
   return out;
+}
+
+/// A header cell as a column name: a name in double quotes (RFC 4180) without them, a doubled
+/// quote inside as one.
+std::string header_name(std::string_view cell) {
+  if (cell.size() < 2 || cell.front() != '"' || cell.back() != '"') return std::string(cell);
+  std::string name;
+  const std::string_view inner = cell.substr(1, cell.size() - 2);
+  for (std::size_t i = 0; i < inner.size(); ++i) {
+    name += inner[i];
+    if (inner[i] == '"' && i + 1 < inner.size() && inner[i + 1] == '"') ++i;
+  }
+  return name;
+}
+
+/// The message after "path:line" for a cell that is not a number.
+std::string not_a_number_problem(std::string_view cell, const std::string& column) {
+  if (cell.find('\0') != std::string_view::npos) {
+    return ": a NUL byte in column '" + echoed_text(column) +
+           "': the file holds binary data, not text; give a CSV or text record (raw samples: "
+           ".f64 or .f32)";
+  }
+  return ": '" + echoed_text(cell) + "' in column '" + echoed_text(column) +
+         "' is not a number; fix or remove the row";
 }
 
 }  // namespace
@@ -191,6 +216,7 @@ class SampleReader::Impl {
 
   std::size_t read_block(std::vector<double>& out, std::size_t max_samples) {
     const std::size_t got = binary_ ? read_binary(out, max_samples) : read_text(out, max_samples);
+    note_progress(binary_ ? epochs_read_ * channels_ * sample_bytes_ : lines_->consumed_bytes());
     samples_ += got;
     note_peak(out, got);
     if (got == 0 && !finished_) finish();
@@ -223,6 +249,13 @@ class SampleReader::Impl {
  private:
   std::string where() const { return options_.path + ":" + std::to_string(lines_->line_number()); }
 
+  // Adds the bytes consumed since the last call to the caller's progress counter, if any.
+  void note_progress(std::size_t position) {
+    if (options_.bytes_read == nullptr || position <= reported_bytes_) return;
+    options_.bytes_read->fetch_add(position - reported_bytes_, std::memory_order_relaxed);
+    reported_bytes_ = position;
+  }
+
   // Skips blank and '#' lines. Returns false at the end of the file.
   bool next_data_line(std::string_view& line) {
     while (lines_->next(line)) {
@@ -247,12 +280,28 @@ class SampleReader::Impl {
       return parse_number(c, ignored);
     });
     if (format_ == FileFormat::kCsv && !numeric_first_line) {
-      for (auto cell : cells_) names_.emplace_back(trim(cell));
+      for (auto cell : cells_) names_.push_back(header_name(trim(cell)));
+      refuse_duplicate_names();
     } else {
       for (std::size_t i = 0; i < cells_.size(); ++i) names_.push_back(std::to_string(i));
       pending_line_ = std::string(first);  // the first line is data
     }
     choose_columns();
+  }
+
+  // Two columns of one name: which one --column (or the time column) means is a guess. Empty
+  // names (a trailing comma) name no column and may repeat.
+  void refuse_duplicate_names() const {
+    std::unordered_map<std::string_view, std::size_t> first_of;
+    for (std::size_t j = 0; j < names_.size(); ++j) {
+      if (names_[j].empty()) continue;
+      const auto [at, inserted] = first_of.emplace(names_[j], j);
+      if (inserted) continue;
+      throw InputError(options_.path + ":" + std::to_string(lines_->line_number()) +
+                       ": the header names column '" + echoed_text(names_[j]) +
+                       "' twice (columns " + std::to_string(at->second) + " and " +
+                       std::to_string(j) + "); give each column its own name");
+    }
   }
 
   void choose_columns() {
@@ -271,7 +320,8 @@ class SampleReader::Impl {
       }
     } else if (auto index = parse_index(options_.column)) {
       if (*index >= names_.size()) {
-        throw InputError(options_.path + ":1: column index " + options_.column + " out of range (" +
+        throw InputError(options_.path + ":1: column index " + echoed_text(options_.column) +
+                         " out of range (" +
                          std::to_string(names_.size()) + " columns: " + join(names_) +
                          "); pass --column with an index from 0 to " +
                          std::to_string(names_.size() - 1));
@@ -280,7 +330,8 @@ class SampleReader::Impl {
     } else {
       const auto it = std::find(names_.begin(), names_.end(), options_.column);
       if (it == names_.end()) {
-        throw InputError(options_.path + ":1: no column '" + options_.column + "' (columns: " +
+        throw InputError(options_.path + ":1: no column '" + echoed_text(options_.column) +
+                         "' (columns: " +
                          join(names_) + "); pass --column with one of these names or an index");
       }
       value_column_ = static_cast<std::size_t>(it - names_.begin());
@@ -310,23 +361,22 @@ class SampleReader::Impl {
     }
     const std::string_view cell = cells[*value_column_];
     if (!parse_number(cell, row.value)) {
-      row.problem = ": '" + std::string(trim(cell)) + "' in column '" + column_name_ +
-                    "' is not a number; fix or remove the row";
+      row.problem = not_a_number_problem(trim(cell), column_name_);
       return;
     }
     if (!std::isfinite(row.value)) {
-      row.problem = ": " + std::string(trim(cell)) + " in column '" + column_name_ +
+      row.problem = ": " + echoed_text(trim(cell)) + " in column '" + echoed_text(column_name_) +
                     "'; NaN and infinity are not samples: fill the gap or split the record";
       return;
     }
     if (std::abs(row.value) > kMaxSampleMagnitude) {
-      row.problem = ": column '" + column_name_ + "': " + magnitude_problem(row.value);
+      row.problem = ": column '" + echoed_text(column_name_) + "': " + magnitude_problem(row.value);
       return;
     }
     if (time_column_) {
       const std::string_view t_cell = cells[*time_column_];
       if (!parse_number(t_cell, row.t_s) || !std::isfinite(row.t_s)) {
-        row.problem = ": time '" + std::string(trim(t_cell)) +
+        row.problem = ": time '" + echoed_text(trim(t_cell)) +
                       "' is not a finite number; fix or remove the row";
       }
     }
@@ -437,7 +487,11 @@ class SampleReader::Impl {
         return true;
       });
       file.release(starts[c], starts[c + 1] - starts[c]);
+      if (options_.bytes_read != nullptr) {
+        options_.bytes_read->fetch_add(starts[c + 1] - starts[c], std::memory_order_relaxed);
+      }
     });
+    reported_bytes_ = text.size();
 
     // The first problem in file order: inside a chunk, or between the last row of one chunk and
     // the first of the next (checked here, in order, as the serial reader would).
@@ -466,6 +520,7 @@ class SampleReader::Impl {
   }
 
   void open_binary() {
+    refuse_folder(options_.path);
     binary_ = std::make_unique<std::ifstream>(options_.path, std::ios::binary | std::ios::ate);
     if (!*binary_) {
       throw InputError(options_.path + ": cannot open file (" + std::strerror(errno) +
@@ -613,6 +668,7 @@ class SampleReader::Impl {
   std::string column_name_;
   TimeAxis time_;
   std::size_t samples_ = 0;
+  std::size_t reported_bytes_ = 0;  // bytes added to options_.bytes_read so far
   double peak_ = 0.0;  // the largest |sample| so far
   bool finished_ = false;
   bool text_exhausted_ = false;  // read_text_in_parallel took the rest of the file

@@ -1,5 +1,6 @@
 #include "stochnav/io/text_cells.hpp"
 
+#include <algorithm>
 #include <charconv>
 
 namespace stochnav {
@@ -43,6 +44,24 @@ bool parse_number(std::string_view cell, double& value) {
   if (cell.empty()) return false;
   const auto [end, error] = std::from_chars(cell.data(), cell.data() + cell.size(), value);
   return error == std::errc() && end == cell.data() + cell.size();
+}
+
+std::string echoed_text(std::string_view text) {
+  std::string out;
+  const std::size_t shown = std::min(text.size(), kEchoedCharacters);
+  for (const char c : text.substr(0, shown)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      static constexpr char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[byte >> 4];
+      out += kHex[byte & 0xF];
+    } else {
+      out += c;
+    }
+  }
+  if (shown < text.size()) out += "... (" + std::to_string(text.size()) + " characters)";
+  return out;
 }
 
 }  // namespace stochnav

@@ -89,7 +89,8 @@ AidData read_aid_data(const std::filesystem::path& csv_path) {
     for (std::size_t i = 0; i < cells.size(); ++i) {
       double value = 0.0;
       if (!parse_number(cells[i], value) || !std::isfinite(value)) {
-        throw InputError(where + ": column '" + names[i] + "': '" + std::string(trim(cells[i])) +
+        throw InputError(where + ": column '" + echoed_text(names[i]) + "': '" +
+                         echoed_text(trim(cells[i])) +
                          "' is not a finite number; fix the cell");
       }
       columns[i].push_back(value);

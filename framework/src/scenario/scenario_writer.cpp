@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/core/progress_bar.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
 #include "stochnav/io/atomic_file.hpp"
@@ -67,31 +68,6 @@ class CsvStream {
   std::string display_;
   std::FILE* file_ = nullptr;
   fmt::memory_buffer buffer_;
-};
-
-class ProgressBar {
- public:
-  explicit ProgressBar(bool enabled) : enabled_(enabled) {}
-  void update(std::uint64_t done, std::uint64_t total) {
-    if (!enabled_) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (done < total && now - last_ < std::chrono::milliseconds(200)) return;
-    last_ = now;
-    const double fraction =
-        total == 0 ? 1.0 : static_cast<double>(done) / static_cast<double>(total);
-    constexpr int kWidth = 40;
-    const int filled = static_cast<int>(fraction * kWidth);
-    std::fprintf(stderr, "\rsimulate scenario [%s%s] %5.1f%%", std::string(filled, '#').c_str(),
-                 std::string(kWidth - filled, ' ').c_str(), 100.0 * fraction);
-    std::fflush(stderr);
-  }
-  void finish() {
-    if (enabled_) std::fprintf(stderr, "\n");
-  }
-
- private:
-  bool enabled_;
-  std::chrono::steady_clock::time_point last_{};
 };
 
 void append_truth(fmt::memory_buffer& out, const TruthSample& truth) {
@@ -193,9 +169,9 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
   append_aid(initial);
 
   const bool rates = config.imu.output == ImuOutput::kRates;
-  ProgressBar progress(options.progress);
   ScenarioEpoch epoch;
   const std::uint64_t count = simulator.epoch_count();
+  ProgressBar progress("simulate scenario", count, options.progress);
   for (std::uint64_t k = 1; k <= count; ++k) {
     const bool truth_row = k % truth_every == 0;
     const bool aid_row = k % aid_every == 0;
@@ -215,10 +191,9 @@ ScenarioRunSummary write_scenario_outputs(const ScenarioConfig& config,
       append_aid(epoch.truth);
       aids.maybe_flush();
     }
-    if ((k & 0xFFFF) == 0) progress.update(k, count);
+    progress.update(k);
   }
-  progress.update(count, count);
-  progress.finish();
+  progress.finish(count);
 
   nlohmann::json document;
   document["stochnav_version"] = std::string(kVersion);

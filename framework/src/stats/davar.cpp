@@ -87,6 +87,13 @@ constexpr std::size_t kPieceTerms = 4096;
 std::string DavarOptions::validate(std::size_t record_samples) const {
   if (step == 0) return "--step must be at least 1 sample (got 0)";
   if (window < 4) return "--window must be at least 4 samples (got " + std::to_string(window) + ")";
+  // Its phase points (window + 1) and the windows' sums must stay countable: no record is
+  // that long anyway (2^62 samples of 8 bytes are 32 EiB).
+  constexpr std::size_t kLongestWindow = std::size_t{1} << 62;
+  if (window > kLongestWindow) {
+    return "--window " + std::to_string(window) + " is longer than any record can be (at most " +
+           std::to_string(kLongestWindow) + " samples); use a window no longer than the record";
+  }
   if (record_samples > 0 && window > record_samples) {
     return "--window " + std::to_string(window) + " is longer than the record (" +
            std::to_string(record_samples) + " samples); use a window of at most " +

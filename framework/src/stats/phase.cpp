@@ -354,8 +354,12 @@ PhaseRecord read_phase_record(const ReadOptions& options) {
       std::shared_ptr<double[]> phase = huge_page_array(n + 1);
       phase[0] = 0.0;
       const bool finite = integrate(rate, phase.get() + 1, n, 1.0 / reader.rate_hz(),
-                                    [&file](std::size_t first, std::size_t count) {
+                                    [&file, &options](std::size_t first, std::size_t count) {
                                       file.release(first * sizeof(double), count * sizeof(double));
+                                      // Two passes read each rate: half its bytes per pass.
+                                      if (options.bytes_read != nullptr) {
+                                        options.bytes_read->fetch_add(count * sizeof(double) / 2);
+                                      }
                                     });
       if (finite) {
         result.record.rate_hz = reader.rate_hz();

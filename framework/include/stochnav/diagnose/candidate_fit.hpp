@@ -14,6 +14,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "stochnav/fit/fit_data.hpp"
 #include "stochnav/model/noise_model.hpp"
@@ -24,6 +25,8 @@ struct CandidateFit {
   NoiseModel model;  ///< the current model with the candidate (and refitted terms)
   NoiseTerm term;    ///< the candidate term as fitted (natural units)
   bool refitted = false;
+  /// Parameters the fit left on a search bound ("gauss_markov.tau_c"): limits, not estimates.
+  std::vector<std::string> at_bound;
 };
 
 /// The fit of one variant; nullopt when Ceres finds no usable solution or the fit rejects the

@@ -58,6 +58,7 @@
 // same loop, and DiagnoseIteration stays as it is.
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -102,10 +103,20 @@ struct DiagnoseOptions {
   /// Refit all stationary terms together after the loop (kept when the pooled chi-square drops
   /// and the gap does not widen).
   bool joint_refit = true;
+  /// When set, one is added per stage done (the measured statistics, the model's assessment,
+  /// each iteration, the final choice): diagnose_stage_count(max_iterations) in all, fewer
+  /// when the loop stops early. A progress display's counter (core/progress_bar.hpp,
+  /// ProgressTicker).
+  std::atomic<std::uint64_t>* stages_done = nullptr;
 
   /// Empty when valid; otherwise the reason, naming the option.
   std::string validate() const;
 };
+
+/// The stages diagnose() counts in DiagnoseOptions::stages_done when every iteration runs.
+constexpr std::uint64_t diagnose_stage_count(int max_iterations) {
+  return 3 + static_cast<std::uint64_t>(max_iterations);
+}
 
 /// A model held against the record.
 struct ModelAssessment {
@@ -124,6 +135,9 @@ struct CandidateOutcome {
   double gap = 0.0;
   bool exact = false;       ///< assessed with its own estimator covariance
   bool immaterial = false;  ///< left out: below DiagnoseOptions::min_term_share everywhere
+  /// Parameters its fit left on a search bound ("gauss_markov.tau_c"); a kept candidate's are
+  /// flagged in the step's evidence and in report.json ("added_term_at_bound").
+  std::vector<std::string> at_bound = {};
 };
 
 struct DiagnoseIteration {
@@ -135,6 +149,9 @@ struct DiagnoseIteration {
   /// 1-sigma uncertainties of added_term's parameters by JSON name, natural units (the
   /// deterministic terms; empty for the Allan-variance fits).
   std::vector<std::pair<std::string, double>> added_term_sigma;
+  /// Parameters of added_term (or of the terms refitted with it) its fit left on a search
+  /// bound: flagged in the evidence, and in report.json as "added_term_at_bound" when any.
+  std::vector<std::string> added_term_at_bound;
   bool refitted = false;                              ///< the other terms were refitted too
   double gap_before = 0.0;
   double gap_after = 0.0;

@@ -9,6 +9,10 @@
 
 namespace stochnav {
 
+/// Throws InputError when `path` names a folder ("PATH: is a folder, not a record file; ..."):
+/// reading one gave "read error".
+void refuse_folder(const std::string& path);
+
 class LineReader final {
  public:
   /// Opens `path`; throws InputError if it cannot be read, or if a ".gz" file has no gzip

@@ -10,7 +10,9 @@
 //   *.gz             any text format above, gzip-compressed.
 // Every failure throws InputError naming file, line and a fix.
 
+#include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -59,6 +61,9 @@ struct ReadOptions {
   Unit unit = Unit::kPlain;
   /// Interleaved channels per epoch in raw binary files (.f64/.f32).
   int binary_channels = 1;
+  /// When set, the bytes of the file consumed are added to it as reading goes (decompressed
+  /// bytes for .gz): a progress display's counter (core/progress_bar.hpp, ProgressTicker).
+  std::atomic<std::uint64_t>* bytes_read = nullptr;
 };
 
 /// Reads one channel of a file. Throws InputError on malformed content (non-numeric cell, NaN or
