@@ -16,11 +16,10 @@
 //     Earth rate) as heading information and ended 4-6 sigma off in azimuth and north
 //     (filter/second_order_attitude.hpp); the test also runs that ablation and sees it fail.
 //   - rotary drilling in a horizontal east-west hole at 80 N from a field start: the bank over
-//     the heading, its hypotheses' headings consider states, keeps every station inside on
-//     seeds 1 and 3; one filter (seed 1) and hypotheses that update their heading (seed 3) do
-//     not.
+//     the heading keeps every station inside on seed 1, where one filter does not; on seed 3
+//     the shipped bank is outside and the bank with consider headings (an option) inside.
 // Not checked, because not yet right (docs/drilling-envelope.md): sliding east-west at high
-// latitude with heading errors of tens of degrees.
+// latitude with heading errors of tens of degrees; 80 N east-west seed 3 with the shipped config.
 
 #include <gtest/gtest.h>
 
@@ -31,6 +30,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "csv_columns.hpp"
@@ -195,13 +195,13 @@ TEST(DrillingEnvelope, EastWestRotaryFirstOrderOnlyLeavesItsThreeSigma) {
 
 // Rotary drilling, horizontal due east at 80 N, from a field start: the horizontal Earth rate
 // is a sixth of the equator's, as large as the gyro's turn-on bias, and the static alignment's
-// heading is far from Gaussian (docs/drilling-envelope.md, section 4). With the shipped bank over
-// the heading (filter/heading_hypotheses.hpp: 4-deg cells, each hypothesis' heading a consider
-// state) every station is inside on seeds 1 and 3. The two ablations, each on the seed where it
-// failed: one filter (no bank) on seed 1, 9-10 sigma off in azimuth and north from the first
-// station on; the bank whose hypotheses update their heading on seed 3, 2.2 deg off with a sigma
-// of 0.8 at the end (3.9 sigma). 12-h records: the first hours simulated alone are a different
-// realisation.
+// heading is far from Gaussian (docs/drilling-envelope.md, section 4). Seed 1: the shipped bank
+// over the heading (filter/heading_hypotheses.hpp, 4-deg cells) keeps every station inside; one
+// filter (no bank) is 9-10 sigma off in azimuth and north from the first station on. Seed 3:
+// the shipped bank ends 2.2 deg off with a sigma of 0.8 (3.9 sigma); with its hypotheses'
+// headings as consider states ("heading_hypothesis_consider", not the default: it discards
+// first-order heading information where there is some) every station is inside. 12-h records:
+// the first hours simulated alone are a different realisation.
 std::string east_west_rotary_80n_run(const stochnav::testing::TempDir& scratch, int seed,
                                      const nlohmann::json& filter = nlohmann::json::object(),
                                      const std::string& variant = "") {
@@ -228,9 +228,11 @@ TEST(DrillingEnvelope, EastWestRotaryAt80NTheHeadingBankKeepsItInside) {
                     "and HeadingHypotheses run the same code under the sanitizers";
   }
   const stochnav::testing::TempDir scratch;
-  for (const int seed : {1, 3}) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    const std::string out = east_west_rotary_80n_run(scratch, seed);
+  const std::vector<std::pair<int, nlohmann::json>> inside = {
+      {1, nlohmann::json::object()}, {3, {{"heading_hypothesis_consider", true}}}};
+  for (const auto& [seed, filter] : inside) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", filter " + filter.dump());
+    const std::string out = east_west_rotary_80n_run(scratch, seed, filter, "_inside");
     const nlohmann::json hypotheses = read_json(out + "/metrics.json")["heading_hypotheses"];
     EXPECT_GT(hypotheses["initial"].get<int>(), 1) << hypotheses.dump();
     EXPECT_GE(stations_inside(read_csv_columns(out + "/survey_errors.csv"), "azimuth_deg",
@@ -242,10 +244,8 @@ TEST(DrillingEnvelope, EastWestRotaryAt80NTheHeadingBankKeepsItInside) {
   EXPECT_TRUE(azimuth_and_north_leave_three_sigma(
       east_west_rotary_80n_run(scratch, 1, {{"heading_hypothesis_sigma_deg", 0}}, "_one_filter")))
       << "one filter, seed 1";
-  EXPECT_TRUE(azimuth_and_north_leave_three_sigma(
-      east_west_rotary_80n_run(scratch, 3, {{"heading_hypothesis_consider", false}},
-                               "_heading_updated")))
-      << "hypotheses that update their heading, seed 3";
+  EXPECT_TRUE(azimuth_and_north_leave_three_sigma(east_west_rotary_80n_run(scratch, 3)))
+      << "the shipped bank, seed 3";
 }
 
 // The survey QC without truth (experiment/station_qc.hpp) flags a run whose gyro model is

@@ -356,9 +356,11 @@ PhaseRecord read_phase_record(const ReadOptions& options) {
       const bool finite = integrate(rate, phase.get() + 1, n, 1.0 / reader.rate_hz(),
                                     [&file, &options](std::size_t first, std::size_t count) {
                                       file.release(first * sizeof(double), count * sizeof(double));
-                                      // Two passes read each rate: half its bytes per pass.
+                                      // Progress: each rate is reported done once, after
+                                      // pass 2, the first stretch also after pass 1 (the bar
+                                      // reaches its end those few MB early; it clamps at 100 %).
                                       if (options.bytes_read != nullptr) {
-                                        options.bytes_read->fetch_add(count * sizeof(double) / 2);
+                                        options.bytes_read->fetch_add(count * sizeof(double));
                                       }
                                     });
       if (finite) {

@@ -114,9 +114,13 @@ struct FilterOptions {
   /// first order (docs/drilling-envelope.md, section 4).
   bool heading_considered = false;
   /// Whether the bank over the heading sets heading_considered for its hypotheses (run config
-  /// "filter/heading_hypothesis_consider"; false: each hypothesis updates its heading, the
-  /// ablation).
-  bool heading_hypotheses_consider_heading = true;
+  /// "filter/heading_hypothesis_consider"). Off by default: it makes horizontal east-west
+  /// rotary holes at 80 N consistent (seven of seven seeds), but it also discards the heading's
+  /// first-order information where the rotating cross-axis gyros give it (a vertical start at
+  /// 80 N: azimuth sigma 6.5 deg instead of 0.15, and its north position 5 sigma off, the
+  /// considered heading's uncertainty not reaching the position), and a sliding east-west well
+  /// at 74 N gets worse (docs/drilling-envelope.md, section 4, fix 5).
+  bool heading_hypotheses_consider_heading = false;
 
   /// Covariance products by blocks (filter/error_state_filter.hpp, BlockTransition and
   /// JosephForm::kExpanded): augmented states cost O(n^2) per propagation and update instead of
