@@ -56,6 +56,15 @@ struct SurveyCovarianceFile {
   std::size_t row_count = 0;
 };
 
+// `stochnav survey` on a listing and a well file, into `out`, from the folder `dir`.
+testing::CliResult run_survey(const TempDir& dir, const std::string& listing,
+                              const std::string& well, const std::string& model,
+                              const std::string& out) {
+  return run_cli("survey --listing '" + listing + "' --well '" + well + "' --model " + model +
+                     " --out '" + out + "'",
+                 dir.path().string());
+}
+
 SurveyCovarianceFile read_survey_covariance_file(const std::filesystem::path& path) {
   std::ifstream in(path);
   SurveyCovarianceFile file;
@@ -91,9 +100,7 @@ TEST_P(SurveyCliExample, ReproducesTheIscwsaExampleWell) {
   const std::string listing = dir.write("listing.csv", example_listing_csv(reference));
   const std::string well = dir.write("well.json", example_well_json().dump(2));
   const auto out = dir.path() / "out";
-  const auto result = run_cli("survey --listing '" + listing + "' --well '" + well + "' --model " +
-                                  c.model + " --out '" + out.string() + "'",
-                              dir.path().string());
+  const auto result = run_survey(dir, listing, well, c.model, out.string());
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_NE(result.out.find("iscwsa_covariance.csv"), std::string::npos) << result.out;
 
@@ -163,9 +170,7 @@ TEST_P(SurveyBadInput, ExitCodeTwoOneLineNoOutputFolder) {
   const std::string well =
       dir.write("well.json", c.well.is_string() ? c.well.get<std::string>() : c.well.dump(2));
   const auto out = dir.path() / "out";
-  const auto result = run_cli("survey --listing '" + listing + "' --well '" + well + "' --model " +
-                                  c.model + " --out '" + out.string() + "'",
-                              dir.path().string());
+  const auto result = run_survey(dir, listing, well, c.model, out.string());
   EXPECT_EQ(result.exit_code, 2) << result.err;
   ASSERT_FALSE(result.err.empty());
   EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << "one line: " << result.err;
@@ -246,9 +251,7 @@ TEST(SurveyCli, TieOnBelowTheSurfaceWithItsTvdRuns) {
       dir.write("listing.csv", "md_m,inclination_deg,azimuth_deg\n500,0,0\n530,1,10\n560,2,10\n");
   const std::string well = dir.write("well.json", well_with("tie_on_tvd_m", 499.5).dump());
   const auto out = dir.path() / "out";
-  const auto result = run_cli("survey --listing '" + listing + "' --well '" + well +
-                                  "' --model mwd_rev4 --out '" + out.string() + "'",
-                              dir.path().string());
+  const auto result = run_survey(dir, listing, well, "mwd_rev4", out.string());
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const auto file = read_survey_covariance_file(out / "iscwsa_covariance.csv");
   EXPECT_EQ(file.row_count, 3u * 28u);
@@ -266,9 +269,7 @@ TEST(SurveyCli, RunListingTieOnAndProjectionRowsAreSkipped) {
       "530,1,10,survey\n560,2,10,survey\n572.5,2,10,projection_to_bit\n");
   const std::string well = dir.write("well.json", well_with("tie_on_tvd_m", 499.5).dump());
   const auto out = dir.path() / "out";
-  const auto result = run_cli("survey --listing '" + listing + "' --well '" + well +
-                                  "' --model mwd_rev4 --out '" + out.string() + "'",
-                              dir.path().string());
+  const auto result = run_survey(dir, listing, well, "mwd_rev4", out.string());
   ASSERT_EQ(result.exit_code, 0) << result.err;
   const auto file = read_survey_covariance_file(out / "iscwsa_covariance.csv");
   EXPECT_EQ(file.row_count, 3u * 28u);
@@ -279,9 +280,7 @@ TEST(SurveyCli, RunListingTieOnAndProjectionRowsAreSkipped) {
 TEST(SurveyCli, MissingListingFileNamesIt) {
   TempDir dir;
   const std::string well = dir.write("well.json", example_well_json().dump());
-  const auto result = run_cli("survey --listing '" + dir.file("absent.csv") + "' --well '" + well +
-                                  "' --model mwd_rev5 --out '" + dir.file("out") + "'",
-                              dir.path().string());
+  const auto result = run_survey(dir, dir.file("absent.csv"), well, "mwd_rev5", dir.file("out"));
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.err.find("absent.csv: cannot open"), std::string::npos) << result.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "out"));
