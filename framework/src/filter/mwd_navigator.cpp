@@ -58,6 +58,26 @@ Eigen::Vector3d compensated_increment(const Eigen::Vector3d& raw, const Eigen::V
   return ((raw - bias * dt_s).array() / (1.0 + scale_factor.array())).matrix();
 }
 
+// The heading error phi_U, the state FilterOptions::heading_considered makes a consider state.
+constexpr int kHeadingState = cs::kAttitude + 2;
+
+// The bias-free, first-order information on the heading that a rotating tool's cross-axis gyros
+// get from the Earth rate, relative to the horizontal Earth rate: turning the tool by d about
+// the vertical changes the measured rate by d omega_h e_E (in body axes), of which the cross
+// axes see sqrt(1 - (e_E . z_b)^2), z_b the tool axis; the along-hole part is one unknown with
+// the along-hole gyro bias. 1 for a vertical or north-south tool, 0 in a horizontal east-west
+// hole, where the heading's information is second order (docs/drilling-envelope.md, section 4).
+double heading_first_order_share(const Eigen::Quaterniond& q_nb) {
+  const double east = (q_nb * Eigen::Vector3d::UnitZ()).x();
+  return std::sqrt(std::max(0.0, 1.0 - east * east));
+}
+
+// Below this share the heading is a consider state (when FilterOptions::heading_considered):
+// sin 8 deg, the tool axis within about 8 deg of horizontal east-west, two 4-deg cells of the
+// bank over the heading, across which cos psi's curvature is as large as the first-order slope.
+// The one value tried (docs/drilling-envelope.md, section 4, fix 5).
+constexpr double kHeadingFirstOrderShareFloor = 0.14;
+
 }  // namespace
 
 MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gyro_noise,
@@ -109,7 +129,6 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
   phi_ = Eigen::MatrixXd::Identity(phi_size, phi_size);
   q_d_ = Eigen::MatrixXd::Zero(phi_size, phi_size);
   correction_ = Eigen::VectorXd::Zero(n);
-  if (options_.heading_considered) filter_.consider(cs::kAttitude + 2);  // phi_U
   innovations_.reserve(aids_.size());
   reference_.active = std::any_of(aids_.begin(), aids_.end(), [](const plugin::AidPlugin* aid) {
     return aid->states_velocity();
@@ -469,6 +488,13 @@ void MwdNavigator::update_augmented_transition(AugmentedGroup& group, double int
 
 void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
                               const Eigen::Vector3d& f_ib_b) {
+  if (options_.heading_considered) {
+    if (heading_first_order_share(ins_.state().q_nb) < kHeadingFirstOrderShareFloor) {
+      filter_.consider(kHeadingState);
+    } else {
+      filter_.release(kHeadingState);
+    }
+  }
   plugin::ImuSample imu{.t_s = t_s, .omega_ib_b = omega_ib_b, .f_ib_b = f_ib_b};
   imu.reference_v_n = reference_.active ? reference_.v_n : ins_.state().v_n;
   // The statement of the epoch: the most precise of the accepted aids' (ties: the smaller

@@ -130,6 +130,8 @@ class ErrorStateFilter final {
   /// estimate (its row of K is zero), while P keeps its uncertainty and its correlations with
   /// the other states, whose gains are the optimal ones (the Joseph form holds for any gain).
   void consider(Eigen::Index index);
+  /// Makes a consider state an estimated one again (no-op for an estimated state).
+  void release(Eigen::Index index) { std::erase(considered_, index); }
 
   /// S = H P H^T + R of the last update attempt (m x m) and its gain K (n x m; zero if
   /// rejected): for innovation records and adaptive noise models.

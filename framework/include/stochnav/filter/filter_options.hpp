@@ -106,21 +106,21 @@ struct FilterOptions {
   /// section 4).
   double heading_hypothesis_sigma_rad = 4.0 * std::numbers::pi / 180.0;
 
-  /// The heading error (phi_U) as a consider state (ErrorStateFilter::consider): no update
-  /// corrects it, its uncertainty stays in P. Set by the bank over the heading for its
-  /// hypotheses, whose heading is the bank's cell: the heading information there is second
-  /// order (the rotating cross-axis gyros see cos psi of the horizontal Earth rate), which the
-  /// weights read over the whole bank and one first-order filter a few degrees off reads as
-  /// first order (docs/drilling-envelope.md, section 4).
+  /// The heading error (phi_U) as a consider state (ErrorStateFilter::consider) while the
+  /// tool axis lies within about 8 deg of horizontal east-west: no update corrects it there, its
+  /// uncertainty stays in P. Set by the bank over the heading for its hypotheses, whose heading
+  /// is the bank's cell: in such a hole the heading's bias-free information is second order
+  /// (the rotating cross-axis gyros see cos psi of the horizontal Earth rate), which the weights
+  /// read over the whole bank and one first-order filter a few degrees off reads as first
+  /// order. Elsewhere (a vertical start, any other direction) the cross axes give first-order
+  /// information, and the heading is estimated (docs/drilling-envelope.md, section 4, fix 5).
   bool heading_considered = false;
   /// Whether the bank over the heading sets heading_considered for its hypotheses (run config
-  /// "filter/heading_hypothesis_consider"). Off by default: it makes horizontal east-west
-  /// rotary holes at 80 N consistent (seven of seven seeds), but it also discards the heading's
-  /// first-order information where the rotating cross-axis gyros give it (a vertical start at
-  /// 80 N: azimuth sigma 6.5 deg instead of 0.15, and its north position 5 sigma off, the
-  /// considered heading's uncertainty not reaching the position), and a sliding east-west well
-  /// at 74 N gets worse (docs/drilling-envelope.md, section 4, fix 5).
-  bool heading_hypotheses_consider_heading = false;
+  /// "filter/heading_hypothesis_consider"; false: the ablation, under which 80 N east-west seed
+  /// 3 ends 3.9 sigma off in azimuth). A consider heading everywhere, not only near east-west,
+  /// discarded the first-order information of a vertical start at 80 N (azimuth sigma 6.5 deg
+  /// instead of 0.15, north 5 sigma off; docs/drilling-envelope.md, section 4, fix 5).
+  bool heading_hypotheses_consider_heading = true;
 
   /// Covariance products by blocks (filter/error_state_filter.hpp, BlockTransition and
   /// JosephForm::kExpanded): augmented states cost O(n^2) per propagation and update instead of

@@ -19,15 +19,15 @@
 // (corrected by P0 e_U d_i / s0^2, covariance P0 - (1 - s_c^2 / s0^2) P0 e_U e_U^T P0 / s0^2,
 // weight exp(-d_i^2 / (2 (s0^2 - s_c^2))): N(0, P0) to within 1.5 % in density).
 //
-// On request (FilterOptions::heading_hypotheses_consider_heading) each hypothesis holds its
-// heading as a consider state (FilterOptions::heading_considered): no update corrects it, its
-// cell's uncertainty stays in P and in the innovations' S. In a horizontal east-west hole the
-// heading information is second order (the rotating cross-axis gyros see cos psi of the
+// In a horizontal east-west hole each hypothesis holds its heading as a consider state
+// (FilterOptions::heading_considered, ::heading_hypotheses_consider_heading): no update corrects
+// it, its cell's uncertainty stays in P and in the innovations' S. There the heading's
+// bias-free information is second order (the rotating cross-axis gyros see cos psi of the
 // horizontal Earth rate; to first order the along-hole gyro bias and the heading are one
-// unknown); a first-order filter a few degrees from the truth reads it as first order and ended
-// 2.2 deg off with a sigma of 0.8 (80 N, seed 3); with consider states the weights read it over
-// the whole bank and the heading's resolution is the cell. Not the default: where the
-// information is first order (a vertical start) it is discarded (the option's comment).
+// unknown); a first-order filter a few degrees from the truth read it as first order and ended
+// 2.2 deg off with a sigma of 0.8 (80 N, seed 3); with consider headings the weights read it
+// over the whole bank, and the heading's resolution is the cell. In any other direction the
+// cross axes give first-order information and each hypothesis estimates its heading.
 //
 // The weights. At every aid epoch each hypothesis' weight is multiplied by the Gaussian
 // likelihood of its innovations, N(z; 0, S) (gated out or not; an aid counts only at epochs
