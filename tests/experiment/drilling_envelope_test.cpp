@@ -242,6 +242,8 @@ TEST(DrillingEnvelope, EastWestRotaryAt80NTheHeadingBankKeepsItInside) {
                   .counted,
               8);
     expect_every_station_inside(out);
+    const nlohmann::json heading = read_json(out + "/metrics.json")["self_check"]["heading"];
+    EXPECT_TRUE(heading["resolved"].get<bool>()) << heading.dump();
   }
   EXPECT_TRUE(azimuth_and_north_leave_three_sigma(
       east_west_rotary_80n_run(scratch, 1, {{"heading_hypothesis_sigma_deg", 0}}, "_one_filter")))
@@ -257,6 +259,28 @@ TEST(DrillingEnvelope, EastWestRotaryAt80NTheHeadingBankKeepsItInside) {
   expect_every_station_inside(vertical);
   const auto vertical_errors = read_csv_columns(vertical + "/survey_errors.csv");
   EXPECT_LT(vertical_errors.at("azimuth_sigma_deg").back(), 1.0);
+}
+
+// A bank that has not singled out a heading says so instead of looking healthy: sliding due
+// east at 80 N, 5 min after the alignment, many hypotheses remain, and metrics.json's
+// self-check reports the heading unresolved (docs/drilling-envelope.md, section 7).
+TEST(DrillingEnvelope, AnUnresolvedHeadingIsReportedNotSilent) {
+  if (!stochnav::testing::study_at_full_size()) {
+    GTEST_SKIP() << "a bank of up to 45 navigators; the sanitizers run HeadingHypotheses in "
+                    "filter_tests";
+  }
+  const stochnav::testing::TempDir scratch;
+  const std::string out = simulate_and_run_from_field_start(
+      scratch, "east_80n_sliding",
+      {{"well", {{"azimuth_deg", 90}, {"kickoff_md_m", 100}}},
+       {"start_md_m", 1000},
+       {"rotation_rpm", 0},
+       {"duration_s", 900}},
+      {{"latitude_deg", 80}});
+  const nlohmann::json heading = read_json(out + "/metrics.json")["self_check"]["heading"];
+  EXPECT_FALSE(heading["resolved"].get<bool>()) << heading.dump();
+  EXPECT_GT(heading["hypotheses"].get<int>(), 1) << heading.dump();
+  EXPECT_LT(heading["largest_weight"].get<double>(), 0.9) << heading.dump();
 }
 
 // The survey QC without truth (experiment/station_qc.hpp) flags a run whose gyro model is

@@ -10,10 +10,12 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "stochnav/filter/alignment.hpp"
 #include "stochnav/ins/earth.hpp"
@@ -257,6 +259,95 @@ TEST(HeadingHypotheses, SteppedTheMixtureStaysAProperDistribution) {
     EXPECT_TRUE(bank.state().q_nb.coeffs().allFinite()) << k;
   }
   EXPECT_LE(bank.hypotheses(), initial);
+}
+
+// A static aid (position 5 cm, velocity 2 mm/s, NIS gate 30 for its six components) whose
+// noise at each 1-s epoch is drawn from that epoch's own seed, and which in [10 s, 20 s) either
+// has no measurement (kDropout) or reads the velocity 0.1 m/s too high on every axis (kBurst: a
+// burst of outliers every hypothesis gates out).
+enum class Fault { kNone, kDropout, kBurst };
+
+class FaultyStaticAid final : public plugin::AidPlugin {
+ public:
+  FaultyStaticAid(const NavState& site, Fault fault)
+      : AidPlugin(plugin::NisGate{.enabled = true, .threshold = 30.0}), site_(site), fault_(fault) {}
+  std::string_view type() const override { return "faulty_static"; }
+  int measurement_size() const override { return 6; }
+  bool has_measurement(double t_s) const override {
+    return std::abs(t_s - std::round(t_s)) < 1e-6 && t_s > 0.5 &&
+           !(fault_ == Fault::kDropout && in_fault(t_s));
+  }
+  bool measure(double t_s, const NavState& state, const plugin::ImuSample&,
+               Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::MatrixXd> h,
+               Eigen::Ref<Eigen::MatrixXd> r) const override {
+    const EarthRadii radii = earth_radii(site_.latitude_rad);
+    z(0) = (state.longitude_rad - site_.longitude_rad) * (radii.transverse_m + site_.height_m) *
+           std::cos(site_.latitude_rad);
+    z(1) = (state.latitude_rad - site_.latitude_rad) * (radii.meridian_m + site_.height_m);
+    z(2) = state.height_m - site_.height_m;
+    z.tail<3>() = state.v_n;
+    std::mt19937_64 engine(static_cast<std::uint64_t>(std::llround(t_s)));
+    std::normal_distribution<double> normal(0.0, 1.0);
+    for (int i = 0; i < 6; ++i) z(i) -= (i < 3 ? kPositionSigma : kVelocitySigma) * normal(engine);
+    if (fault_ == Fault::kBurst && in_fault(t_s)) z.tail<3>().array() -= 0.1;
+    h.setZero();
+    h.block<3, 3>(0, plugin::core_state::kPosition).setIdentity();
+    h.block<3, 3>(3, plugin::core_state::kVelocity).setIdentity();
+    r.setZero();
+    r.diagonal().head<3>().setConstant(kPositionSigma * kPositionSigma);
+    r.diagonal().tail<3>().setConstant(kVelocitySigma * kVelocitySigma);
+    return true;
+  }
+  std::string describe() const override { return "faulty_static"; }
+
+ private:
+  static constexpr double kPositionSigma = 0.05;   // m
+  static constexpr double kVelocitySigma = 0.002;  // m/s
+  static bool in_fault(double t_s) { return t_s >= 10.0 && t_s < 20.0; }
+  NavState site_;
+  Fault fault_;
+};
+
+// The weights of a bank stepped 30 s at rest at 80 N (strict gate: no update is forced).
+std::vector<double> weights_after_rest(Fault fault, bool robust) {
+  const double bias = 1.0 * kDeg / 3600.0;
+  const Eigen::Vector3d gyro_bias(0.2 * bias, -0.2 * bias, bias);
+  AlignedAt80N start = aligned_at_80n(gyro_bias, 1.3 * kDeg / 3600.0);
+  start.options.max_consecutive_rejections = 0;
+  start.options.heading_hypotheses_robust_weights = robust;
+  const auto plugins = [&] {
+    return NavigatorPlugins{
+        std::make_shared<TestWhiteNoise>(plugin::SensorGroup::kGyro, 0.01 * kDeg / 60.0),
+        std::make_shared<TestWhiteNoise>(plugin::SensorGroup::kAccel, 0.01 / 60.0),
+        {std::make_shared<FaultyStaticAid>(start.truth, fault)}};
+  };
+  HeadingHypotheses bank(start.aligned, start.options, plugins(), plugins);
+  StaticImu imu(start.truth, {.gyro_arw = 0.01 * kDeg / 60.0, .accel_vrw = 0.01 / 60.0,
+                              .gyro_bias = gyro_bias},
+                100.0, 5);
+  for (int k = 0; k < 3000; ++k) bank.step(imu.next());
+  std::vector<double> weights;
+  for (std::size_t i = 0; i < bank.hypotheses(); ++i) weights.push_back(bank.weight(i));
+  return weights;
+}
+
+double largest_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return 1.0;
+  double largest = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) largest = std::max(largest, std::abs(a[i] - b[i]));
+  return largest;
+}
+
+// Robust weights: a burst of outliers every hypothesis gates out says that the aid failed, not
+// which heading is right; the bank ends as if the aid had been silent then. Read as Gaussian
+// (the ablation), NIS in the thousands times differences of S between hypotheses move them.
+TEST(HeadingHypotheses, AnOutlierBurstEveryHypothesisGatesOutDoesNotMoveTheWeights) {
+  const std::vector<double> dropout = weights_after_rest(Fault::kDropout, true);
+  ASSERT_GT(dropout.size(), 5u);
+  EXPECT_LT(largest_difference(weights_after_rest(Fault::kBurst, true), dropout), 1e-6);
+  EXPECT_GT(largest_difference(weights_after_rest(Fault::kBurst, false),
+                               weights_after_rest(Fault::kDropout, false)),
+            0.02);
 }
 
 }  // namespace

@@ -21,6 +21,18 @@ constexpr double kSpreadSigmas = 3.0;  // the grid covers +-3 start sigmas
 constexpr int kMaxHalfWidth = 7;       // at most 15 hypotheses
 constexpr double kDropBelow = 1e-5;    // of the total weight
 constexpr double kMergeWithin = 0.2;   // heading sigmas
+// Degrees of freedom of the robust weights' Student-t likelihood. Its influence on a weight,
+// d ln L / d NIS, is (nu + m) / (nu + NIS) times the Gaussian's: the same at NIS = m, a
+// twentieth at NIS 154 (m = 3). The one value tried.
+constexpr double kWeightDof = 5.0;
+
+// ln of one innovation's likelihood, up to a constant the hypotheses share: Gaussian,
+// -(nis + ln det S) / 2, or (robust) Student-t, -((nu + m) ln(1 + nis / nu) + ln det S) / 2.
+double log_likelihood(const InnovationRecord& record, bool robust) {
+  if (!robust) return -0.5 * (record.nis + record.log_det_s);
+  return -0.5 * ((kWeightDof + record.size) * std::log1p(record.nis / kWeightDof) +
+                 record.log_det_s);
+}
 
 Eigen::Matrix<double, 15, 15> core_start_covariance(const FilterOptions& o) {
   if (o.initial_core_covariance) return *o.initial_core_covariance;
@@ -145,6 +157,7 @@ HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOption
                                      const std::function<NavigatorPlugins()>& make_plugins) {
   const Eigen::Matrix<double, 15, 15> p0 = core_start_covariance(options);
   const double sigma = options.heading_hypothesis_sigma_rad;
+  robust_weights_ = options.heading_hypotheses_robust_weights;
   const bool after_alignment = options.static_gyrocompass &&
                                (options.static_gyrocompass->bias_sigma_radps.array() > 0.0).all();
   if (!(sigma > 0.0) || !(p0(kHeading, kHeading) > std::pow(kSplitAbove * sigma, 2))) {
@@ -187,21 +200,32 @@ void HeadingHypotheses::step(const ImuIncrement& raw) {
 
 void HeadingHypotheses::reweigh() {
   // The aids every hypothesis measured at this epoch: only they compare the hypotheses.
+  // With robust weights, an innovation every hypothesis gated out says that the aid failed
+  // there, not which heading is right: it is left out.
   std::vector<int> common;
   for (const InnovationRecord& record : hypotheses_.front().navigator->innovations()) {
-    const bool everywhere = std::all_of(hypotheses_.begin(), hypotheses_.end(), [&](const auto& h) {
-      const auto records = h.navigator->innovations();
-      return std::any_of(records.begin(), records.end(), [&](const InnovationRecord& r) {
-        return r.aid_index == record.aid_index && std::isfinite(r.nis + r.log_det_s);
-      });
-    });
-    if (everywhere) common.push_back(record.aid_index);
+    const auto record_of = [&](const Hypothesis& h) -> const InnovationRecord* {
+      for (const InnovationRecord& r : h.navigator->innovations()) {
+        if (r.aid_index == record.aid_index) return &r;
+      }
+      return nullptr;
+    };
+    bool everywhere = true;
+    bool accepted_somewhere = false;
+    for (const Hypothesis& h : hypotheses_) {
+      const InnovationRecord* r = record_of(h);
+      everywhere = everywhere && r != nullptr && std::isfinite(r->nis + r->log_det_s);
+      accepted_somewhere = accepted_somewhere || (r != nullptr && r->accepted);
+    }
+    if (everywhere && (accepted_somewhere || !robust_weights_)) {
+      common.push_back(record.aid_index);
+    }
   }
   if (common.empty()) return;
   for (Hypothesis& hypothesis : hypotheses_) {
     for (const InnovationRecord& record : hypothesis.navigator->innovations()) {
       if (std::find(common.begin(), common.end(), record.aid_index) == common.end()) continue;
-      hypothesis.log_weight -= 0.5 * (record.nis + record.log_det_s);
+      hypothesis.log_weight += log_likelihood(record, robust_weights_);
     }
   }
 }
