@@ -31,7 +31,6 @@ NoiseModel white_and_gauss_markov(double tau_c_s) {
 
 const std::vector<TermType> kWhiteGm = {TermType::kAngleRandomWalk, TermType::kGaussMarkov};
 
-
 TEST(FitSteering, FixedCorrelationTimeIsHeldExactlyAndTheOthersAreRecovered) {
   // Over several seeds: tau_c stays at the value given (sigma 0, not counted as fitted), and N
   // and the Gauss-Markov sigma land within 3 of their reported sigmas of the truth.
@@ -88,19 +87,20 @@ TEST(FitSteering, BoundIsRespectedAndNotAFailedParameter) {
 // the long one on every seed (without them the order of the two terms is the search's: the long
 // term came first on seed 2).
 TEST(FitSteering, StartsLeaveTheShortCorrelationMinimumAndNameTheTerms) {
-  const NoiseModel truth{Unit::kPlain, kRateHz,
-                         {AngleRandomWalkTerm{1e-3}, GaussMarkovTerm{5e-3, 1.0},
-                          GaussMarkovTerm{2.5e-3, 100.0}}};
+  const NoiseModel truth{
+      Unit::kPlain,
+      kRateHz,
+      {AngleRandomWalkTerm{1e-3}, GaussMarkovTerm{5e-3, 1.0}, GaussMarkovTerm{2.5e-3, 100.0}}};
   const std::vector<TermType> terms = {TermType::kAngleRandomWalk, TermType::kGaussMarkov,
                                        TermType::kGaussMarkov};
   const auto tau_c = [](const FitResult& fit, std::size_t term) {
     return std::get<GaussMarkovTerm>(fit.model.terms[term]).tau_c;
   };
   const FitData first = simulated_fit_data(truth, 200000, kRateHz, 1);
-  const FitResult confined = fit_noise_terms(
-      first, {.terms = terms,
-              .controls = {{.term = 1, .parameter = 1, .upper = 2.7},
-                           {.term = 2, .parameter = 1, .upper = 2.7}}});
+  const FitResult confined =
+      fit_noise_terms(first, {.terms = terms,
+                              .controls = {{.term = 1, .parameter = 1, .upper = 2.7},
+                                           {.term = 2, .parameter = 1, .upper = 2.7}}});
   EXPECT_LE(std::max(tau_c(confined, 1), tau_c(confined, 2)), 2.7);
   EXPECT_GT(confined.diagnostics.reduced_chi_square(), 3.0);
   EXPECT_TRUE(confined.diagnostics.failed());
@@ -133,14 +133,12 @@ TEST(FitSteering, BadControlsAreRefusedNamingTheOption) {
                      .controls = {{.term = 1, .parameter = 1, .lower = 10.0, .upper = 1.0}}})
                 .find("bound gauss_markov.tau_c: LOW is not below HIGH"),
             std::string::npos);
-  EXPECT_NE(message({.terms = kWhiteGm,
-                     .controls = {{.term = 1,
-                                   .parameter = 1,
-                                   .fixed = 100.0,
-                                   .lower = 1.0,
-                                   .upper = 10.0}}})
-                .find("fix gauss_markov.tau_c: is outside its bound"),
-            std::string::npos);
+  EXPECT_NE(
+      message(
+          {.terms = kWhiteGm,
+           .controls = {{.term = 1, .parameter = 1, .fixed = 100.0, .lower = 1.0, .upper = 10.0}}})
+          .find("fix gauss_markov.tau_c: is outside its bound"),
+      std::string::npos);
   EXPECT_NE(message({.terms = kWhiteGm,
                      .controls = {{.term = 0, .parameter = 0, .fixed = 1e-3},
                                   {.term = 1, .parameter = 0, .fixed = 1e-3},
@@ -161,9 +159,9 @@ TEST(FitSteering, BadControlsAreRefusedNamingTheOption) {
 TEST(FitSteering, NamedControlsParseWithTheCliSpelling) {
   const std::vector<TermType> terms = {TermType::kAngleRandomWalk, TermType::kGaussMarkov,
                                        TermType::kGaussMarkov};
-  const auto controls = parse_parameter_controls(terms, Unit::kDegPerHour, "gauss_markov#2.tau_c=100",
-                                                 "angle_random_walk.N=0.05",
-                                                 "gauss_markov.tau_c=0.1:10");
+  const auto controls =
+      parse_parameter_controls(terms, Unit::kDegPerHour, "gauss_markov#2.tau_c=100",
+                               "angle_random_walk.N=0.05", "gauss_markov.tau_c=0.1:10");
   ASSERT_EQ(controls.size(), 3u);
   EXPECT_EQ(controls[0].term, 0u);
   EXPECT_GT(*controls[0].fixed, 0.0);
@@ -181,8 +179,9 @@ TEST(FitSteering, NamedControlsParseWithTheCliSpelling) {
   };
   EXPECT_EQ(refused("", "", "gauss_markov#2.tau_c=300:10"),
             "--bound gauss_markov#2.tau_c: LOW is not below HIGH; give LOW < HIGH");
-  EXPECT_NE(refused("rate_random_walk.K=1", "", "").find("--start 'rate_random_walk.K=1': the "
-                                                         "model has 0 rate_random_walk term(s)"),
+  EXPECT_NE(refused("rate_random_walk.K=1", "", "")
+                .find("--start 'rate_random_walk.K=1': the "
+                      "model has 0 rate_random_walk term(s)"),
             std::string::npos);
   EXPECT_NE(refused("gauss_markov.beta=1", "", "").find("gauss_markov has no parameter 'beta'"),
             std::string::npos);

@@ -68,22 +68,24 @@ TEST(FitSteeringPlugins, BoundsAndStartsReachTheFit) {
     EXPECT_GE(tau_c, 8.0);
     EXPECT_LE(tau_c, 20.0);
   }
-  const auto white = fit("white", {{"method", "gmwm"}, {"start", {{"angle_random_walk.N", 0.1}}}},
-                         NoiseModel{Unit::kRadPerSecond, 100.0,
-                                    {AngleRandomWalkTerm{0.2 * kDegPerRootHour}}});
+  const auto white =
+      fit("white", {{"method", "gmwm"}, {"start", {{"angle_random_walk.N", 0.1}}}},
+          NoiseModel{Unit::kRadPerSecond, 100.0, {AngleRandomWalkTerm{0.2 * kDegPerRootHour}}});
   EXPECT_NEAR(white->params()["N"][0].get<double>(), 0.2, 0.01);
   EXPECT_EQ(white->fit_quality()["x"]["estimator"], "gmwm");
 }
 
 TEST(FitSteeringPlugins, BadEntriesNameTheirJsonPointer) {
   const std::string at = "/noise/gyro/params/";
-  EXPECT_EQ(refusal("gauss_markov", {{"fix", {{"gauss_markov.beta", 1.0}}}}),
-            at + "fix/gauss_markov.beta: gauss_markov has no parameter 'beta'; it has sigma, tau_c");
+  EXPECT_EQ(
+      refusal("gauss_markov", {{"fix", {{"gauss_markov.beta", 1.0}}}}),
+      at + "fix/gauss_markov.beta: gauss_markov has no parameter 'beta'; it has sigma, tau_c");
   EXPECT_EQ(refusal("gauss_markov", {{"start", {{"drift.tau_c", 1.0}}}}),
             at + "start/drift.tau_c: unknown term 'drift'; name a term of the model's terms");
-  EXPECT_EQ(refusal("gauss_markov", {{"start", {{"rate_random_walk.K", 1.0}}}}).rfind(
-                at + "start/rate_random_walk.K: the model has 0 rate_random_walk term(s)", 0),
-            0u);
+  EXPECT_EQ(
+      refusal("gauss_markov", {{"start", {{"rate_random_walk.K", 1.0}}}})
+          .rfind(at + "start/rate_random_walk.K: the model has 0 rate_random_walk term(s)", 0),
+      0u);
   EXPECT_EQ(refusal("gauss_markov", {{"bound", {{"gauss_markov.tau_c", {10.0, 1.0}}}}}),
             at + "bound/gauss_markov.tau_c: LOW is not below HIGH; give LOW < HIGH");
   EXPECT_EQ(refusal("gauss_markov", {{"fix", {{"gauss_markov.tau_c", 50.0}}},
@@ -101,8 +103,8 @@ TEST(FitSteeringPlugins, BadEntriesNameTheirJsonPointer) {
             at + "fix: found 3.0; expected an object {\"TERM[#K].PARAM\": VALUE}");
   EXPECT_EQ(refusal("gauss_markov", {{"method", "ols"}}).rfind(at + "method: found \"ols\"", 0),
             0u);
-  EXPECT_EQ(refusal("augmented", {{"fix", {{"gauss_markov.tau_c", 1.0}}}}).rfind(
-                at + "terms: missing", 0),
+  EXPECT_EQ(refusal("augmented", {{"fix", {{"gauss_markov.tau_c", 1.0}}}})
+                .rfind(at + "terms: missing", 0),
             0u);
 }
 

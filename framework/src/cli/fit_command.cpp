@@ -14,8 +14,8 @@
 #include "gmwm_fit_run.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/fit/fit_data.hpp"
-#include "stochnav/fit/fit_option_names.hpp"
 #include "stochnav/fit/fit_noise_terms.hpp"
+#include "stochnav/fit/fit_option_names.hpp"
 #include "stochnav/fit/parameter_control_names.hpp"
 #include "stochnav/model/noise_term.hpp"
 #include "stochnav/stats/davar.hpp"
@@ -34,8 +34,8 @@ FitOptions fit_options(const FitArguments& arguments) {
   if (arguments.terms_given) {
     options.terms = parse_fit_terms(split_comma_list(arguments.terms), "--terms");
   }
-  const bool steered = !arguments.start.empty() || !arguments.fix.empty() ||
-                       !arguments.bound.empty();
+  const bool steered =
+      !arguments.start.empty() || !arguments.fix.empty() || !arguments.bound.empty();
   if (steered && !arguments.terms_given) {
     throw ConfigError(
         "--start/--fix/--bound steer the terms of --terms; name them (e.g. --terms "

@@ -32,8 +32,8 @@ double criterion_of(const Solution& solution, std::size_t points, InformationCri
 
 // Best solution over the starts of `added` (FitOptions::terms[slot], or kNoSlot) appended to
 // `base` (jointly refitted).
-Solution best_with(const LogAvarFit& fit, const std::vector<TermParameters>& base,
-                   TermType added, std::size_t slot = fit_detail::kNoSlot) {
+Solution best_with(const LogAvarFit& fit, const std::vector<TermParameters>& base, TermType added,
+                   std::size_t slot = fit_detail::kNoSlot) {
   Solution best;
   best.cost = std::numeric_limits<double>::infinity();
   for (const auto& start : fit.starts(added, slot)) {
@@ -47,9 +47,10 @@ Solution best_with(const LogAvarFit& fit, const std::vector<TermParameters>& bas
 
 // In TermType order; repeated types in the order of FitOptions::terms.
 std::vector<TermParameters> canonical_order(std::vector<TermParameters> terms) {
-  std::stable_sort(terms.begin(), terms.end(), [](const TermParameters& a, const TermParameters& b) {
-    return a.type != b.type ? a.type < b.type : a.slot < b.slot;
-  });
+  std::stable_sort(terms.begin(), terms.end(),
+                   [](const TermParameters& a, const TermParameters& b) {
+                     return a.type != b.type ? a.type < b.type : a.slot < b.slot;
+                   });
   return terms;
 }
 
@@ -269,7 +270,8 @@ FitResult fit_noise_terms_once(const FitData& data, const FitOptions& options) {
   if (auto problem = options.validate(); !problem.empty()) fail(problem);
   std::size_t explicit_parameters = 0;
   for (TermType type : options.terms) explicit_parameters += fit_detail::parameter_count(type);
-  for (const ParameterControl& control : options.controls) explicit_parameters -= control.fixed ? 1 : 0;
+  for (const ParameterControl& control : options.controls)
+    explicit_parameters -= control.fixed ? 1 : 0;
   if (explicit_parameters > data.tau_s.size()) {
     fail(fmt::format("{} parameters to fit from {} points; expected at least as many points "
                      "(use more taus, e.g. a dense tau set)",
@@ -338,14 +340,16 @@ FitResult fit_noise_terms_once(const FitData& data, const FitOptions& options) {
       const double natural = std::exp(term.log_values[k]);
       const double log_variance = result.log_covariance(offset, offset);
       set_parameter_value(value, k, natural);
-      if (fit->is_fixed(term, k)) {  // held: no uncertainty (fit/parameter_control.hpp)
+      if (fit->is_fixed(term, k)) {  // held: exactly as given, no uncertainty
+        set_parameter_value(value, k, *fit->control(term, k)->fixed);
         set_parameter_value(sigma, k, 0.0);
         continue;
       }
       const double sigma_natural = natural * std::sqrt(log_variance);
       set_parameter_value(sigma, k, sigma_natural);
       const std::string label = parameter_name(options, term, k);
-      if (fit->on_given_bound(term, k)) diagnostics.warnings.push_back(on_bound_given_warning(label));
+      if (fit->on_given_bound(term, k))
+        diagnostics.warnings.push_back(on_bound_given_warning(label));
       if (!fit->at_bound(term, k) && !std::isfinite(sigma_natural)) {
         diagnostics.undetermined.push_back(label);
       }

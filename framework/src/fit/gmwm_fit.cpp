@@ -173,7 +173,8 @@ FitResult make_result(const GmwmData& data, const GmwmProblem& problem, const Gm
     NoiseTerm sigma = make_term(type);
     for (std::size_t i = 0; i < parameter_specs(type).size(); ++i) {
       const std::size_t k = problem.offset[t] + i;
-      const double value = std::exp(best.log_parameters[k]);
+      // A held parameter exactly as given (exp(log v) may differ from v in the last bit).
+      const double value = problem.fixed[k] ? *problem.fixed[k] : std::exp(best.log_parameters[k]);
       set_parameter_value(term, i, value);
       const auto kk = static_cast<Eigen::Index>(k);
       const bool held = problem.fixed_log[k].has_value();
@@ -284,8 +285,8 @@ FitResult fit_gmwm(const GmwmData& data, const GmwmOptions& options) {
     for (std::size_t t = 0; t < current.terms.size(); ++t) {
       if (!on_bound(at_bound[t])) continue;
       drop[t] = true;
-      dropped.push_back(fmt::format("{} ({} on its search bound)",
-                                    term_type_name(current.terms[t]), at_bound[t]));
+      dropped.push_back(fmt::format("{} ({} on its search bound)", term_type_name(current.terms[t]),
+                                    at_bound[t]));
     }
     SteeredTerms kept = without_terms(current.terms, current.controls, drop);
     GmwmOptions next = current;

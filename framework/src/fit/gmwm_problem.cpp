@@ -49,6 +49,7 @@ GmwmProblem make_gmwm_problem(const GmwmData& data, const GmwmOptions& options) 
     problem.parameter_count += 1;
   }
   problem.fixed_log.assign(problem.parameter_count, std::nullopt);
+  problem.fixed.assign(problem.parameter_count, std::nullopt);
   problem.start_log.assign(problem.parameter_count, std::nullopt);
   problem.lower_given.assign(problem.parameter_count, false);
   problem.upper_given.assign(problem.parameter_count, false);
@@ -59,6 +60,7 @@ GmwmProblem make_gmwm_problem(const GmwmData& data, const GmwmOptions& options) 
     problem.lower_given[k] = control.lower.has_value();
     problem.upper_given[k] = control.upper.has_value();
     if (control.fixed) problem.fixed_log[k] = std::log(*control.fixed);
+    problem.fixed[k] = control.fixed;
     if (control.start) problem.start_log[k] = std::log(*control.start);
   }
   return problem;

@@ -81,7 +81,7 @@ struct LogAvarResidual {
 // Everything a Ceres problem points into: kept alive while the problem is used.
 struct BuiltProblem {
   std::vector<TermLayout> layouts;
-  std::vector<std::size_t> term_of_block;  // index into the solution's terms
+  std::vector<std::size_t> term_of_block;               // index into the solution's terms
   std::vector<std::vector<std::size_t>> free_of_block;  // parameter indexes k of each block
   std::vector<std::vector<double>> blocks;
   std::unique_ptr<ceres::LossFunction> loss;
@@ -250,7 +250,9 @@ std::vector<std::vector<double>> LogAvarFit::starts(TermType type, std::size_t s
   bool steered = false;
   for (std::size_t k = 0; k < parameter_count(type); ++k) {
     const ParameterControl* c = control(steered_term, k);
-    const std::optional<double> given = c == nullptr ? std::nullopt : c->fixed ? c->fixed : c->start;
+    const std::optional<double> given = c == nullptr ? std::nullopt
+                                        : c->fixed   ? c->fixed
+                                                     : c->start;
     if (!given) continue;
     steered = true;
     for (auto& start : searched) start[k] = std::log(*given);
@@ -430,8 +432,7 @@ Solution LogAvarFit::solve(std::vector<TermParameters> start) const {
       ++solution.parameter_count;
     }
   }
-  BuiltProblem built =
-      build_problem(start, free, tau_, target_, inv_sigma_, background_, options_);
+  BuiltProblem built = build_problem(start, free, tau_, target_, inv_sigma_, background_, options_);
   for (std::size_t b = 0; b < built.blocks.size(); ++b) {
     const TermParameters& term = start[built.term_of_block[b]];
     for (std::size_t i = 0; i < built.free_of_block[b].size(); ++i) {

@@ -63,6 +63,8 @@ class LogAvarFit {
   bool on_given_bound(const TermParameters& term, std::size_t k) const;
   /// Whether parameter k of `term` is held at a value the user gave.
   bool is_fixed(const TermParameters& term, std::size_t k) const;
+  /// The control of parameter k of `term` (FitOptions::controls), or nullptr.
+  const ParameterControl* control(const TermParameters& term, std::size_t k) const;
 
   /// Starting log parameters for a term of `type` added to a model, steered by the controls
   /// of FitOptions::terms[slot] (their start and fixed values replace the searched ones).
@@ -82,8 +84,6 @@ class LogAvarFit {
   /// The search range of parameter k of `term`: the bound given for it, else the default.
   double lower_bound(const TermParameters& term, std::size_t k) const;
   double upper_bound(const TermParameters& term, std::size_t k) const;
-  /// The control of parameter k of `term`, or nullptr.
-  const ParameterControl* control(const TermParameters& term, std::size_t k) const;
 
   std::vector<double> tau_;
   std::vector<double> avar_;

@@ -19,9 +19,10 @@ std::string parameter_label(std::span<const TermType> terms, std::size_t term,
 }
 
 std::string on_bound_given_warning(std::string_view label) {
-  return fmt::format("{} is on the bound given for it: the data would move it further "
-                     "(its uncertainty holds with the bound in place)",
-                     label);
+  return fmt::format(
+      "{} is on the bound given for it: the data would move it further "
+      "(its uncertainty holds with the bound in place)",
+      label);
 }
 
 std::string ParameterControlIssue::message() const {

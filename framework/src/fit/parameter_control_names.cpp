@@ -41,9 +41,10 @@ class ControlMerger {
   void add(const ControlItem& item, std::size_t mention) {
     const auto dot = item.name.find('.');
     if (dot == std::string::npos) {
-      throw ConfigError(fmt::format("{}: name the parameter as TERM.PARAM (e.g. "
-                                    "gauss_markov.tau_c)",
-                                    item.where));
+      throw ConfigError(
+          fmt::format("{}: name the parameter as TERM.PARAM (e.g. "
+                      "gauss_markov.tau_c)",
+                      item.where));
     }
     std::string term_name(trim(std::string_view(item.name).substr(0, dot)));
     const std::string parameter(trim(std::string_view(item.name).substr(dot + 1)));
@@ -81,8 +82,8 @@ class ControlMerger {
                                 const std::string& parameter, std::string_view where) {
     const auto type = parse_term_type(term_name);
     if (!type) {
-      throw ConfigError(fmt::format("{}: unknown term '{}'; name a term of the model's terms",
-                                    where, term_name));
+      throw ConfigError(
+          fmt::format("{}: unknown term '{}'; name a term of the model's terms", where, term_name));
     }
     std::size_t seen = 0;
     for (std::size_t t = 0; t < terms_.size(); ++t) {

@@ -28,9 +28,9 @@ ValueCodec<std::vector<ControlItem>> steering_codec(ControlKind kind, std::strin
     const nlohmann::json& object = reader.raw(key);
     const std::string pointer = reader.pointer(key);
     if (!object.is_object()) {
-      param_table_detail::reject(pointer, object,
-                                 "an object {\"TERM[#K].PARAM\": " +
-                                     std::string(bound ? "[LOW, HIGH]" : "VALUE") + "}");
+      param_table_detail::reject(
+          pointer, object,
+          "an object {\"TERM[#K].PARAM\": " + std::string(bound ? "[LOW, HIGH]" : "VALUE") + "}");
     }
     for (const auto& [name, value] : object.items()) {
       const std::string where = pointer + "/" + pointer_token(name);
@@ -76,13 +76,17 @@ ValueCodec<std::vector<ControlItem>> steering_codec(ControlKind kind, std::strin
 }  // namespace
 
 std::string FitSteering::issue_pointer(const ParameterControlIssue& issue) const {
-  const auto parent = [](const std::string& pointer) { return pointer.substr(0, pointer.rfind('/')); };
+  const auto parent = [](const std::string& pointer) {
+    return pointer.substr(0, pointer.rfind('/'));
+  };
   const auto& items = issue.key == "start" ? start : issue.key == "fix" ? fix : bound;
   for (const ControlItem& item : items) {
     if (item.name == issue.label) return item.where;
   }
   if (!items.empty()) return parent(items.front().where);
-  const ControlItem& any = !start.empty() ? start.front() : !fix.empty() ? fix.front() : bound.front();
+  const ControlItem& any = !start.empty() ? start.front()
+                           : !fix.empty() ? fix.front()
+                                          : bound.front();
   return parent(parent(any.where)) + "/" + issue.key;
 }
 
@@ -108,6 +112,19 @@ const ParamTable<FitSteering>& fit_steering_table() {
              "parameters held at a value, reported with sigma 0 (as stochnav fit --fix)"),
       custom(&FitSteering::bound, "bound", steering_codec(ControlKind::kBound, "bound"),
              "search ranges of fitted parameters (as stochnav fit --bound)")};
+  return table;
+}
+
+const ParamTable<TermFitOptions>& term_fit_table() {
+  static const ParamTable<TermFitOptions> table =
+      ParamTable<TermFitOptions>{
+          choice(&TermFitOptions::method, "method",
+                 {{"avar", CalibrationEstimator::kAllanVariance},
+                  {"gmwm", CalibrationEstimator::kGmwm}},
+                 CalibrationEstimator::kAllanVariance,
+                 "estimator: the Allan variance or GMWM (the wavelet variance; needs the terms "
+                 "named)")}
+          .plus(lift(&TermFitOptions::steering, fit_steering_table()));
   return table;
 }
 

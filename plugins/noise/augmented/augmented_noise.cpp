@@ -34,14 +34,14 @@
 #include <vector>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/fit/fit_option_names.hpp"
 #include "stochnav/model/noise_model_json.hpp"
 #include "stochnav/model/sensor_shaping.hpp"
-#include "stochnav/fit/fit_option_names.hpp"
 #include "stochnav/plugin/calibration_fit.hpp"
 #include "stochnav/plugin/fit_steering.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
-#include "stochnav/plugin/tabulated_noise_model.hpp"
 #include "stochnav/plugin/plugin_documentation.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 
 namespace {
 
@@ -220,9 +220,7 @@ struct AugmentedFitOptions {
   std::vector<TermType> terms;  ///< empty: automatic selection
   double flicker_components_per_decade = 1.0;
   double fold_below_s = 0.1;
-  stochnav::plugin::CalibrationEstimator method =
-      stochnav::plugin::CalibrationEstimator::kAllanVariance;
-  stochnav::plugin::FitSteering steering;  ///< start, fix, bound (need terms)
+  stochnav::plugin::TermFitOptions fit;  ///< method, start, fix, bound (need terms)
 };
 
 /// "terms": an array of term names, gauss_markov and sinusoid repeatable (parse_fit_terms).
@@ -233,7 +231,8 @@ stochnav::plugin::ValueCodec<std::vector<TermType>> fit_terms_codec() {
     const nlohmann::json& json = reader.raw("terms");
     const std::string pointer = reader.pointer("terms");
     if (!json.is_array() || json.empty()) {
-      stochnav::plugin::param_table_detail::reject(pointer, json, "a non-empty array of term names");
+      stochnav::plugin::param_table_detail::reject(pointer, json,
+                                                   "a non-empty array of term names");
     }
     std::vector<std::string> names;
     for (std::size_t i = 0; i < json.size(); ++i) {
@@ -262,20 +261,14 @@ stochnav::plugin::ValueCodec<std::vector<TermType>> fit_terms_codec() {
 
 const stochnav::plugin::ParamTable<AugmentedFitOptions> kAugmentedFitTable =
     stochnav::plugin::ParamTable<AugmentedFitOptions>{
-    stochnav::plugin::custom(&AugmentedFitOptions::terms, "terms", fit_terms_codec(),
-                             "terms to fit; default [] (automatic selection by BIC)"),
-    scalar(&AugmentedFitOptions::flicker_components_per_decade, "flicker_components_per_decade",
-           ParamUnit::fixed(""), Bound::kPositive, 1.0, "flicker bank density"),
-    scalar(&AugmentedFitOptions::fold_below_s, "fold_below_s", ParamUnit::fixed("s"),
-           Bound::kNonNegative, 0.1, "first-order states faster than this become white noise"),
-    stochnav::plugin::choice(&AugmentedFitOptions::method, "method",
-                             {{"avar", stochnav::plugin::CalibrationEstimator::kAllanVariance},
-                              {"gmwm", stochnav::plugin::CalibrationEstimator::kGmwm}},
-                             stochnav::plugin::CalibrationEstimator::kAllanVariance,
-                             "estimator: the Allan variance or GMWM (the wavelet variance; "
-                             "needs \"terms\")"),
+        stochnav::plugin::custom(&AugmentedFitOptions::terms, "terms", fit_terms_codec(),
+                                 "terms to fit; default [] (automatic selection by BIC)"),
+        scalar(&AugmentedFitOptions::flicker_components_per_decade, "flicker_components_per_decade",
+               ParamUnit::fixed(""), Bound::kPositive, 1.0, "flicker bank density"),
+        scalar(&AugmentedFitOptions::fold_below_s, "fold_below_s", ParamUnit::fixed("s"),
+               Bound::kNonNegative, 0.1, "first-order states faster than this become white noise"),
     }
-        .plus(lift(&AugmentedFitOptions::steering, stochnav::plugin::fit_steering_table()));
+        .plus(lift(&AugmentedFitOptions::fit, stochnav::plugin::term_fit_table()));
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_augmented(
     const stochnav::plugin::CalibrationRecord& record, const nlohmann::json& json,
@@ -283,14 +276,14 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_augmented(
   const auto fit = kAugmentedFitTable.parse(json, context.params_pointer);
   stochnav::FitOptions options;
   options.terms = fit.terms;
-  if (!fit.steering.empty() && fit.terms.empty()) {
+  if (!fit.fit.steering.empty() && fit.terms.empty()) {
     throw stochnav::ConfigError(context.params_pointer +
                                 "/terms: missing; \"start\", \"fix\" and \"bound\" steer the "
                                 "terms given: name them (e.g. [\"angle_random_walk\", "
                                 "\"gauss_markov\"])");
   }
-  options.controls = fit.steering.controls(options.terms, record.group);
-  const auto fits = stochnav::plugin::fit_calibration_axes(record, options, fit.method);
+  options.controls = fit.fit.steering.controls(options.terms, record.group);
+  const auto fits = stochnav::plugin::fit_calibration_axes(record, options, fit.fit.method);
   AugmentedParams params;
   for (std::size_t i = 0; i < 3; ++i) params.models[i] = fits[i].model;
   params.flicker_band_max_s = static_cast<double>(record.axes[0].size()) / record.rate_hz;

@@ -20,8 +20,8 @@
 #include "stochnav/plugin/calibration_fit.hpp"
 #include "stochnav/plugin/fit_steering.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
-#include "stochnav/plugin/tabulated_noise_model.hpp"
 #include "stochnav/plugin/plugin_documentation.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 
 namespace {
 
@@ -45,22 +45,15 @@ const stochnav::plugin::ParamTable<WhiteParams> kWhiteTable{
 
 struct WhiteFitOptions {
   bool rate_random_walk = false;  ///< fit K as well as N
-  stochnav::plugin::CalibrationEstimator method =
-      stochnav::plugin::CalibrationEstimator::kAllanVariance;
-  stochnav::plugin::FitSteering steering;  ///< start, fix, bound
+  stochnav::plugin::TermFitOptions fit;  ///< method, start, fix, bound
 };
 
 const stochnav::plugin::ParamTable<WhiteFitOptions> kWhiteFitTable =
     stochnav::plugin::ParamTable<WhiteFitOptions>{
         stochnav::plugin::flag(&WhiteFitOptions::rate_random_walk, "rate_random_walk", false,
                                "fit the rate random walk K as well as N"),
-        stochnav::plugin::choice(&WhiteFitOptions::method, "method",
-                                 {{"avar", stochnav::plugin::CalibrationEstimator::kAllanVariance},
-                                  {"gmwm", stochnav::plugin::CalibrationEstimator::kGmwm}},
-                                 stochnav::plugin::CalibrationEstimator::kAllanVariance,
-                                 "estimator: the Allan variance or GMWM (the wavelet variance)"),
     }
-        .plus(lift(&WhiteFitOptions::steering, stochnav::plugin::fit_steering_table()));
+        .plus(lift(&WhiteFitOptions::fit, stochnav::plugin::term_fit_table()));
 
 class WhiteNoise final : public stochnav::plugin::TabulatedNoiseModel<WhiteParams> {
  public:
@@ -95,8 +88,9 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_white(
   const bool with_walk = fit_options.rate_random_walk;
   std::vector<stochnav::TermType> terms = {stochnav::TermType::kAngleRandomWalk};
   if (with_walk) terms.push_back(stochnav::TermType::kRateRandomWalk);
-  const auto fit = stochnav::plugin::fit_white_walk(
-      record, with_walk, fit_options.method, fit_options.steering.controls(terms, record.group));
+  const auto fit =
+      stochnav::plugin::fit_white_walk(record, with_walk, fit_options.fit.method,
+                                       fit_options.fit.steering.controls(terms, record.group));
   WhiteParams params;
   params.n = fit.n;
   if (with_walk) params.k = fit.k;

@@ -32,9 +32,9 @@
 // `candidates`: start from the best single term, then add the candidate that lowers the
 // information criterion most, while it lowers it by more than min_criterion_improvement (10 by
 // default); then drop any term whose removal does not raise it by that much. Criteria on the
-// robust cost: AIC = 2 cost + 2 p, BIC = 2 cost + p ln(n), p parameters, n points. A term set with a parameter on its search
-// bound is never selected (the data do not determine it: on white noise such a term "lowered"
-// the criterion and made the fit a failed one).
+// robust cost: AIC = 2 cost + 2 p, BIC = 2 cost + p ln(n), p parameters, n points. A term set with
+// a parameter on its search bound is never selected (the data do not determine it: on white noise
+// such a term "lowered" the criterion and made the fit a failed one).
 //
 // Steering (FitOptions::controls, fit/parameter_control.hpp): given starts and fixed values
 // replace the searched starts of their parameter, fixed parameters are constants of the cost

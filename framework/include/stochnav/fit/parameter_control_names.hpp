@@ -45,9 +45,8 @@ std::vector<ParameterControl> control_items_to_controls(std::span<const TermType
 /// unknown parameter, or a value that is not a number, and "--<key> <TERM.PARAM>: why" for
 /// controls check_parameter_controls refuses (a bound with LOW >= HIGH, a fixed value outside
 /// its bound, every parameter fixed, ...).
-std::vector<ParameterControl> parse_parameter_controls(std::span<const TermType> terms,
-                                                       Unit unit, std::string_view start,
-                                                       std::string_view fix,
+std::vector<ParameterControl> parse_parameter_controls(std::span<const TermType> terms, Unit unit,
+                                                       std::string_view start, std::string_view fix,
                                                        std::string_view bound);
 
 }  // namespace stochnav
