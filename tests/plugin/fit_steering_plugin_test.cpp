@@ -75,6 +75,34 @@ TEST(FitSteeringPlugins, BoundsAndStartsReachTheFit) {
   EXPECT_EQ(white->fit_quality()["x"]["estimator"], "gmwm");
 }
 
+// The third-party case: a fitter of white noise and two Gauss-Markov terms through the
+// SDK entry point, one correlation time held and the other bounded (FitOptions::controls, natural
+// SI units). Every axis keeps the held value exactly (sigma 0), keeps the other within its bound,
+// and recovers the truth's short term.
+TEST(FitSteeringPlugins, ThirdPartyFitterHoldsAndBoundsCorrelationTimes) {
+  const NoiseModel truth{Unit::kRadPerSecond,
+                         100.0,
+                         {AngleRandomWalkTerm{0.05 * kDegPerRootHour},
+                          GaussMarkovTerm{10.0 * kDegPerHour, 1.0},
+                          GaussMarkovTerm{5.0 * kDegPerHour, 100.0}}};
+  FitOptions options;
+  options.terms = {TermType::kAngleRandomWalk, TermType::kGaussMarkov, TermType::kGaussMarkov};
+  options.controls = {{.term = 1, .parameter = 1, .lower = 0.2, .upper = 5.0},
+                      {.term = 2, .parameter = 1, .fixed = 100.0}};
+  const auto fits = fit_calibration_axes(simulated_record(truth, 1000.0, 31), options,
+                                         CalibrationEstimator::kAllanVariance);
+  for (const FitResult& fit : fits) {
+    ASSERT_EQ(fit.model.terms.size(), 3u) << fit.diagnostics.failure();
+    const auto& short_term = std::get<GaussMarkovTerm>(fit.model.terms[1]);
+    EXPECT_GE(short_term.tau_c, 0.2);
+    EXPECT_LE(short_term.tau_c, 5.0);
+    EXPECT_NEAR(short_term.tau_c, 1.0, 0.5);
+    EXPECT_EQ(std::get<GaussMarkovTerm>(fit.model.terms[2]).tau_c, 100.0);
+    EXPECT_EQ(std::get<GaussMarkovTerm>(fit.sigma[2]).tau_c, 0.0);
+    EXPECT_FALSE(fit.diagnostics.failed()) << fit.diagnostics.failure();
+  }
+}
+
 TEST(FitSteeringPlugins, BadEntriesNameTheirJsonPointer) {
   const std::string at = "/noise/gyro/params/";
   EXPECT_EQ(

@@ -122,8 +122,8 @@ const ParamTable<TermFitOptions>& term_fit_table() {
                  {{"avar", CalibrationEstimator::kAllanVariance},
                   {"gmwm", CalibrationEstimator::kGmwm}},
                  CalibrationEstimator::kAllanVariance,
-                 "estimator: the Allan variance or GMWM (the wavelet variance; needs the terms "
-                 "named)")}
+                 "estimator: the Allan variance or GMWM (the wavelet variance; not with an "
+                 "automatic term selection)")}
           .plus(lift(&TermFitOptions::steering, fit_steering_table()));
   return table;
 }
