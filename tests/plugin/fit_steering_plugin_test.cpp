@@ -103,6 +103,24 @@ TEST(FitSteeringPlugins, ThirdPartyFitterHoldsAndBoundsCorrelationTimes) {
   }
 }
 
+// davar: the steering reaches its whole-record N + K fit (the windows' fit is linear). On white
+// noise K goes to the lower bound given, which is not a failed fit (no floor-matched fallback).
+TEST(FitSteeringPlugins, DavarSteersItsRateRandomWalkFit) {
+  const auto model =
+      fit("davar",
+          {{"rate_random_walk", true},
+           {"method", "gmwm"},
+           {"bound", {{"rate_random_walk.K", {0.01, 0.02}}}}},
+          NoiseModel{Unit::kRadPerSecond, 100.0, {AngleRandomWalkTerm{0.05 * kDegPerRootHour}}});
+  const nlohmann::json quality = model->fit_quality()["rate_random_walk_fit"];
+  EXPECT_EQ(quality["x"]["estimator"], "gmwm") << quality.dump();
+  for (int axis = 0; axis < 3; ++axis) {
+    const double k = model->params()["K"][axis].get<double>();
+    EXPECT_GE(k, 0.01 * (1 - 1e-9));
+    EXPECT_LE(k, 0.02 * (1 + 1e-9));
+  }
+}
+
 TEST(FitSteeringPlugins, BadEntriesNameTheirJsonPointer) {
   const std::string at = "/noise/gyro/params/";
   EXPECT_EQ(
@@ -131,6 +149,9 @@ TEST(FitSteeringPlugins, BadEntriesNameTheirJsonPointer) {
             at + "fix: found 3.0; expected an object {\"TERM[#K].PARAM\": VALUE}");
   EXPECT_EQ(refusal("gauss_markov", {{"method", "ols"}}).rfind(at + "method: found \"ols\"", 0),
             0u);
+  EXPECT_EQ(refusal("davar", {{"method", "gmwm"}}),
+            at + "method: steers the whole-record N + K fit; add \"rate_random_walk\": true, or "
+                 "remove it (the windows' Eq. 7 fit takes neither)");
   EXPECT_EQ(refusal("augmented", {{"fix", {{"gauss_markov.tau_c", 1.0}}}})
                 .rfind(at + "terms: missing", 0),
             0u);
