@@ -137,8 +137,8 @@ FitResult make_result(const GmwmData& data, const GmwmProblem& problem, const Gm
   const Eigen::MatrixXd information = a.transpose() * a;
   // Pseudo-inverse: a direction the data do not determine (a singular value below 1e-12 of the
   // largest) leaves the parameters with a share of it undetermined (NaN), the others keep theirs.
-  // With every parameter held (--fix on all) there is nothing to decompose (Eigen's SVD of an
-  // empty matrix crashes).
+  // With every parameter held there would be nothing to decompose (Eigen's SVD of an empty
+  // matrix crashes); check_parameter_controls refuses that, the guard stays.
   const auto p = static_cast<Eigen::Index>(problem.parameter_count);
   result.log_covariance = Eigen::MatrixXd::Zero(p, p);
   std::vector<bool> undetermined(problem.parameter_count, false);
