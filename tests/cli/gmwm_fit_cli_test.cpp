@@ -133,6 +133,26 @@ TEST(GmwmFitCli, RobustFitIgnoresOutliersTheClassicalOneAbsorbs) {
   EXPECT_NEAR(white_noise_n(robust), kWhiteN, 0.1 * kWhiteN);
 }
 
+// Issue #30 item 3: --fix holds a parameter with either method, reported exactly as given with
+// sigma 0 and not counted as fitted; the other term is still fitted (K of the record, 2e-4).
+TEST(GmwmFitCli, FixedParameterIsReportedAsFixedByBothMethods) {
+  TempDir dir;
+  const std::string record = simulated_record(dir, 1 << 16, 0);
+  for (const char* method : {"avar", "gmwm"}) {
+    const nlohmann::json fit =
+        run_json(std::string("fit --method ") + method + " --input '" + record +
+                     "' --rate 100 --terms angle_random_walk,rate_random_walk "
+                     "--fix angle_random_walk.N=0.001",
+                 dir);
+    ASSERT_EQ(fit["terms"].size(), 2u) << method;
+    EXPECT_EQ(fit["terms"][0]["N"].get<double>(), 0.001) << method;
+    EXPECT_EQ(fit["terms"][0]["N_sigma"].get<double>(), 0.0) << method;
+    EXPECT_EQ(fit["diagnostics"]["parameters"].get<int>(), 1) << method;
+    const double k = fit["terms"][1]["K"].get<double>();
+    EXPECT_LT(std::abs(k - 2e-4), 3.0 * fit["terms"][1]["K_sigma"].get<double>()) << method;
+  }
+}
+
 TEST(GmwmFitCli, BadInputExitsTwoWithOneLine) {
   TempDir dir;
   const std::string record = simulated_record(dir, 4096, 0);

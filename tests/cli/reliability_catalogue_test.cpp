@@ -713,6 +713,64 @@ INSTANTIATE_TEST_SUITE_P(
                       2, "--column x: given to two axes", {"@/n.csv"}}),
     [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
 
+// Issue #30 item 3: steering a fit (--start, --fix, --bound), both methods: a bad control is
+// exit 2 with one line naming the option and the parameter.
+constexpr const char* kSteeredFit =
+    "fit --input @/good.csv --terms angle_random_walk,gauss_markov --output @/f.json ";
+INSTANTIATE_TEST_SUITE_P(
+    Issue30, Catalogue,
+    ::testing::Values(
+        CatalogueCase{"fit_start_unknown_term",
+                      std::string(kSteeredFit) + "--start drift.tau_c=1",
+                      2,
+                      "--start 'drift.tau_c=1': unknown term 'drift'",
+                      {"@/f.json"}},
+        CatalogueCase{"fit_fix_term_not_in_model",
+                      std::string(kSteeredFit) + "--fix rate_random_walk.K=1",
+                      2,
+                      "--fix 'rate_random_walk.K=1': the model has 0 rate_random_walk term(s)",
+                      {"@/f.json"}},
+        CatalogueCase{"fit_fix_parameter_not_in_term",
+                      std::string(kSteeredFit) + "--fix angle_random_walk.tau_c=1",
+                      2,
+                      "--fix 'angle_random_walk.tau_c=1': angle_random_walk has no parameter "
+                      "'tau_c'; it has N",
+                      {"@/f.json"}},
+        CatalogueCase{"fit_bound_low_above_high",
+                      std::string(kSteeredFit) + "--bound gauss_markov.tau_c=10:1",
+                      2,
+                      "--bound gauss_markov.tau_c: LOW is not below HIGH",
+                      {"@/f.json"}},
+        CatalogueCase{"fit_fix_outside_bound",
+                      std::string(kSteeredFit) +
+                          "--fix gauss_markov.tau_c=100 --bound gauss_markov.tau_c=1:10",
+                      2,
+                      "--fix gauss_markov.tau_c: is outside its bound",
+                      {"@/f.json"}},
+        CatalogueCase{"fit_fix_every_parameter",
+                      std::string(kSteeredFit) +
+                          "--fix angle_random_walk.N=1,gauss_markov.sigma=1,gauss_markov.tau_c=1",
+                      2,
+                      "--fix: every parameter of the model is fixed",
+                      {"@/f.json"}},
+        CatalogueCase{"fit_fix_every_parameter_gmwm",
+                      "fit --method gmwm --input @/good.csv --terms angle_random_walk "
+                      "--fix angle_random_walk.N=1 --output @/f.json",
+                      2,
+                      "--fix: every parameter of the model is fixed",
+                      {"@/f.json"}},
+        CatalogueCase{"fit_steering_without_terms",
+                      "fit --input @/good.csv --start gauss_markov.tau_c=1 --output @/f.json",
+                      2,
+                      "--start/--fix/--bound steer the terms of --terms",
+                      {"@/f.json"}},
+        CatalogueCase{"fit_start_not_a_number",
+                      std::string(kSteeredFit) + "--start gauss_markov.tau_c=x",
+                      2,
+                      "--start 'gauss_markov.tau_c=x': 'x' is not a number",
+                      {"@/f.json"}}),
+    [](const ::testing::TestParamInfo<CatalogueCase>& case_info) { return case_info.param.name; });
+
 // Issue #26 item 10: an error message echoes at most 60 characters of a cell; a 1 MB cell gave a
 // 1 MB line.
 TEST_F(Catalogue, EchoedCellsAreCut) {

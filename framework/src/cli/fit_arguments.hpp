@@ -26,7 +26,7 @@ struct FitArguments {
   std::string wv_table;       ///< a precomputed wavelet-variance table instead of --input
   std::string candidates;     ///< "a+b;a+b+c": rank by WIC
   std::string gauss_markov_sampling = "mean";  ///< mean | point (implied_wavelet_variance.hpp)
-  // Parameter steering (fit/parameter_control_names.hpp), GMWM.
+  // Parameter steering (fit/parameter_control_names.hpp), both methods.
   std::string start;
   std::string fix;
   std::string bound;

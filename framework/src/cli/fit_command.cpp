@@ -14,8 +14,9 @@
 #include "gmwm_fit_run.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/fit/fit_data.hpp"
-#include "stochnav/fit/fit_option_names.hpp"
 #include "stochnav/fit/fit_noise_terms.hpp"
+#include "stochnav/fit/fit_option_names.hpp"
+#include "stochnav/fit/parameter_control_names.hpp"
 #include "stochnav/model/noise_term.hpp"
 #include "stochnav/stats/davar.hpp"
 #include "stochnav/stats/deviation.hpp"
@@ -33,6 +34,15 @@ FitOptions fit_options(const FitArguments& arguments) {
   if (arguments.terms_given) {
     options.terms = parse_fit_terms(split_comma_list(arguments.terms), "--terms");
   }
+  const bool steered =
+      !arguments.start.empty() || !arguments.fix.empty() || !arguments.bound.empty();
+  if (steered && !arguments.terms_given) {
+    throw ConfigError(
+        "--start/--fix/--bound steer the terms of --terms; name them (e.g. --terms "
+        "angle_random_walk,gauss_markov,gauss_markov)");
+  }
+  options.controls = parse_parameter_controls(options.terms, parse_unit(arguments.input.unit),
+                                              arguments.start, arguments.fix, arguments.bound);
   // A given term the data leave on its search bound is dropped (and said so in the report).
   options.drop_terms_at_bound = true;
   options.loss = parse_robust_loss(arguments.loss, "--loss");
@@ -64,9 +74,6 @@ void refuse_gmwm_options(const FitArguments& arguments) {
       {arguments.robust, "--robust"},
       {!arguments.wv_table.empty(), "--wv-table"},
       {!arguments.candidates.empty(), "--candidates"},
-      {!arguments.start.empty(), "--start"},
-      {!arguments.fix.empty(), "--fix"},
-      {!arguments.bound.empty(), "--bound"},
       {arguments.gauss_markov_sampling != "mean", "--gauss-markov-sampling"}};
   for (const auto& [given, name] : gmwm_only) {
     if (given) {
@@ -172,7 +179,14 @@ void run_fit(const FitArguments& arguments) {
   // is one continuous time series. The whole record's fit only chooses them: a record that
   // needs windows is one no constant model describes (its chi-square fails), and each window's
   // own fit is checked below.
-  options.terms = whole.diagnostics.chosen_terms;
+  // Steered terms keep their order (the controls index them): the windows fit them as given.
+  if (!options.controls.empty() && !whole.diagnostics.dropped_terms.empty()) {
+    throw InputError(fmt::format(
+        "{}: the whole record's fit dropped {}; windows steered by --start/--fix/--bound fit "
+        "every term given: remove it from --terms",
+        record.source, whole.diagnostics.dropped_terms.front()));
+  }
+  if (options.controls.empty()) options.terms = whole.diagnostics.chosen_terms;
   // Every window keeps every term, so each coefficient stays one series; a window that leaves
   // a term on its bound is a failed window.
   options.drop_terms_at_bound = false;
@@ -241,12 +255,14 @@ void add_fit_command(CLI::App& app) {
                       "discrete AR1, the R gmwm package's)")
       ->capture_default_str();
   command->add_option("--start", arguments->start,
-                      "gmwm: starting values TERM[#K].PARAM=V,... in reporting units "
-                      "(gauss_markov.tau_c=20)");
+                      "Starting values TERM[#K].PARAM=V,... of --terms, reporting units "
+                      "(gauss_markov#2.tau_c=100); both methods");
   command->add_option("--fix", arguments->fix,
-                      "gmwm: parameters held TERM[#K].PARAM=V,... (gauss_markov#2.tau_c=300)");
+                      "Parameters held TERM[#K].PARAM=V,... (gauss_markov#2.tau_c=300), reported "
+                      "with sigma 0; both methods");
   command->add_option("--bound", arguments->bound,
-                      "gmwm: search ranges TERM[#K].PARAM=LOW:HIGH,...");
+                      "Search ranges TERM[#K].PARAM=LOW:HIGH,... (gauss_markov.tau_c=5:500); "
+                      "both methods");
   command->add_option("--terms", arguments->terms,
                       "Comma-separated terms (default: chosen by the information criterion)");
   command->add_flag("--keep-failed", arguments->keep_failed,

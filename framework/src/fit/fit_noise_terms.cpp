@@ -30,23 +30,27 @@ double criterion_of(const Solution& solution, std::size_t points, InformationCri
   return 2.0 * solution.cost + penalty;
 }
 
-// Best solution over the starts of `added` appended to `base` (jointly refitted).
-Solution best_with(const LogAvarFit& fit, const std::vector<TermParameters>& base,
-                   TermType added) {
+// Best solution over the starts of `added` (FitOptions::terms[slot], or kNoSlot) appended to
+// `base` (jointly refitted).
+Solution best_with(const LogAvarFit& fit, const std::vector<TermParameters>& base, TermType added,
+                   std::size_t slot = fit_detail::kNoSlot) {
   Solution best;
   best.cost = std::numeric_limits<double>::infinity();
-  for (const auto& start : fit.starts(added)) {
+  for (const auto& start : fit.starts(added, slot)) {
     auto terms = base;
-    terms.push_back({added, start});
+    terms.push_back({added, start, slot});
     Solution solution = fit.solve(std::move(terms));
     if (solution.usable && solution.cost < best.cost) best = std::move(solution);
   }
   return best;
 }
 
+// In TermType order; repeated types in the order of FitOptions::terms.
 std::vector<TermParameters> canonical_order(std::vector<TermParameters> terms) {
   std::stable_sort(terms.begin(), terms.end(),
-                   [](const TermParameters& a, const TermParameters& b) { return a.type < b.type; });
+                   [](const TermParameters& a, const TermParameters& b) {
+                     return a.type != b.type ? a.type < b.type : a.slot < b.slot;
+                   });
   return terms;
 }
 
@@ -70,13 +74,17 @@ bool any_at_bound(const LogAvarFit& fit, const Solution& solution) {
   throw ConfigError("noise-term fit: " + problem);
 }
 
-Solution fit_explicit(const LogAvarFit& fit, std::vector<TermType> terms) {
+Solution fit_explicit(const LogAvarFit& fit, const std::vector<TermType>& terms) {
   // Easy terms first (power laws), then the ones with a shape parameter.
-  std::stable_sort(terms.begin(), terms.end());
+  std::vector<std::size_t> order(terms.size());
+  for (std::size_t slot = 0; slot < order.size(); ++slot) order[slot] = slot;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return terms[a] < terms[b]; });
   std::vector<TermParameters> current;
   Solution solution;
-  for (TermType type : terms) {
-    solution = best_with(fit, current, type);
+  for (std::size_t slot : order) {
+    const TermType type = terms[slot];
+    solution = best_with(fit, current, type, slot);
     if (!solution.usable) {
       fail(fmt::format("no usable solution when adding {}", term_type_name(type)));
     }
@@ -165,6 +173,10 @@ std::string FitOptions::validate() const {
     }
   }
   if (terms.empty() && candidates.empty()) return "candidates: empty; expected at least one term";
+  if (!controls.empty() && terms.empty()) {
+    return "controls: the automatic term selection cannot be steered; name the terms";
+  }
+  if (const auto issue = check_parameter_controls(terms, controls)) return issue->message();
   if (!(loss_scale > 0.0) || !std::isfinite(loss_scale)) {
     return fmt::format("loss_scale: {}; expected a number > 0", loss_scale);
   }
@@ -247,11 +259,19 @@ std::optional<Weighting> model_weighting(const FitData& data, const NoiseModel& 
 
 namespace {
 
+// "term_type.parameter", as parameter_label spells the given terms' ("gauss_markov#2.tau_c").
+std::string parameter_name(const FitOptions& options, const TermParameters& term, std::size_t k) {
+  if (term.slot != fit_detail::kNoSlot) return parameter_label(options.terms, term.slot, k);
+  return fmt::format("{}.{}", term_type_name(term.type), parameter_specs(term.type)[k].name);
+}
+
 FitResult fit_noise_terms_once(const FitData& data, const FitOptions& options) {
   if (auto problem = validate(data); !problem.empty()) fail(problem);
   if (auto problem = options.validate(); !problem.empty()) fail(problem);
   std::size_t explicit_parameters = 0;
   for (TermType type : options.terms) explicit_parameters += fit_detail::parameter_count(type);
+  for (const ParameterControl& control : options.controls)
+    explicit_parameters -= control.fixed ? 1 : 0;
   if (explicit_parameters > data.tau_s.size()) {
     fail(fmt::format("{} parameters to fit from {} points; expected at least as many points "
                      "(use more taus, e.g. a dense tau set)",
@@ -316,23 +336,27 @@ FitResult fit_noise_terms_once(const FitData& data, const FitOptions& options) {
     diagnostics.chosen_terms.push_back(term.type);
     NoiseTerm value = make_term(term.type);
     NoiseTerm sigma = make_term(term.type);
-    const auto specs = parameter_specs(term.type);
     for (std::size_t k = 0; k < term.log_values.size(); ++k, ++offset) {
       const double natural = std::exp(term.log_values[k]);
       const double log_variance = result.log_covariance(offset, offset);
       set_parameter_value(value, k, natural);
+      if (fit->is_fixed(term, k)) {  // held: exactly as given, no uncertainty
+        set_parameter_value(value, k, *fit->control(term, k)->fixed);
+        set_parameter_value(sigma, k, 0.0);
+        continue;
+      }
       const double sigma_natural = natural * std::sqrt(log_variance);
       set_parameter_value(sigma, k, sigma_natural);
+      const std::string label = parameter_name(options, term, k);
+      if (fit->on_given_bound(term, k))
+        diagnostics.warnings.push_back(on_bound_given_warning(label));
       if (!fit->at_bound(term, k) && !std::isfinite(sigma_natural)) {
-        diagnostics.undetermined.push_back(
-            fmt::format("{}.{}", term_type_name(term.type), specs[k].name));
+        diagnostics.undetermined.push_back(label);
       }
       if (fit->at_bound(term, k)) {
-        diagnostics.at_bound.push_back(
-            fmt::format("{}.{}", term_type_name(term.type), specs[k].name));
+        diagnostics.at_bound.push_back(label);
         diagnostics.warnings.push_back(fmt::format(
-            "{} {} reached the edge of its search range: the data do not determine it",
-            term_type_name(term.type), specs[k].name));
+            "{} reached the edge of its search range: the data do not determine it", label));
       }
     }
     result.model.terms.push_back(std::move(value));
@@ -351,23 +375,27 @@ FitResult fit_noise_terms(const FitData& data, const FitOptions& options) {
   while (!result.diagnostics.at_bound.empty() && current.terms.size() > 1) {
     // Drop every term with a parameter on its bound; stop (the failure reported) when that
     // would leave none.
-    std::vector<TermType> kept;
+    std::vector<bool> drop(current.terms.size(), false);
     std::vector<std::string> on_bound_now;
-    for (TermType type : current.terms) {
-      bool on_bound = false;
-      for (const auto& name : result.diagnostics.at_bound) {
-        on_bound |= name.rfind(std::string(term_type_name(type)) + ".", 0) == 0;
-      }
-      if (on_bound) {
-        on_bound_now.push_back(
-            fmt::format("{} (a parameter on its search bound)", term_type_name(type)));
-      } else {
-        kept.push_back(type);
+    for (std::size_t slot = 0; slot < current.terms.size(); ++slot) {
+      for (std::size_t k = 0; k < fit_detail::parameter_count(current.terms[slot]); ++k) {
+        const std::string label = parameter_label(current.terms, slot, k);
+        const auto& at_bound = result.diagnostics.at_bound;
+        if (std::find(at_bound.begin(), at_bound.end(), label) == at_bound.end()) continue;
+        drop[slot] = true;
+        on_bound_now.push_back(fmt::format("{} (a parameter on its search bound)",
+                                           term_type_name(current.terms[slot])));
+        break;
       }
     }
-    if (kept.empty() || kept.size() == current.terms.size()) break;
+    if (std::all_of(drop.begin(), drop.end(), [](bool d) { return d; }) ||
+        std::none_of(drop.begin(), drop.end(), [](bool d) { return d; })) {
+      break;
+    }
     dropped.insert(dropped.end(), on_bound_now.begin(), on_bound_now.end());
-    current.terms = kept;
+    SteeredTerms kept = without_terms(current.terms, current.controls, drop);
+    current.terms = std::move(kept.terms);
+    current.controls = std::move(kept.controls);
     result = fit_noise_terms_once(data, current);
   }
   result.diagnostics.dropped_terms = dropped;

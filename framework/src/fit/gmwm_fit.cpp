@@ -98,21 +98,6 @@ Eigen::MatrixXd whitened_jacobian(const GmwmProblem& problem, std::vector<double
   return a;
 }
 
-std::string parameter_label(TermType type, std::size_t parameter) {
-  return fmt::format("{}.{}", term_type_name(type), parameter_specs(type)[parameter].name);
-}
-
-/// "term_type.param", or "term_type#K.param" (K from 1) when the type repeats in `terms`: the
-/// spelling of --start/--fix/--bound (fit/parameter_control_names.hpp).
-std::string parameter_label(std::span<const TermType> terms, std::size_t term,
-                            std::size_t parameter) {
-  const TermType type = terms[term];
-  if (std::count(terms.begin(), terms.end(), type) < 2) return parameter_label(type, parameter);
-  const auto occurrence = std::count(terms.begin(), terms.begin() + static_cast<long>(term), type);
-  return fmt::format("{}#{}.{}", term_type_name(type), occurrence + 1,
-                     parameter_specs(type)[parameter].name);
-}
-
 std::string check_fit_size(const GmwmData& data, const GmwmOptions& options,
                            const GmwmProblem& problem) {
   const std::size_t scales = data.scale_s.size();
@@ -152,8 +137,8 @@ FitResult make_result(const GmwmData& data, const GmwmProblem& problem, const Gm
   const Eigen::MatrixXd information = a.transpose() * a;
   // Pseudo-inverse: a direction the data do not determine (a singular value below 1e-12 of the
   // largest) leaves the parameters with a share of it undetermined (NaN), the others keep theirs.
-  // With every parameter held (--fix on all) there is nothing to decompose (Eigen's SVD of an
-  // empty matrix crashes).
+  // With every parameter held there would be nothing to decompose (Eigen's SVD of an empty
+  // matrix crashes); check_parameter_controls refuses that, the guard stays.
   const auto p = static_cast<Eigen::Index>(problem.parameter_count);
   result.log_covariance = Eigen::MatrixXd::Zero(p, p);
   std::vector<bool> undetermined(problem.parameter_count, false);
@@ -188,7 +173,8 @@ FitResult make_result(const GmwmData& data, const GmwmProblem& problem, const Gm
     NoiseTerm sigma = make_term(type);
     for (std::size_t i = 0; i < parameter_specs(type).size(); ++i) {
       const std::size_t k = problem.offset[t] + i;
-      const double value = std::exp(best.log_parameters[k]);
+      // A held parameter exactly as given (exp(log v) may differ from v in the last bit).
+      const double value = problem.fixed[k] ? *problem.fixed[k] : std::exp(best.log_parameters[k]);
       set_parameter_value(term, i, value);
       const auto kk = static_cast<Eigen::Index>(k);
       const bool held = problem.fixed_log[k].has_value();
@@ -198,8 +184,12 @@ FitResult make_result(const GmwmData& data, const GmwmProblem& problem, const Gm
       set_parameter_value(sigma, i, sd);
       if (held) continue;
       const double margin = 1e-6 * (problem.upper_log[k] - problem.lower_log[k]);
-      if (best.log_parameters[k] <= problem.lower_log[k] + margin ||
-          best.log_parameters[k] >= problem.upper_log[k] - margin) {
+      const bool on_lower = best.log_parameters[k] <= problem.lower_log[k] + margin;
+      const bool on_upper = best.log_parameters[k] >= problem.upper_log[k] - margin;
+      if ((on_lower && problem.lower_given[k]) || (on_upper && problem.upper_given[k])) {
+        // The user's constraint, not a failed parameter (fit/parameter_control.hpp).
+        d.warnings.push_back(on_bound_given_warning(parameter_label(problem.terms, t, i)));
+      } else if (on_lower || on_upper) {
         d.at_bound.push_back(parameter_label(problem.terms, t, i));
       } else if (!std::isfinite(sd)) {
         d.undetermined.push_back(parameter_label(problem.terms, t, i));
@@ -209,7 +199,6 @@ FitResult make_result(const GmwmData& data, const GmwmProblem& problem, const Gm
     result.sigma.push_back(sigma);
   }
   d.method = FitMethod::kGmwm;
-  d.gauss_markov_sampling = problem.sampling;
   d.gauss_markov_sampling = problem.sampling;
   d.cost = best.objective;
   d.chi_square = best.objective;
@@ -241,37 +230,8 @@ std::string GmwmOptions::validate() const {
     }
   }
   if (starts < 1 || max_iterations < 1) return "GMWM: starts and max_iterations must be >= 1";
-  std::vector<double> given_tau;
-  for (const auto& c : controls) {
-    if (c.term >= terms.size() || c.parameter >= parameter_specs(terms[c.term]).size()) {
-      return "GMWM: a parameter control names a term or parameter the model does not have";
-    }
-    const std::string label = parameter_label(terms[c.term], c.parameter);
-    for (const auto& value : {c.start, c.fixed, c.lower, c.upper}) {
-      if (value && !(*value > 0.0 && std::isfinite(*value))) {
-        return fmt::format("GMWM: {} = {:g}: values must be finite and > 0", label, *value);
-      }
-    }
-    if (c.lower && c.upper && !(*c.lower < *c.upper)) {
-      return fmt::format("GMWM: {} bounds [{:g}, {:g}]: need lower < upper", label, *c.lower,
-                         *c.upper);
-    }
-    for (const auto& value : {c.start, c.fixed}) {
-      if (value && ((c.lower && *value < *c.lower) || (c.upper && *value > *c.upper))) {
-        return fmt::format("GMWM: {} = {:g} is outside its bounds", label, *value);
-      }
-    }
-    if (terms[c.term] == TermType::kGaussMarkov && c.parameter == 1) {
-      const auto tau = c.fixed ? c.fixed : c.start;
-      if (!tau) continue;
-      if (std::find(given_tau.begin(), given_tau.end(), *tau) != given_tau.end()) {
-        return fmt::format(
-            "GMWM: two gauss_markov terms start at tau_c = {:g} s: the model is "
-            "not identifiable (they would stay equal); give distinct tau_c",
-            *tau);
-      }
-      given_tau.push_back(*tau);
-    }
+  if (const auto issue = check_parameter_controls(terms, controls)) {
+    return "GMWM: " + issue->message();
   }
   return {};
 }
@@ -321,24 +281,17 @@ FitResult fit_gmwm(const GmwmData& data, const GmwmOptions& options) {
   std::vector<std::string> dropped;
   while (std::any_of(at_bound.begin(), at_bound.end(), on_bound) &&
          !std::all_of(at_bound.begin(), at_bound.end(), on_bound)) {
-    std::vector<std::size_t> new_index(current.terms.size(), current.terms.size());
-    GmwmOptions next = current;
-    next.terms.clear();
+    std::vector<bool> drop(current.terms.size(), false);
     for (std::size_t t = 0; t < current.terms.size(); ++t) {
-      if (on_bound(at_bound[t])) {
-        dropped.push_back(fmt::format("{} ({} on its search bound)",
-                                      term_type_name(current.terms[t]), at_bound[t]));
-        continue;
-      }
-      new_index[t] = next.terms.size();
-      next.terms.push_back(current.terms[t]);
+      if (!on_bound(at_bound[t])) continue;
+      drop[t] = true;
+      dropped.push_back(fmt::format("{} ({} on its search bound)", term_type_name(current.terms[t]),
+                                    at_bound[t]));
     }
-    next.controls.clear();
-    for (ParameterControl control : current.controls) {
-      if (new_index[control.term] == current.terms.size()) continue;
-      control.term = new_index[control.term];
-      next.controls.push_back(control);
-    }
+    SteeredTerms kept = without_terms(current.terms, current.controls, drop);
+    GmwmOptions next = current;
+    next.terms = std::move(kept.terms);
+    next.controls = std::move(kept.controls);
     current = std::move(next);
     result = fit_gmwm_once(data, current, at_bound);
   }

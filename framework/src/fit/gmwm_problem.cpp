@@ -49,12 +49,18 @@ GmwmProblem make_gmwm_problem(const GmwmData& data, const GmwmOptions& options) 
     problem.parameter_count += 1;
   }
   problem.fixed_log.assign(problem.parameter_count, std::nullopt);
+  problem.fixed.assign(problem.parameter_count, std::nullopt);
   problem.start_log.assign(problem.parameter_count, std::nullopt);
+  problem.lower_given.assign(problem.parameter_count, false);
+  problem.upper_given.assign(problem.parameter_count, false);
   for (const auto& control : options.controls) {
     const std::size_t k = problem.offset[control.term] + control.parameter;
     if (control.lower) problem.lower_log[k] = std::log(*control.lower);
     if (control.upper) problem.upper_log[k] = std::log(*control.upper);
+    problem.lower_given[k] = control.lower.has_value();
+    problem.upper_given[k] = control.upper.has_value();
     if (control.fixed) problem.fixed_log[k] = std::log(*control.fixed);
+    problem.fixed[k] = control.fixed;
     if (control.start) problem.start_log[k] = std::log(*control.start);
   }
   return problem;

@@ -21,7 +21,10 @@ struct GmwmProblem {
   std::vector<double> sqrt_weight;  ///< sqrt(Omega_jj) = 1 / sd(nu_hat_j)
   std::vector<double> lower_log;    ///< per flat parameter
   std::vector<double> upper_log;
+  std::vector<bool> lower_given;  ///< lower_log is a bound the user gave (controls)
+  std::vector<bool> upper_given;
   std::vector<std::optional<double>> fixed_log;  ///< held values
+  std::vector<std::optional<double>> fixed;      ///< held values as given (natural units)
   std::vector<std::optional<double>> start_log;  ///< given starts
   double tau0_s = 0.0;
   GaussMarkovSampling sampling = GaussMarkovSampling::kIntervalMean;

@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <array>
 #include <boost/math/special_functions/digamma.hpp>
 #include <boost/math/special_functions/trigamma.hpp>
 #include <cmath>
@@ -42,19 +43,33 @@ T term_avar(TermType type, const T* log_p, double tau) {
   return T(0.0);
 }
 
-// r = (log model(tau) - target) / s for one point; one parameter block per term.
+// A term with at least one free parameter: its fixed parameters' values and which are free.
+struct TermLayout {
+  TermType type = TermType::kAngleRandomWalk;
+  std::array<double, 2> log_values{};  // fixed entries hold their values
+  std::array<bool, 2> free{};
+};
+
+// r = (log model(tau) - target) / s for one point; one parameter block per term with a free
+// parameter, holding its free parameters only (fixed ones are constants of the cost).
 struct LogAvarResidual {
-  const std::vector<TermType>* types;
+  const std::vector<TermLayout>* layouts;
   double tau;
   double target;
   double inv_sigma;
-  double background;  // AVAR of the held terms
+  double background;  // AVAR of the held terms and of the terms with every parameter fixed
 
   template <typename T>
   bool operator()(T const* const* parameters, T* residual) const {
     T sum(background);
-    for (std::size_t j = 0; j < types->size(); ++j) {
-      sum += term_avar((*types)[j], parameters[j], tau);
+    for (std::size_t j = 0; j < layouts->size(); ++j) {
+      const TermLayout& layout = (*layouts)[j];
+      std::array<T, 2> log_p{T(layout.log_values[0]), T(layout.log_values[1])};
+      std::size_t next = 0;
+      for (std::size_t k = 0; k < 2; ++k) {
+        if (layout.free[k]) log_p[k] = parameters[j][next++];
+      }
+      sum += term_avar(layout.type, log_p.data(), tau);
     }
     if (!(sum > T(0.0))) return false;
     using std::log;
@@ -65,7 +80,9 @@ struct LogAvarResidual {
 
 // Everything a Ceres problem points into: kept alive while the problem is used.
 struct BuiltProblem {
-  std::vector<TermType> types;
+  std::vector<TermLayout> layouts;
+  std::vector<std::size_t> term_of_block;               // index into the solution's terms
+  std::vector<std::vector<std::size_t>> free_of_block;  // parameter indexes k of each block
   std::vector<std::vector<double>> blocks;
   std::unique_ptr<ceres::LossFunction> loss;
   std::unique_ptr<ceres::Problem> problem;
@@ -178,14 +195,76 @@ double LogAvarFit::upper_bound(TermType type, std::size_t k) const {
   return std::numeric_limits<double>::infinity();
 }
 
-bool LogAvarFit::at_bound(const TermParameters& term, std::size_t k) const {
-  const double lower = lower_bound(term.type, k);
-  const double upper = upper_bound(term.type, k);
-  const double margin = 1e-6 * (upper - lower);
-  return term.log_values[k] <= lower + margin || term.log_values[k] >= upper - margin;
+const ParameterControl* LogAvarFit::control(const TermParameters& term, std::size_t k) const {
+  if (term.slot == kNoSlot) return nullptr;
+  for (const ParameterControl& c : options_.controls) {
+    if (c.term == term.slot && c.parameter == k) return &c;
+  }
+  return nullptr;
 }
 
-std::vector<std::vector<double>> LogAvarFit::starts(TermType type) const {
+double LogAvarFit::lower_bound(const TermParameters& term, std::size_t k) const {
+  const ParameterControl* c = control(term, k);
+  return c != nullptr && c->lower ? std::log(*c->lower) : lower_bound(term.type, k);
+}
+
+double LogAvarFit::upper_bound(const TermParameters& term, std::size_t k) const {
+  const ParameterControl* c = control(term, k);
+  return c != nullptr && c->upper ? std::log(*c->upper) : upper_bound(term.type, k);
+}
+
+bool LogAvarFit::is_fixed(const TermParameters& term, std::size_t k) const {
+  const ParameterControl* c = control(term, k);
+  return c != nullptr && c->fixed.has_value();
+}
+
+namespace {
+
+// Whether a log value sits on (within 1e-6 of the range of) the lower or upper edge.
+std::pair<bool, bool> on_edges(double value, double lower, double upper) {
+  const double margin = 1e-6 * (upper - lower);
+  return {value <= lower + margin, value >= upper - margin};
+}
+
+}  // namespace
+
+bool LogAvarFit::at_bound(const TermParameters& term, std::size_t k) const {
+  if (is_fixed(term, k)) return false;
+  const ParameterControl* c = control(term, k);
+  const auto [on_lower, on_upper] =
+      on_edges(term.log_values[k], lower_bound(term, k), upper_bound(term, k));
+  return (on_lower && !(c != nullptr && c->lower)) || (on_upper && !(c != nullptr && c->upper));
+}
+
+bool LogAvarFit::on_given_bound(const TermParameters& term, std::size_t k) const {
+  const ParameterControl* c = control(term, k);
+  if (c == nullptr || c->fixed) return false;
+  const auto [on_lower, on_upper] =
+      on_edges(term.log_values[k], lower_bound(term, k), upper_bound(term, k));
+  return (on_lower && c->lower) || (on_upper && c->upper);
+}
+
+std::vector<std::vector<double>> LogAvarFit::starts(TermType type, std::size_t slot) const {
+  std::vector<std::vector<double>> searched = searched_starts(type);
+  const TermParameters steered_term{type, {}, slot};
+  bool steered = false;
+  for (std::size_t k = 0; k < parameter_count(type); ++k) {
+    const ParameterControl* c = control(steered_term, k);
+    const std::optional<double> given = c == nullptr ? std::nullopt
+                                        : c->fixed   ? c->fixed
+                                                     : c->start;
+    if (!given) continue;
+    steered = true;
+    for (auto& start : searched) start[k] = std::log(*given);
+  }
+  if (!steered) return searched;
+  // Starts that differed only in a given value are now the same start.
+  std::sort(searched.begin(), searched.end());
+  searched.erase(std::unique(searched.begin(), searched.end()), searched.end());
+  return searched;
+}
+
+std::vector<std::vector<double>> LogAvarFit::searched_starts(TermType type) const {
   std::vector<std::vector<double>> result;
   const auto scaled = [&](double readoff) {
     for (double factor : {0.7, 0.2, 0.03}) result.push_back({std::log(factor * readoff)});
@@ -286,14 +365,34 @@ std::vector<std::vector<double>> LogAvarFit::sinusoid_frequency_scan() const {
 
 namespace {
 
-BuiltProblem build_problem(const std::vector<TermParameters>& terms,
+// Which parameters of each term are fitted (the others fixed at their log_values).
+using FreeMask = std::vector<std::array<bool, 2>>;
+
+BuiltProblem build_problem(const std::vector<TermParameters>& terms, const FreeMask& free,
                            const std::vector<double>& tau, const std::vector<double>& target,
                            const std::vector<double>& inv_sigma,
                            const std::vector<double>& background, const FitOptions& options) {
   BuiltProblem built;
-  for (const auto& term : terms) {
-    built.types.push_back(term.type);
-    built.blocks.push_back(term.log_values);
+  std::vector<TermLayout> held;  // terms with every parameter fixed: part of the background
+  for (std::size_t j = 0; j < terms.size(); ++j) {
+    TermLayout layout{terms[j].type, {}, {}};
+    std::vector<double> block;
+    std::vector<std::size_t> free_k;
+    for (std::size_t k = 0; k < terms[j].log_values.size(); ++k) {
+      layout.log_values[k] = terms[j].log_values[k];
+      layout.free[k] = free[j][k];
+      if (!free[j][k]) continue;
+      block.push_back(terms[j].log_values[k]);
+      free_k.push_back(k);
+    }
+    if (block.empty()) {
+      held.push_back(layout);
+      continue;
+    }
+    built.layouts.push_back(layout);
+    built.term_of_block.push_back(j);
+    built.free_of_block.push_back(std::move(free_k));
+    built.blocks.push_back(std::move(block));
   }
   built.loss = make_loss(options.loss, options.loss_scale);
   ceres::Problem::Options problem_options;
@@ -302,8 +401,12 @@ BuiltProblem build_problem(const std::vector<TermParameters>& terms,
   std::vector<double*> pointers;
   for (auto& block : built.blocks) pointers.push_back(block.data());
   for (std::size_t i = 0; i < tau.size(); ++i) {
+    double held_avar = background[i];
+    for (const TermLayout& layout : held) {
+      held_avar += term_avar(layout.type, layout.log_values.data(), tau[i]);
+    }
     auto* cost = new ceres::DynamicAutoDiffCostFunction<LogAvarResidual, 4>(
-        new LogAvarResidual{&built.types, tau[i], target[i], inv_sigma[i], background[i]});
+        new LogAvarResidual{&built.layouts, tau[i], target[i], inv_sigma[i], held_avar});
     for (const auto& block : built.blocks) cost->AddParameterBlock(static_cast<int>(block.size()));
     cost->SetNumResiduals(1);
     built.problem->AddResidualBlock(cost, built.loss.get(), pointers);
@@ -315,20 +418,29 @@ BuiltProblem build_problem(const std::vector<TermParameters>& terms,
 
 Solution LogAvarFit::solve(std::vector<TermParameters> start) const {
   Solution solution;
-  for (auto& term : start) {
-    for (std::size_t k = 0; k < term.log_values.size(); ++k) {
-      term.log_values[k] =
-          std::clamp(term.log_values[k], lower_bound(term.type, k), upper_bound(term.type, k));
-    }
-    solution.parameter_count += term.log_values.size();
-  }
-  BuiltProblem built = build_problem(start, tau_, target_, inv_sigma_, background_, options_);
+  FreeMask free(start.size(), {false, false});
   for (std::size_t j = 0; j < start.size(); ++j) {
-    for (std::size_t k = 0; k < start[j].log_values.size(); ++k) {
-      built.problem->SetParameterLowerBound(built.blocks[j].data(), static_cast<int>(k),
-                                            lower_bound(start[j].type, k));
-      built.problem->SetParameterUpperBound(built.blocks[j].data(), static_cast<int>(k),
-                                            upper_bound(start[j].type, k));
+    TermParameters& term = start[j];
+    for (std::size_t k = 0; k < term.log_values.size(); ++k) {
+      if (const ParameterControl* c = control(term, k); c != nullptr && c->fixed) {
+        term.log_values[k] = std::log(*c->fixed);
+        continue;
+      }
+      free[j][k] = true;
+      term.log_values[k] =
+          std::clamp(term.log_values[k], lower_bound(term, k), upper_bound(term, k));
+      ++solution.parameter_count;
+    }
+  }
+  BuiltProblem built = build_problem(start, free, tau_, target_, inv_sigma_, background_, options_);
+  for (std::size_t b = 0; b < built.blocks.size(); ++b) {
+    const TermParameters& term = start[built.term_of_block[b]];
+    for (std::size_t i = 0; i < built.free_of_block[b].size(); ++i) {
+      const std::size_t k = built.free_of_block[b][i];
+      built.problem->SetParameterLowerBound(built.blocks[b].data(), static_cast<int>(i),
+                                            lower_bound(term, k));
+      built.problem->SetParameterUpperBound(built.blocks[b].data(), static_cast<int>(i),
+                                            upper_bound(term, k));
     }
   }
   ceres::Solver::Options solver_options;
@@ -347,8 +459,12 @@ Solution LogAvarFit::solve(std::vector<TermParameters> start) const {
   solution.converged = summary.termination_type == ceres::CONVERGENCE;
   solution.iterations = static_cast<int>(summary.iterations.size()) - 1;
   solution.cost = summary.final_cost;
-  for (std::size_t j = 0; j < start.size(); ++j) {
-    solution.terms.push_back({start[j].type, built.blocks[j]});
+  solution.terms = std::move(start);
+  for (std::size_t b = 0; b < built.blocks.size(); ++b) {
+    TermParameters& term = solution.terms[built.term_of_block[b]];
+    for (std::size_t i = 0; i < built.free_of_block[b].size(); ++i) {
+      term.log_values[built.free_of_block[b][i]] = built.blocks[b][i];
+    }
   }
   ceres::Problem::EvaluateOptions evaluate_options;
   evaluate_options.apply_loss_function = false;
@@ -364,44 +480,71 @@ Solution LogAvarFit::solve(std::vector<TermParameters> start) const {
 }
 
 Eigen::MatrixXd LogAvarFit::covariance(const Solution& solution) const {
-  const auto n = static_cast<Eigen::Index>(solution.parameter_count);
+  Eigen::Index n = 0;
+  FreeMask free(solution.terms.size(), {false, false});
+  std::vector<Eigen::Index> offset_of_term;
+  for (std::size_t j = 0; j < solution.terms.size(); ++j) {
+    offset_of_term.push_back(n);
+    for (std::size_t k = 0; k < solution.terms[j].log_values.size(); ++k, ++n) {
+      free[j][k] = !is_fixed(solution.terms[j], k);
+    }
+  }
   Eigen::MatrixXd nan_matrix =
       Eigen::MatrixXd::Constant(n, n, std::numeric_limits<double>::quiet_NaN());
   if (n == 0) return nan_matrix;
-  BuiltProblem built = build_problem(solution.terms, tau_, target_, inv_sigma_, background_, options_);
-  ceres::Covariance::Options covariance_options;
-  covariance_options.algorithm_type = ceres::DENSE_SVD;
-  covariance_options.null_space_rank = -1;
-  covariance_options.min_reciprocal_condition_number = 1e-14;
-  covariance_options.num_threads = 1;
-  ceres::Covariance covariance(covariance_options);
-  std::vector<const double*> pointers;
-  for (const auto& block : built.blocks) pointers.push_back(block.data());
-  if (!covariance.Compute(pointers, built.problem.get())) return nan_matrix;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> matrix(n, n);
-  if (!covariance.GetCovarianceMatrix(pointers, matrix.data())) return nan_matrix;
-  Eigen::MatrixXd result = matrix;
-  if (correlation_.rows() == static_cast<Eigen::Index>(tau_.size())) {
-    // Sandwich for correlated residuals: C J^T R J C, J with the same loss corrections.
-    ceres::Problem::EvaluateOptions evaluate_options;
-    evaluate_options.apply_loss_function = true;
-    double cost = 0.0;
-    ceres::CRSMatrix crs;
-    if (!built.problem->Evaluate(evaluate_options, &cost, nullptr, nullptr, &crs)) {
-      return nan_matrix;
+  const auto m = static_cast<Eigen::Index>(solution.parameter_count);
+  BuiltProblem built =
+      build_problem(solution.terms, free, tau_, target_, inv_sigma_, background_, options_);
+  // Free parameter i of the blocks (Ceres' order) is entry index_of_free[i] of the result.
+  std::vector<Eigen::Index> index_of_free;
+  for (std::size_t b = 0; b < built.blocks.size(); ++b) {
+    for (std::size_t k : built.free_of_block[b]) {
+      index_of_free.push_back(offset_of_term[built.term_of_block[b]] +
+                              static_cast<Eigen::Index>(k));
     }
-    Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
-    for (int row = 0; row < crs.num_rows; ++row) {
-      for (int k = crs.rows[static_cast<std::size_t>(row)];
-           k < crs.rows[static_cast<std::size_t>(row) + 1]; ++k) {
-        jacobian(row, crs.cols[static_cast<std::size_t>(k)]) =
-            crs.values[static_cast<std::size_t>(k)];
+  }
+  Eigen::MatrixXd result = Eigen::MatrixXd::Zero(n, n);  // fixed parameters: 0
+  if (m > 0) {
+    ceres::Covariance::Options covariance_options;
+    covariance_options.algorithm_type = ceres::DENSE_SVD;
+    covariance_options.null_space_rank = -1;
+    covariance_options.min_reciprocal_condition_number = 1e-14;
+    covariance_options.num_threads = 1;
+    ceres::Covariance covariance(covariance_options);
+    std::vector<const double*> pointers;
+    for (const auto& block : built.blocks) pointers.push_back(block.data());
+    if (!covariance.Compute(pointers, built.problem.get())) return nan_matrix;
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> matrix(m, m);
+    if (!covariance.GetCovarianceMatrix(pointers, matrix.data())) return nan_matrix;
+    Eigen::MatrixXd free_covariance = matrix;
+    if (correlation_.rows() == static_cast<Eigen::Index>(tau_.size())) {
+      // Sandwich for correlated residuals: C J^T R J C, J with the same loss corrections.
+      ceres::Problem::EvaluateOptions evaluate_options;
+      evaluate_options.apply_loss_function = true;
+      double cost = 0.0;
+      ceres::CRSMatrix crs;
+      if (!built.problem->Evaluate(evaluate_options, &cost, nullptr, nullptr, &crs)) {
+        return nan_matrix;
+      }
+      Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+      for (int row = 0; row < crs.num_rows; ++row) {
+        for (int k = crs.rows[static_cast<std::size_t>(row)];
+             k < crs.rows[static_cast<std::size_t>(row) + 1]; ++k) {
+          jacobian(row, crs.cols[static_cast<std::size_t>(k)]) =
+              crs.values[static_cast<std::size_t>(k)];
+        }
+      }
+      const Eigen::MatrixXd bread = free_covariance;
+      free_covariance = bread * (jacobian.transpose() * correlation_ * jacobian) * bread;
+    }
+    for (Eigen::Index i = 0; i < m; ++i) {
+      for (Eigen::Index k = 0; k < m; ++k) {
+        result(index_of_free[static_cast<std::size_t>(i)],
+               index_of_free[static_cast<std::size_t>(k)]) = free_covariance(i, k);
       }
     }
-    const Eigen::MatrixXd bread = result;
-    result = bread * (jacobian.transpose() * correlation_ * jacobian) * bread;
   }
-  // Parameters pinned at a bound have no meaningful variance.
+  // Parameters pinned at a search bound have no meaningful variance.
   Eigen::Index offset = 0;
   for (const auto& term : solution.terms) {
     for (std::size_t k = 0; k < term.log_values.size(); ++k, ++offset) {

@@ -59,6 +59,7 @@ std::array<FitResult, 3> fit_calibration_axes(const CalibrationRecord& record,
       record.group == SensorGroup::kGyro ? Unit::kRadPerSecond : Unit::kMeterPerSecondSquared;
   GmwmOptions gmwm;
   gmwm.terms = options.terms;
+  gmwm.controls = options.controls;
   gmwm.drop_terms_at_bound = options.drop_terms_at_bound;
   std::array<FitResult, 3> results;
   for (std::size_t axis = 0; axis < 3; ++axis) {
@@ -73,17 +74,17 @@ std::array<FitResult, 3> fit_calibration_axes(const CalibrationRecord& record,
   return results;
 }
 
-WhiteWalkFit fit_white_walk(const CalibrationRecord& record, bool with_walk) {
+WhiteWalkFit fit_white_walk(const CalibrationRecord& record, bool with_walk,
+                            CalibrationEstimator estimator,
+                            std::span<const ParameterControl> controls) {
   FitOptions options;
   options.terms = {TermType::kAngleRandomWalk};
   if (with_walk) options.terms.push_back(TermType::kRateRandomWalk);
+  options.controls.assign(controls.begin(), controls.end());
   WhiteWalkFit out;
-  std::array<FitResult, 3> fits;
   std::array<FitData, 3> data;
-  for (std::size_t axis = 0; axis < 3; ++axis) {
-    data[axis] = calibration_axis_data(record, axis);
-    fits[axis] = fit_noise_terms(data[axis], options);
-  }
+  for (std::size_t axis = 0; axis < 3; ++axis) data[axis] = calibration_axis_data(record, axis);
+  const std::array<FitResult, 3> fits = fit_calibration_axes(record, options, estimator);
   out.quality = calibration_fit_quality(fits);
   const char* names[] = {"x", "y", "z"};
   for (std::size_t axis = 0; axis < 3; ++axis) {

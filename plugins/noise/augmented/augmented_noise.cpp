@@ -13,9 +13,13 @@
 //   "fold_below_s"                  first-order states faster than this (s) become white noise,
 //                                    >= 0, default 0.1 (the filter's covariance interval).
 // Fit params:
-//   "terms"   term names to fit (e.g. ["angle_random_walk", "gauss_markov"]); default: automatic
-//             selection (BIC) among quantization, angle_random_walk, bias_instability,
-//             rate_random_walk, rate_ramp, gauss_markov.
+//   "terms"   term names to fit (e.g. ["angle_random_walk", "gauss_markov", "gauss_markov"]:
+//             gauss_markov and sinusoid may repeat); default: automatic selection (BIC) among
+//             quantization, angle_random_walk, bias_instability, rate_random_walk, rate_ramp,
+//             gauss_markov.
+//   "method"  "avar" (default) or "gmwm" (needs "terms").
+//   "start", "fix", "bound"  steering of the terms' parameters (needs "terms";
+//             plugin/fit_steering.hpp), e.g. "fix": {"gauss_markov#2.tau_c": 300}.
 //   "flicker_components_per_decade" default 1 (about 5 states over a 10 min record's band);
 //   "fold_below_s"                  default 0.1.
 // The fitted models (natural units) and the record duration as flicker_band_max_s are written
@@ -30,12 +34,14 @@
 #include <vector>
 
 #include "stochnav/core/errors.hpp"
+#include "stochnav/fit/fit_option_names.hpp"
 #include "stochnav/model/noise_model_json.hpp"
 #include "stochnav/model/sensor_shaping.hpp"
 #include "stochnav/plugin/calibration_fit.hpp"
+#include "stochnav/plugin/fit_steering.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
-#include "stochnav/plugin/tabulated_noise_model.hpp"
 #include "stochnav/plugin/plugin_documentation.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 
 namespace {
 
@@ -214,31 +220,55 @@ struct AugmentedFitOptions {
   std::vector<TermType> terms;  ///< empty: automatic selection
   double flicker_components_per_decade = 1.0;
   double fold_below_s = 0.1;
-  stochnav::plugin::CalibrationEstimator method =
-      stochnav::plugin::CalibrationEstimator::kAllanVariance;
+  stochnav::plugin::TermFitOptions fit;  ///< method, start, fix, bound (need terms)
 };
 
-const stochnav::plugin::ParamTable<AugmentedFitOptions> kAugmentedFitTable{
-    stochnav::plugin::choices(&AugmentedFitOptions::terms, "terms",
-                              {{"quantization", TermType::kQuantization},
-                               {"angle_random_walk", TermType::kAngleRandomWalk},
-                               {"bias_instability", TermType::kBiasInstability},
-                               {"rate_random_walk", TermType::kRateRandomWalk},
-                               {"rate_ramp", TermType::kRateRamp},
-                               {"gauss_markov", TermType::kGaussMarkov},
-                               {"sinusoid", TermType::kSinusoid}},
-                              {}, "terms to fit; default [] (automatic selection by BIC)"),
-    scalar(&AugmentedFitOptions::flicker_components_per_decade, "flicker_components_per_decade",
-           ParamUnit::fixed(""), Bound::kPositive, 1.0, "flicker bank density"),
-    scalar(&AugmentedFitOptions::fold_below_s, "fold_below_s", ParamUnit::fixed("s"),
-           Bound::kNonNegative, 0.1, "first-order states faster than this become white noise"),
-    stochnav::plugin::choice(&AugmentedFitOptions::method, "method",
-                             {{"avar", stochnav::plugin::CalibrationEstimator::kAllanVariance},
-                              {"gmwm", stochnav::plugin::CalibrationEstimator::kGmwm}},
-                             stochnav::plugin::CalibrationEstimator::kAllanVariance,
-                             "estimator: the Allan variance or GMWM (the wavelet variance; "
-                             "needs \"terms\")"),
-};
+/// "terms": an array of term names, gauss_markov and sinusoid repeatable (parse_fit_terms).
+stochnav::plugin::ValueCodec<std::vector<TermType>> fit_terms_codec() {
+  stochnav::plugin::ValueCodec<std::vector<TermType>> codec;
+  codec.read = [](stochnav::plugin::ParamReader& reader, stochnav::Quantity) {
+    if (!reader.has("terms")) return std::vector<TermType>{};
+    const nlohmann::json& json = reader.raw("terms");
+    const std::string pointer = reader.pointer("terms");
+    if (!json.is_array() || json.empty()) {
+      stochnav::plugin::param_table_detail::reject(pointer, json,
+                                                   "a non-empty array of term names");
+    }
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < json.size(); ++i) {
+      if (!json[i].is_string() || json[i].get<std::string>().empty()) {
+        stochnav::plugin::param_table_detail::reject(pointer + "/" + std::to_string(i), json[i],
+                                                     "a term name");
+      }
+      names.push_back(json[i].get<std::string>());
+    }
+    return stochnav::parse_fit_terms(names, pointer);
+  };
+  codec.write = [](const std::vector<TermType>& terms, stochnav::Quantity) {
+    nlohmann::json names = nlohmann::json::array();
+    for (TermType type : terms) names.push_back(std::string(stochnav::term_type_name(type)));
+    return names;
+  };
+  codec.describe = [](const std::vector<TermType>& terms, stochnav::Quantity q) {
+    return fit_terms_codec().write(terms, q).dump();
+  };
+  codec.equal = [](const std::vector<TermType>& a, const std::vector<TermType>& b, double) {
+    return a == b;
+  };
+  codec.form = "an array of term names (gauss_markov and sinusoid may repeat), default []";
+  return codec;
+}
+
+const stochnav::plugin::ParamTable<AugmentedFitOptions> kAugmentedFitTable =
+    stochnav::plugin::ParamTable<AugmentedFitOptions>{
+        stochnav::plugin::custom(&AugmentedFitOptions::terms, "terms", fit_terms_codec(),
+                                 "terms to fit; default [] (automatic selection by BIC)"),
+        scalar(&AugmentedFitOptions::flicker_components_per_decade, "flicker_components_per_decade",
+               ParamUnit::fixed(""), Bound::kPositive, 1.0, "flicker bank density"),
+        scalar(&AugmentedFitOptions::fold_below_s, "fold_below_s", ParamUnit::fixed("s"),
+               Bound::kNonNegative, 0.1, "first-order states faster than this become white noise"),
+    }
+        .plus(lift(&AugmentedFitOptions::fit, stochnav::plugin::term_fit_table()));
 
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_augmented(
     const stochnav::plugin::CalibrationRecord& record, const nlohmann::json& json,
@@ -246,7 +276,14 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_augmented(
   const auto fit = kAugmentedFitTable.parse(json, context.params_pointer);
   stochnav::FitOptions options;
   options.terms = fit.terms;
-  const auto fits = stochnav::plugin::fit_calibration_axes(record, options, fit.method);
+  if (!fit.fit.steering.empty() && fit.terms.empty()) {
+    throw stochnav::ConfigError(context.params_pointer +
+                                "/terms: missing; \"start\", \"fix\" and \"bound\" steer the "
+                                "terms given: name them (e.g. [\"angle_random_walk\", "
+                                "\"gauss_markov\"])");
+  }
+  options.controls = fit.fit.steering.controls(options.terms, record.group);
+  const auto fits = stochnav::plugin::fit_calibration_axes(record, options, fit.fit.method);
   AugmentedParams params;
   for (std::size_t i = 0; i < 3; ++i) params.models[i] = fits[i].model;
   params.flicker_band_max_s = static_cast<double>(record.axes[0].size()) / record.rate_hz;

@@ -54,6 +54,9 @@
 //               a noise episode the episode's energy at long taus reads as a rate random walk.
 //               The bias instability B itself is not given to the
 //               filter (it would need Gauss-Markov states; the classic filter omits it too).
+//               "method" ("avar" | "gmwm") and "start"/"fix"/"bound" (plugin/fit_steering.hpp;
+//               terms angle_random_walk, rate_random_walk) steer that N + K fit and need
+//               "rate_random_walk": true; the windows' Eq. 7 fit is linear and takes neither.
 
 #include <fmt/format.h>
 
@@ -70,9 +73,10 @@
 #include "stochnav/core/errors.hpp"
 #include "stochnav/model/reporting_units.hpp"
 #include "stochnav/plugin/calibration_fit.hpp"
+#include "stochnav/plugin/fit_steering.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
-#include "stochnav/plugin/tabulated_noise_model.hpp"
 #include "stochnav/plugin/plugin_documentation.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 #include "windowed_term_fit.hpp"
 
 namespace {
@@ -160,39 +164,43 @@ struct DavarFitOptions {
   double n_floor_fraction = 0.1;
   int spin_axis = -1;        ///< body axis the tool spins about (0 x, 1 y, 2 z), -1: none
   double floor_tau_s = 0.0;  ///< 0: N(t) alone; > 0: N raised to the window's floor there
+  /// method, start, fix, bound of the whole-record N + K fit (rate_random_walk)
+  stochnav::plugin::TermFitOptions walk_fit;
 };
 
 /// Allan variance of a bias-instability floor per B^2: 2 ln 2 / pi.
 constexpr double kFloorAvarPerB2 = 2.0 * std::numbers::ln2 / std::numbers::pi;
 
-const stochnav::plugin::ParamTable<DavarFitOptions> kDavarFitTable{
-    scalar(&DavarFitOptions::window_s, "window_s", ParamUnit::fixed("s"), Bound::kPositive, 60.0,
-           "DAVAR window length"),
-    scalar(&DavarFitOptions::step_s, "step_s", ParamUnit::fixed("s"), Bound::kPositive, 5.0,
-           "step between windows"),
-    kModeEntry(&DavarFitOptions::causal),
-    stochnav::plugin::choices(&DavarFitOptions::terms, "terms",
-                              {{"Q", WindowTerm::kQuantization},
-                               {"N", WindowTerm::kAngleRandomWalk},
-                               {"B", WindowTerm::kBiasInstability},
-                               {"K", WindowTerm::kRateRandomWalk}},
-                              {WindowTerm::kAngleRandomWalk, WindowTerm::kBiasInstability},
-                              "Eq. 7 terms fitted in each window; must hold \"N\""),
-    stochnav::plugin::flag(&DavarFitOptions::rate_random_walk, "rate_random_walk", false,
-                           "fit K once over the record"),
-    scalar(&DavarFitOptions::rate_random_walk_end_s, "rate_random_walk_end_s",
-           ParamUnit::fixed("s"), Bound::kNonNegative, 0.0,
-           "fit K over the record before this time only (0: all of it)"),
-    scalar(&DavarFitOptions::n_floor_fraction, "N_floor_fraction", ParamUnit::fixed(""),
-           Bound::kNonNegative, 0.1,
-           "at most 1: windowed N raised to this fraction of the axis' median"),
-    stochnav::plugin::choice(&DavarFitOptions::spin_axis, "spin_axis",
-                             {{"none", -1}, {"x", 0}, {"y", 1}, {"z", 2}}, -1,
-                             "body axis the tool spins about: its motion is removed first (gyro)"),
-    scalar(&DavarFitOptions::floor_tau_s, "floor_tau_s", ParamUnit::fixed("s"),
-           Bound::kNonNegative, 0.0,
-           "each window's N raised to meet its fitted floor B at this tau (0: off)"),
-};
+const stochnav::plugin::ParamTable<DavarFitOptions> kDavarFitTable =
+    stochnav::plugin::ParamTable<DavarFitOptions>{
+        scalar(&DavarFitOptions::window_s, "window_s", ParamUnit::fixed("s"), Bound::kPositive,
+               60.0, "DAVAR window length"),
+        scalar(&DavarFitOptions::step_s, "step_s", ParamUnit::fixed("s"), Bound::kPositive, 5.0,
+               "step between windows"),
+        kModeEntry(&DavarFitOptions::causal),
+        stochnav::plugin::choices(&DavarFitOptions::terms, "terms",
+                                  {{"Q", WindowTerm::kQuantization},
+                                   {"N", WindowTerm::kAngleRandomWalk},
+                                   {"B", WindowTerm::kBiasInstability},
+                                   {"K", WindowTerm::kRateRandomWalk}},
+                                  {WindowTerm::kAngleRandomWalk, WindowTerm::kBiasInstability},
+                                  "Eq. 7 terms fitted in each window; must hold \"N\""),
+        stochnav::plugin::flag(&DavarFitOptions::rate_random_walk, "rate_random_walk", false,
+                               "fit K once over the record"),
+        scalar(&DavarFitOptions::rate_random_walk_end_s, "rate_random_walk_end_s",
+               ParamUnit::fixed("s"), Bound::kNonNegative, 0.0,
+               "fit K over the record before this time only (0: all of it)"),
+        scalar(&DavarFitOptions::n_floor_fraction, "N_floor_fraction", ParamUnit::fixed(""),
+               Bound::kNonNegative, 0.1,
+               "at most 1: windowed N raised to this fraction of the axis' median"),
+        stochnav::plugin::choice(
+            &DavarFitOptions::spin_axis, "spin_axis", {{"none", -1}, {"x", 0}, {"y", 1}, {"z", 2}},
+            -1, "body axis the tool spins about: its motion is removed first (gyro)"),
+        scalar(&DavarFitOptions::floor_tau_s, "floor_tau_s", ParamUnit::fixed("s"),
+               Bound::kNonNegative, 0.0,
+               "each window's N raised to meet its fitted floor B at this tau (0: off)"),
+    }
+        .plus(lift(&DavarFitOptions::walk_fit, stochnav::plugin::term_fit_table()));
 
 // The samples of `record` before end_s (s, record time), all of it when end_s is past its end.
 stochnav::plugin::CalibrationRecord leading_part(const stochnav::plugin::CalibrationRecord& record,
@@ -253,6 +261,13 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
         "{}/terms: found {}; expected an array of distinct terms among \"Q\", \"N\", \"B\", "
         "\"K\" that holds \"N\"",
         pointer, kDavarFitTable.to_json(fit)["terms"].dump()));
+  }
+  if (!fit.rate_random_walk && (json.contains("method") || !fit.walk_fit.steering.empty())) {
+    // The windows' Eq. 7 fit is linear least squares: only the N + K fit is steered.
+    throw stochnav::ConfigError(
+        fmt::format("{}/{}: steers the whole-record N + K fit; add \"rate_random_walk\": true, or "
+                    "remove it (the windows' Eq. 7 fit takes neither)",
+                    pointer, json.contains("method") ? "method" : "start, fix, bound"));
   }
   if (fit.n_floor_fraction > 1.0) {
     throw stochnav::ConfigError(
@@ -322,7 +337,10 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_davar(
     const auto walk = stochnav::plugin::fit_white_walk(
         fit.rate_random_walk_end_s > 0.0 ? leading_part(record, fit.rate_random_walk_end_s)
                                          : record,
-        true);
+        true, fit.walk_fit.method,
+        fit.walk_fit.steering.controls(
+            std::vector{stochnav::TermType::kAngleRandomWalk, stochnav::TermType::kRateRandomWalk},
+            record.group));
     params.k = walk.k;
     quality = {{"rate_random_walk_fit", walk.quality}};
   }

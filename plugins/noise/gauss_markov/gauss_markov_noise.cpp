@@ -11,8 +11,9 @@
 // (exact discretisation: the stationary variance sigma^2 is preserved step after step);
 // Qw = diag(N^2) dt, Qb = diag(K^2) dt.
 // Fit params: {"white": bool (default true: fit N too), "rate_random_walk": bool (default
-// false), "method": "avar" (default) | "gmwm"}: the Gauss-Markov term (and the others) fitted
-// per axis to the record's Allan variance, or by GMWM to its wavelet variance.
+// false), "method": "avar" (default) | "gmwm", "start"/"fix"/"bound" (plugin/fit_steering.hpp,
+// e.g. "fix": {"gauss_markov.tau_c": 300})}: the Gauss-Markov term (and the others) fitted per
+// axis to the record's Allan variance, or by GMWM to its wavelet variance.
 
 #include <array>
 #include <cmath>
@@ -21,9 +22,10 @@
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/plugin/calibration_fit.hpp"
+#include "stochnav/plugin/fit_steering.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
-#include "stochnav/plugin/tabulated_noise_model.hpp"
 #include "stochnav/plugin/plugin_documentation.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 
 namespace {
 
@@ -54,21 +56,17 @@ const stochnav::plugin::ParamTable<GaussMarkovParams> kGaussMarkovTable{
 struct GaussMarkovFitOptions {
   bool white = true;              ///< fit N too
   bool rate_random_walk = false;  ///< fit K too
-  stochnav::plugin::CalibrationEstimator method =
-      stochnav::plugin::CalibrationEstimator::kAllanVariance;
+  stochnav::plugin::TermFitOptions fit;  ///< method, start, fix, bound
 };
 
-const stochnav::plugin::ParamTable<GaussMarkovFitOptions> kGaussMarkovFitTable{
-    stochnav::plugin::flag(&GaussMarkovFitOptions::white, "white", true,
-                           "fit the angle random walk N too"),
-    stochnav::plugin::flag(&GaussMarkovFitOptions::rate_random_walk, "rate_random_walk", false,
-                           "fit the rate random walk K too"),
-    stochnav::plugin::choice(&GaussMarkovFitOptions::method, "method",
-                             {{"avar", stochnav::plugin::CalibrationEstimator::kAllanVariance},
-                              {"gmwm", stochnav::plugin::CalibrationEstimator::kGmwm}},
-                             stochnav::plugin::CalibrationEstimator::kAllanVariance,
-                             "estimator: the Allan variance or GMWM (the wavelet variance)"),
-};
+const stochnav::plugin::ParamTable<GaussMarkovFitOptions> kGaussMarkovFitTable =
+    stochnav::plugin::ParamTable<GaussMarkovFitOptions>{
+        stochnav::plugin::flag(&GaussMarkovFitOptions::white, "white", true,
+                               "fit the angle random walk N too"),
+        stochnav::plugin::flag(&GaussMarkovFitOptions::rate_random_walk, "rate_random_walk", false,
+                               "fit the rate random walk K too"),
+    }
+        .plus(lift(&GaussMarkovFitOptions::fit, stochnav::plugin::term_fit_table()));
 
 class GaussMarkovNoise final : public stochnav::plugin::TabulatedNoiseModel<GaussMarkovParams> {
  public:
@@ -139,7 +137,8 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_gauss_markov(
   options.terms = {TermType::kGaussMarkov};
   if (fit_options.white) options.terms.push_back(TermType::kAngleRandomWalk);
   if (fit_options.rate_random_walk) options.terms.push_back(TermType::kRateRandomWalk);
-  const auto fits = stochnav::plugin::fit_calibration_axes(record, options, fit_options.method);
+  options.controls = fit_options.fit.steering.controls(options.terms, record.group);
+  const auto fits = stochnav::plugin::fit_calibration_axes(record, options, fit_options.fit.method);
   GaussMarkovParams params;
   for (std::size_t axis = 0; axis < 3; ++axis) {
     const auto& model = fits[axis].model;

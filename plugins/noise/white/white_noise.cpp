@@ -6,18 +6,22 @@
 //   "K"  rate random walk, >= 0: deg/h/sqrt(h) (gyro), m/s/h/sqrt(h) (accel). Default 0.
 // Discrete model over [t, t + dt]: Qw = diag(N^2) dt, Qb = diag(K^2) dt (natural units); no
 // augmented states.
-// Fit params: {"rate_random_walk": bool (default false: fit N only)}; fits N (and K) per axis
-// to the record's Allan variance; a failed N + K fit (a flicker floor: K on its bound or a
+// Fit params: {"rate_random_walk": bool (default false: fit N only), "method": "avar" (default)
+// | "gmwm", "start"/"fix"/"bound" (plugin/fit_steering.hpp, e.g. "bound": {"rate_random_walk.K":
+// [0.001, 0.1]})}; fits N (and K) per axis to the record's Allan variance or by GMWM to its
+// wavelet variance; a failed N + K fit (a flicker floor: K on its bound or a
 // chi-square far beyond its dof) uses the floor-matched rule of plugin/calibration_fit.hpp
 // (fit_white_walk), reported in fit_quality().
 
 #include <array>
 #include <memory>
+#include <vector>
 
 #include "stochnav/plugin/calibration_fit.hpp"
+#include "stochnav/plugin/fit_steering.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
-#include "stochnav/plugin/tabulated_noise_model.hpp"
 #include "stochnav/plugin/plugin_documentation.hpp"
+#include "stochnav/plugin/tabulated_noise_model.hpp"
 
 namespace {
 
@@ -41,12 +45,15 @@ const stochnav::plugin::ParamTable<WhiteParams> kWhiteTable{
 
 struct WhiteFitOptions {
   bool rate_random_walk = false;  ///< fit K as well as N
+  stochnav::plugin::TermFitOptions fit;  ///< method, start, fix, bound
 };
 
-const stochnav::plugin::ParamTable<WhiteFitOptions> kWhiteFitTable{
-    stochnav::plugin::flag(&WhiteFitOptions::rate_random_walk, "rate_random_walk", false,
-                           "fit the rate random walk K as well as N"),
-};
+const stochnav::plugin::ParamTable<WhiteFitOptions> kWhiteFitTable =
+    stochnav::plugin::ParamTable<WhiteFitOptions>{
+        stochnav::plugin::flag(&WhiteFitOptions::rate_random_walk, "rate_random_walk", false,
+                               "fit the rate random walk K as well as N"),
+    }
+        .plus(lift(&WhiteFitOptions::fit, stochnav::plugin::term_fit_table()));
 
 class WhiteNoise final : public stochnav::plugin::TabulatedNoiseModel<WhiteParams> {
  public:
@@ -77,8 +84,13 @@ std::unique_ptr<stochnav::plugin::NoiseModelPlugin> make_white(
 std::unique_ptr<stochnav::plugin::NoiseModelPlugin> fit_white(
     const stochnav::plugin::CalibrationRecord& record, const nlohmann::json& json,
     const stochnav::plugin::NoiseModelContext& context) {
-  const bool with_walk = kWhiteFitTable.parse(json, context.params_pointer).rate_random_walk;
-  const auto fit = stochnav::plugin::fit_white_walk(record, with_walk);
+  const auto fit_options = kWhiteFitTable.parse(json, context.params_pointer);
+  const bool with_walk = fit_options.rate_random_walk;
+  std::vector<stochnav::TermType> terms = {stochnav::TermType::kAngleRandomWalk};
+  if (with_walk) terms.push_back(stochnav::TermType::kRateRandomWalk);
+  const auto fit =
+      stochnav::plugin::fit_white_walk(record, with_walk, fit_options.fit.method,
+                                       fit_options.fit.steering.controls(terms, record.group));
   WhiteParams params;
   params.n = fit.n;
   if (with_walk) params.k = fit.k;

@@ -32,9 +32,13 @@
 // `candidates`: start from the best single term, then add the candidate that lowers the
 // information criterion most, while it lowers it by more than min_criterion_improvement (10 by
 // default); then drop any term whose removal does not raise it by that much. Criteria on the
-// robust cost: AIC = 2 cost + 2 p, BIC = 2 cost + p ln(n), p parameters, n points. A term set with a parameter on its search
-// bound is never selected (the data do not determine it: on white noise such a term "lowered"
-// the criterion and made the fit a failed one).
+// robust cost: AIC = 2 cost + 2 p, BIC = 2 cost + p ln(n), p parameters, n points. A term set with
+// a parameter on its search bound is never selected (the data do not determine it: on white noise
+// such a term "lowered" the criterion and made the fit a failed one).
+//
+// Steering (FitOptions::controls, fit/parameter_control.hpp): given starts and fixed values
+// replace the searched starts of their parameter, fixed parameters are constants of the cost
+// (uncertainty 0), given bounds replace the default search range.
 //
 // Starting values: the slope read-offs (fit/slope_readoffs.hpp) scaled by 0.7, 0.2 and 0.03;
 // Gauss-Markov starts with tau_c = tau_i / 1.89 (the AVAR peak) at every measured tau; sinusoid
@@ -49,6 +53,7 @@
 
 #include "stochnav/fit/fit_data.hpp"
 #include "stochnav/fit/implied_wavelet_variance.hpp"
+#include "stochnav/fit/parameter_control.hpp"
 #include "stochnav/fit/slope_readoffs.hpp"
 #include "stochnav/model/noise_model.hpp"
 
@@ -64,6 +69,12 @@ struct FitOptions {
   /// Terms to fit, in any order (repeats allowed, e.g. two Gauss-Markov terms). Empty: choose
   /// automatically among `candidates`. Nonstationary terms cannot be fitted to an AVAR curve.
   std::vector<TermType> terms;
+  /// Starting values, fixed values and bounds of parameters of `terms` (natural units;
+  /// fit/parameter_control.hpp), as GmwmOptions::controls. Needs `terms` (the automatic
+  /// selection is not steered). A start or fixed value replaces the searched starts of its
+  /// parameter; a fixed parameter keeps its value, with uncertainty 0, and is not counted in
+  /// FitDiagnostics::parameters; a bound replaces the default search range.
+  std::vector<ParameterControl> controls;
   /// Terms held at their values (natural units): their closed-form Allan variance is added to
   /// the fitted terms' at every tau, and they weigh the points with the fitted terms, but they
   /// are not in FitResult::model. Used to fit one new term beside a known model (diagnose).
@@ -121,8 +132,9 @@ struct FitDiagnostics {
   SlopeReadoffs readoffs;              ///< IEEE 952 cross-check, natural units
   std::vector<SelectionStep> selection;  ///< automatic selection history
   std::vector<std::string> warnings;     ///< e.g. parameters at a bound
-  /// Parameters left on an edge of their search range, as "term_type.parameter" (e.g.
-  /// "rate_random_walk.K"): the data do not determine them (a failed term).
+  /// Parameters left on an edge of their default search range, as "term_type.parameter" (e.g.
+  /// "rate_random_walk.K"; "gauss_markov#2.tau_c" when the type repeats in the terms given):
+  /// the data do not determine them (a failed term). Bounds the user gave are not counted.
   std::vector<std::string> at_bound;
   /// Parameters inside their search range whose 1-sigma uncertainty is NaN (the covariance of
   /// the fit is singular there), as "term_type.parameter": not determined either.

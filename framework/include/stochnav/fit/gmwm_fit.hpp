@@ -52,24 +52,15 @@
 #include "stochnav/fit/fit_noise_terms.hpp"
 #include "stochnav/fit/gmwm_data.hpp"
 #include "stochnav/fit/implied_wavelet_variance.hpp"
+#include "stochnav/fit/parameter_control.hpp"
 
 namespace stochnav {
-
-/// Steering of one parameter of one term (all natural units). term: index into
-/// GmwmOptions::terms; parameter: index into parameter_specs(type).
-struct ParameterControl {
-  std::size_t term = 0;
-  std::size_t parameter = 0;
-  std::optional<double> start;  ///< starting value, > 0 (the grid is not searched for it)
-  std::optional<double> fixed;  ///< held at this value, > 0 (not fitted)
-  std::optional<double> lower;  ///< search range, 0 < lower < upper
-  std::optional<double> upper;
-};
 
 struct GmwmOptions {
   /// The terms, repeats allowed for gauss_markov (quantization, angle_random_walk,
   /// bias_instability, rate_random_walk, rate_ramp, gauss_markov).
   std::vector<TermType> terms;
+  /// Starting values, fixed values and bounds of the terms' parameters (fit/parameter_control.hpp).
   std::vector<ParameterControl> controls;
   std::size_t starts = 4;   ///< best grid starts optimised, >= 1
   int max_iterations = 200;  ///< Ceres iterations per start, >= 1
@@ -83,8 +74,9 @@ struct GmwmOptions {
   /// Allan fit's FitOptions::drop_terms_at_bound does; false (default) keeps it (at_bound).
   bool drop_terms_at_bound = false;
 
-  /// Empty when valid; otherwise the reason (a term without a GMWM form, a control out of
-  /// range, two Gauss-Markov terms starting or fixed at the same tau_c: unidentifiable).
+  /// Empty when valid; otherwise the reason (a term without a GMWM form, a control refused by
+  /// check_parameter_controls: out of range, every parameter fixed, two Gauss-Markov terms
+  /// starting or fixed at the same tau_c).
   std::string validate() const;
 };
 

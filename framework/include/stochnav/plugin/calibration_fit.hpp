@@ -4,6 +4,7 @@
 // fit of fit/fit_noise_terms.hpp with the given terms. For noise-model plugins' fitters.
 
 #include <array>
+#include <span>
 
 #include "stochnav/fit/fit_noise_terms.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
@@ -13,6 +14,11 @@ namespace stochnav::plugin {
 /// The fit of each axis (x, y, z) of `record` (SI units; the results' models are in natural SI
 /// units, unit rad/s or m/s^2). Throws InputError naming record.source when an axis is too
 /// short (fewer than 2 octave taus) or axes differ in length, and ConfigError for bad options.
+/// options.controls steer the fit (starting values, fixed parameters, bounds of options.terms;
+/// natural SI units, fit/parameter_control.hpp), e.g. a Gauss-Markov correlation time held:
+///   options.terms = {kAngleRandomWalk, kGaussMarkov, kGaussMarkov};
+///   options.controls = {{.term = 2, .parameter = 1, .fixed = 300.0}};   // tau_c#2 = 300 s
+/// A plugin reads them from its fit options with plugin/fit_steering.hpp.
 std::array<FitResult, 3> fit_calibration_axes(const CalibrationRecord& record,
                                               const FitOptions& options);
 
@@ -24,7 +30,8 @@ enum class CalibrationEstimator {
 
 /// fit_calibration_axes with the estimator. With kGmwm, options.terms (not empty: the automatic
 /// selection is the Allan fit's) are fitted by fit_gmwm to each axis's classical wavelet
-/// variance, options.drop_terms_at_bound kept; the results' diagnostics say which method ran.
+/// variance, options.controls and options.drop_terms_at_bound kept; the results' diagnostics
+/// say which method ran.
 /// Throws ConfigError for kGmwm with no terms, InputError as fit_gmwm does.
 std::array<FitResult, 3> fit_calibration_axes(const CalibrationRecord& record,
                                               const FitOptions& options,
@@ -61,7 +68,11 @@ inline constexpr double kReliableEdf = 10.0;
 /// in deg/h/sqrt(h) for B in deg/h): the bias wander the floor implies over the longest interval
 /// the record measures; the model stays at or below the floor in between. N only (no walk)
 /// keeps the fit, its failure reported in quality.
-WhiteWalkFit fit_white_walk(const CalibrationRecord& record, bool with_walk);
+/// `estimator` and `controls` (of the terms {angle_random_walk, rate_random_walk if with_walk})
+/// steer the N (+ K) fit as in fit_calibration_axes; the floor rule reads the Allan variance.
+WhiteWalkFit fit_white_walk(const CalibrationRecord& record, bool with_walk,
+                            CalibrationEstimator estimator = CalibrationEstimator::kAllanVariance,
+                            std::span<const ParameterControl> controls = {});
 
 /// The fit quality of the three axes, for NoiseModelPlugin::set_fit_quality:
 /// {"x"|"y"|"z": {"chi_square", "dof" (points - parameters), "chi_square_per_dof", "p_value"
