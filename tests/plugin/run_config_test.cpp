@@ -269,6 +269,50 @@ TEST_F(RunConfigTest, EveryErrorNamesItsPointer) {
   EXPECT_NE(error_of(both).find("/data: both \"scenario\" and \"imu\" given"), std::string::npos);
 }
 
+// The fitter's options under their own key (issue #30 item 3): "fit_options" reaches the
+// fitter in place of "params", and errors name it; "params" beside it, or "fit_options"
+// without "fit", is refused.
+TEST_F(RunConfigTest, FitOptionsAreTheFittersOwnKey) {
+  nlohmann::json document = minimal();
+  document["noise"]["gyro"].erase("params");
+  document["noise"]["gyro"]["fit"] = {{"start_s", 0}, {"end_s", 40}};
+  document["noise"]["gyro"]["fit_options"] = {{"method", "avar"}};
+  const RunConfig config = parse_run_config(document, dir_.path());
+  ASSERT_TRUE(config.noise.gyro.fit_options);
+  EXPECT_EQ(config.noise.gyro.options_pointer(), "/noise/gyro/fit_options");
+  const PluginRegistry registry(default_search_path(config.config_dir));
+  const RunPlugins plugins = build_run_plugins(config, registry, AidData(), NavState(), 100.0);
+  Eigen::Matrix3d q;
+  plugins.gyro->white_noise_covariance(0.0, 1.0, q);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(std::sqrt(q(i, i)), 1e-5, 1.5e-6);
+
+  document["noise"]["gyro"]["fit_options"] = {{"method", "fourier"}};
+  try {
+    build_run_plugins(parse_run_config(document, dir_.path()), registry, AidData(), NavState(),
+                      100.0);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what()).find("/noise/gyro/fit_options/method"),
+              std::string::npos)
+        << error.what();
+  }
+  document["noise"]["gyro"]["fit_options"] = {{"method", "avar"}};
+  document["noise"]["gyro"]["params"] = {{"method", "gmwm"}};
+  EXPECT_NE(error_of(document).find("/noise/gyro/params: given beside \"fit_options\""),
+            std::string::npos)
+      << error_of(document);
+  document["noise"]["gyro"].erase("params");
+  document["noise"]["gyro"].erase("fit");
+  EXPECT_NE(error_of(document).find("/noise/gyro/fit_options: given without \"fit\""),
+            std::string::npos)
+      << error_of(document);
+  document["noise"]["gyro"]["fit"] = {{"start_s", 0}, {"end_s", 40}};
+  document["noise"]["gyro"]["fit_options"] = "gmwm";
+  EXPECT_NE(error_of(document).find("/noise/gyro/fit_options: found \"gmwm\""),
+            std::string::npos)
+      << error_of(document);
+}
+
 TEST_F(RunConfigTest, BuildsThePluginsAndFitsFromTheCalibrationRecord) {
   nlohmann::json document = minimal();
   document["noise"]["gyro"]["params"] = nlohmann::json::object();

@@ -315,6 +315,26 @@ NoiseSection parse_noise_section(const nlohmann::json& json, const std::string& 
     if (!fit.is_null()) {
       config.fit = parse_fit(fit, entry.pointer("fit"), group, config_dir, default_record);
     }
+    const nlohmann::json& fit_options = entry.raw("fit_options");
+    if (!fit_options.is_null()) {
+      if (!fit_options.is_object()) {
+        throw ConfigError(entry.pointer("fit_options") + ": found " +
+                          fit_options.dump().substr(0, 40) +
+                          "; expected an object of the fitter's options, e.g. {\"method\": "
+                          "\"gmwm\"}");
+      }
+      if (!config.fit) {
+        throw ConfigError(entry.pointer("fit_options") +
+                          ": given without \"fit\"; add \"fit\": {} to fit the model from the "
+                          "record, or give the model in \"params\"");
+      }
+      if (!config.params.empty()) {
+        throw ConfigError(entry.pointer("params") +
+                          ": given beside \"fit_options\"; a fitted model's keys go in "
+                          "\"fit_options\" (move them there and remove \"params\")");
+      }
+      config.fit_options = fit_options;
+    }
     entry.finish();
     (group == SensorGroup::kGyro ? noise.gyro : noise.accel) = std::move(config);
   }

@@ -77,7 +77,7 @@ std::shared_ptr<NoiseModelPlugin> build_noise_model(const NoiseConfig& config, S
                                                     const PluginRegistry& registry,
                                                     NoiseModelContext context) {
   context.group = group;
-  context.params_pointer = config.params_pointer();
+  context.params_pointer = config.options_pointer();
   std::shared_ptr<NoiseModelPlugin> model;
   if (config.fit) {
     const std::string fit_pointer = config.pointer + "/fit";
@@ -88,7 +88,7 @@ std::shared_ptr<NoiseModelPlugin> build_noise_model(const NoiseConfig& config, S
                         "' cannot fit its model from data; remove \"fit\" and give \"params\"");
     }
     const CalibrationRecord record = read_calibration_record(*config.fit, group, fit_pointer);
-    model = registry.fit_noise_model(config.type, record, config.params, context,
+    model = registry.fit_noise_model(config.type, record, config.options(), context,
                                      config.type_pointer());
   } else {
     model = registry.create_noise_model(config.type, config.params, context, config.type_pointer());

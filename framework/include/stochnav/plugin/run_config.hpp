@@ -102,6 +102,14 @@ struct PluginConfig {
 
 struct NoiseConfig : PluginConfig {
   std::optional<FitConfig> fit;  ///< "fit", default absent: the model comes from params
+  /// "fit_options", with "fit" only: the fitter's own options (method, terms, start, fix,
+  /// bound, ...), which it then reads instead of "params" (which must then be absent or {}).
+  std::optional<nlohmann::json> fit_options;
+  /// Where the model's or the fitter's keys are read: .../fit_options or .../params.
+  std::string options_pointer() const {
+    return fit_options ? pointer + "/fit_options" : params_pointer();
+  }
+  const nlohmann::json& options() const { return fit_options ? *fit_options : params; }
 };
 
 struct NoiseSection {

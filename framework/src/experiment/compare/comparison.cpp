@@ -313,7 +313,7 @@ void validate_variants(const ExperimentConfig& config) {
         plugin::NoiseModelContext model_context;
         model_context.group = group;
         model_context.imu_rate_hz = 100.0;
-        model_context.params_pointer = noise->params_pointer();
+        model_context.params_pointer = noise->options_pointer();
         model_context.config_dir = config.config_dir;
         // The seeds' scenario folders do not exist yet: a model reading its scenario (the
         // oracle) says its data are missing, which is not a params error.
@@ -324,7 +324,7 @@ void validate_variants(const ExperimentConfig& config) {
         // says the data are not there yet (a fit to the probe record).
         try {
           if (noise->fit) {
-            registry.fit_noise_model(noise->type, probe_record(group), noise->params,
+            registry.fit_noise_model(noise->type, probe_record(group), noise->options(),
                                      model_context, noise->type_pointer());
           } else {
             registry.create_noise_model(noise->type, noise->params, model_context,
