@@ -96,12 +96,14 @@ Deviation parse_deviation(std::string_view name);
 
 /// Which noise type's EDF sets a point's confidence interval.
 enum class EdfRule {
-  /// The smallest EDF over the noise types the identification cannot rule out at that m
-  /// (noise_id.hpp, plausible_alphas, always including the identified one). At long taus the
-  /// identification rests on a few decimated points and can slip (to white or flicker PM on a
-  /// rate record, whose EDF grows with the number of overlapping terms rather than with N / m:
-  /// an interval 25 times too narrow); this rule keeps the interval as wide as the least
-  /// informative plausible type makes it. The default.
+  /// The smallest EDF of the identified noise type and the types the identification cannot
+  /// rule out at that m (noise_id.hpp, plausible_alphas), less the PM types (alpha 1, 2) once a
+  /// shorter tau of the run has ruled PM out (a PM variance falls as tau^-2 or faster, every FM
+  /// one no faster than tau^-1). At long taus the identification rests on a few decimated points
+  /// and can slip (to white or flicker PM on a rate record, whose EDF grows with the number of
+  /// overlapping terms rather than with N / m: an interval 25 times too narrow); this rule keeps
+  /// the interval as wide as the least informative plausible type makes it, and never narrower
+  /// than Stable32's. The default (docs/allan.md).
   kPlausibleMinimum,
   /// The EDF of the identified noise type alone, as Stable32 computes it (its tables are
   /// reproduced this way).
