@@ -51,9 +51,10 @@ class PhaseOfSamples final {
 };
 
 AllanResult allan(const py::object& x, double rate, const std::string& deviation,
-                  const std::string& taus, const std::string& data) {
+                  const std::string& taus, const std::string& data, const std::string& edf) {
   AllanResult result;
   const Deviation kind = parse_deviation(deviation);
+  const EdfRule edf_rule = parse_edf_rule(edf);
   const TauSpacing spacing = parse_tau_spacing(taus, "taus");
   const DataKind data_kind = data_kind_argument(data);
   result.rate_hz = rate_argument(rate);
@@ -72,7 +73,8 @@ AllanResult allan(const py::object& x, double rate, const std::string& deviation
                                    "longer record",
                                    result.samples, result.deviation));
     }
-    result.points = compute_deviation(kind, phase.phase(), tau0_s, m_values);
+    result.points =
+        compute_deviation(kind, phase.phase(), tau0_s, m_values, kStable32Confidence, edf_rule);
   }
   const auto& points = result.points;
   result.m = integer_column_of(points, [](const DeviationPoint& p) { return p.m; });
@@ -123,6 +125,9 @@ taus : str
     "dense" (about 10 per decade) or "all" (Stable32's "all tau").
 data : str
     "rate" or "phase" (see x).
+edf : str
+    "plausible" (default): the smallest EDF over the noise types the identification leaves
+    open at each tau (docs/allan.md); "stable32": the identified type's, as Stable32.
 
 Returns
 -------
@@ -136,7 +141,7 @@ Raises
 InputError (a ValueError)
     NaN or infinite samples, a record too short for any tau.
 ConfigError (a ValueError)
-    An unknown deviation, taus or data, a rate outside 1e-9 .. 1e9 Hz.
+    An unknown deviation, taus, data or edf, a rate outside 1e-9 .. 1e9 Hz.
 )";
 
 }  // namespace
@@ -160,7 +165,7 @@ void bind_allan(py::module_& module) {
       .def("__len__", [](const AllanResult& r) { return r.points.size(); })
       .def("__repr__", &allan_repr);
   module.def("allan", &allan, py::arg("x"), py::arg("rate"), py::arg("deviation") = "oadev",
-             py::arg("taus") = "octave", py::arg("data") = "rate", kAllanDoc);
+             py::arg("taus") = "octave", py::arg("data") = "rate", py::arg("edf") = "plausible", kAllanDoc);
 }
 
 }  // namespace stochnav::python

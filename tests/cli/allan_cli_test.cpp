@@ -59,7 +59,7 @@ TEST(AllanCli, JsonOnPhaseDatMatchesStable32OctaveTable) {
   STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
   STOCHNAV_REQUIRE_SHARED_DATA(table, "allan/phasedat/phase_dat_oadev_octave.txt");
   TempDir dir;
-  const auto json = allan_json(phase_dat, "--taus octave", dir);
+  const auto json = allan_json(phase_dat, "--taus octave --edf stable32", dir);
   std::vector<std::string> keys;
   for (const auto& item : json.items()) keys.push_back(item.key());
   std::sort(keys.begin(), keys.end());
@@ -77,7 +77,7 @@ TEST(AllanCli, TotdevOnPhaseDatMatchesStable32OctaveTable) {
   STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
   STOCHNAV_REQUIRE_SHARED_DATA(table, "allan/phasedat/phase_dat_totdev_octave.txt");
   TempDir dir;
-  const auto json = allan_json(phase_dat, "--taus octave --deviation totdev", dir);
+  const auto json = allan_json(phase_dat, "--taus octave --deviation totdev --edf stable32", dir);
   const auto reference = read_stable32_table_file(table);
   EXPECT_EQ(json["tau"].size(), reference.size());
   expect_matches_table(json, "adev", reference, 1e-3);
@@ -98,6 +98,27 @@ TEST(AllanCli, MtieAndHtotdevOnPhaseDatMatchStable32) {
   for (const auto& alpha : mtie["alpha"]) EXPECT_TRUE(alpha.is_null());
   const auto htot = allan_json(phase_dat, "--deviation htotdev", dir);
   expect_matches_table(htot, "htotdev", read_stable32_table_file(htot_table), 0.0);
+}
+
+// --edf: the default (plausible) never gives a larger EDF than Stable32's rule, so its intervals
+// contain Stable32's, with the same noise types; an unknown rule is bad input (exit 2, one line).
+TEST(AllanCli, DefaultEdfRuleNeverNarrowsStable32sInterval) {
+  STOCHNAV_REQUIRE_SHARED_DATA(phase_dat, "allan/phasedat/PHASE.DAT");
+  TempDir dir;
+  const auto plausible = allan_json(phase_dat, "--taus all", dir);
+  const auto stable32 = allan_json(phase_dat, "--taus all --edf stable32", dir);
+  ASSERT_EQ(plausible["edf"].size(), stable32["edf"].size());
+  for (std::size_t i = 0; i < plausible["edf"].size(); ++i) {
+    EXPECT_LE(plausible["edf"][i].get<double>(), stable32["edf"][i].get<double>()) << i;
+    EXPECT_LE(plausible["adev_lo"][i].get<double>(), stable32["adev_lo"][i].get<double>()) << i;
+    EXPECT_GE(plausible["adev_hi"][i].get<double>(), stable32["adev_hi"][i].get<double>()) << i;
+    EXPECT_EQ(plausible["alpha"][i], stable32["alpha"][i]) << i;
+  }
+  const auto result = run_cli("allan --input '" + phase_dat + "' --data phase --rate 1 --edf loose",
+                              dir.path().string());
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_NE(result.err.find("edf 'loose' is unknown"), std::string::npos) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
 }
 
 // A Theo1 factor the record cannot hold is bad input (exit 2, one line), like any other.

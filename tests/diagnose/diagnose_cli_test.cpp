@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -101,6 +102,41 @@ TEST(DiagnoseCli, WritesTheReportJsonContractReportMdAndPlots) {
   for (const auto& entry : fs::directory_iterator(out)) {
     EXPECT_EQ(entry.path().filename().string().find(".diagnose-staging"), std::string::npos);
   }
+}
+
+// Issue #26: a term on its search bound is never added silently. A Gauss-Markov term with a
+// correlation time of 0.3 samples (nearly white, but with a deficit at the first tau) is fitted
+// with tau_c on its lower search bound (the sampling interval): the step that adds it says so
+// in report.json ("added_term_at_bound"), in its evidence, in report.md and on standard output.
+TEST(DiagnoseCli, ATermAddedOnItsSearchBoundIsFlaggedEverywhere) {
+  TempDir dir;
+  NoiseModel truth = noise_model_from_json(nlohmann::json::parse(kBaseModel));
+  truth.terms.push_back(noise_term_from_json(
+      nlohmann::json::parse(R"({"type": "gauss_markov", "sigma": 300, "tau_c": 0.003})"),
+      truth.unit, "/"));
+  const std::string record =
+      dir.write("record.csv", csv_of(simulated_record(truth, 100000, 100.0, 4)));
+  const std::string model = dir.write("model.json", kBaseModel);
+  const std::string out = dir.file("out");
+  const auto result = run_cli("diagnose --input '" + record + "' --model '" + model + "' --out '" +
+                                  out + "' --seeds 3 --plots none --max-iterations 1",
+                              dir.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json report = read_json(fs::path(out) / "report.json");
+  ASSERT_FALSE(report["iterations"].empty());
+  const auto& first = report["iterations"][0];
+  EXPECT_EQ(first["effect"], "gauss_markov");
+  EXPECT_NEAR(first["added_term"]["tau_c"].get<double>(), 0.01, 1e-6);  // the sampling interval
+  ASSERT_TRUE(first.contains("added_term_at_bound")) << first.dump();
+  EXPECT_EQ(first["added_term_at_bound"], nlohmann::json::array({"gauss_markov.tau_c"}));
+  const std::string flag = "Flagged: gauss_markov.tau_c ended on the search bound";
+  EXPECT_NE(first["evidence"].get<std::string>().find(flag), std::string::npos);
+  std::ifstream markdown(fs::path(out) / "report.md");
+  const std::string md((std::istreambuf_iterator<char>(markdown)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find(flag), std::string::npos);
+  EXPECT_NE(result.out.find("step 1: gauss_markov (gap "), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("; on its search bound: gauss_markov.tau_c)"), std::string::npos)
+      << result.out;
 }
 
 TEST(DiagnoseCli, AConsistentModelGivesNoIterations) {

@@ -60,7 +60,8 @@ TEST_P(AllanFamilyTable, MatchesStable32) {
         averaging_factors(c.kind, *c.spacing, data.phase.size(), data.tau0_s), table_m,
         c.table_is_prefix);
   }
-  const auto points = compute_deviation(c.kind, data.phase, data.tau0_s, table_m);
+  const auto points = compute_deviation(c.kind, data.phase, data.tau0_s, table_m,
+                                        kStable32Confidence, EdfRule::kStable32);
   ASSERT_EQ(points.size(), rows.size());
   double worst_deviation = 0.0;
   std::size_t worst_m = 0;

@@ -98,6 +98,36 @@ TEST(NoiseIdentification, Lag1AutocorrelationOfSimpleSeries) {
   EXPECT_DOUBLE_EQ(lag1_autocorrelation(std::vector<double>{5.0}), 0.0);
 }
 
+// The plausible types (the EDF rule's input, deviation.hpp EdfRule): one type where the lag-1
+// estimate rests on thousands of points, several at Riley's minimum of 30 decimated points
+// (sd of the estimate about 0.37 for white noise), all of them with fewer than 4 differences.
+// Always the identified type among them, whichever method identified it.
+TEST(NoiseIdentification, PlausibleTypesWidenAsTheDecimatedPointsFall) {
+  std::size_t wide_at_30_points = 0;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const std::vector<double> phase = stats_test::power_law_phase(0, 4096, 2000 + seed);
+    const AlphaRange many = plausible_alphas(Deviation::kOadev, phase, 1);
+    EXPECT_EQ(many.low, 0) << "seed " << seed;
+    EXPECT_EQ(many.high, 0) << "seed " << seed;
+    const std::size_t m = 4095 / 29;  // 30 decimated points
+    const AlphaRange few = plausible_alphas(Deviation::kOadev, phase, m);
+    EXPECT_LE(few.low, 0) << "seed " << seed;
+    EXPECT_GE(few.high, 0) << "seed " << seed;
+    if (few.high > few.low) ++wide_at_30_points;
+    const AlphaRange none = plausible_alphas(Deviation::kOadev, phase, 4095 / 4);  // 5 points
+    EXPECT_EQ(none.low, -2);
+    EXPECT_EQ(none.high, 2);
+    for (std::size_t factor : {std::size_t{1}, m, std::size_t{4095 / 20}}) {
+      const NoiseId id = identify_noise(Deviation::kOadev, phase, factor);
+      EXPECT_LE(id.plausible.low, id.alpha) << "seed " << seed << " m " << factor;
+      EXPECT_GE(id.plausible.high, id.alpha) << "seed " << seed << " m " << factor;
+    }
+  }
+  EXPECT_GE(wide_at_30_points, 15u);
+  EXPECT_THROW(plausible_alphas(Deviation::kOadev, std::vector<double>(10, 0.0), 0),
+               std::invalid_argument);
+}
+
 TEST(NoiseIdentification, RejectsTooShortRecords) {
   const std::vector<double> phase(10, 0.0);
   EXPECT_THROW(identify_noise(Deviation::kOadev, phase, 0), std::invalid_argument);

@@ -43,6 +43,7 @@ struct AlphaTally {
 };
 AlphaTally bounded_tables;  // octave and decade runs, with confidence bounds
 AlphaTally all_tau_tables;
+AlphaTally edf_rule_tally;  // rows where EdfRule::kPlausibleMinimum keeps Stable32's EDF
 
 /// Prints the agreement over every table after the last test.
 class AlphaAgreementReport final : public ::testing::Environment {
@@ -53,6 +54,11 @@ class AlphaAgreementReport final : public ::testing::Environment {
     print("tables with confidence bounds", bounded_tables);
     print("all-tau tables", all_tau_tables);
     print("all tables", total);
+    if (edf_rule_tally.rows != 0) {
+      std::printf("[ edf      ] default rule (plausible minimum): %zu of %zu rows with bounds keep "
+                  "Stable32's EDF\n",
+                  edf_rule_tally.matches, edf_rule_tally.rows);
+    }
   }
 
  private:
@@ -81,8 +87,19 @@ TEST_P(Stable32Table, MatchesStable32) {
       averaging_factors(c.kind, c.spacing, data.phase.size(), data.tau0_s), table_m,
       c.table_is_prefix);
 
-  const auto points = compute_deviation(c.kind, data.phase, data.tau0_s, table_m);
+  const auto points = compute_deviation(c.kind, data.phase, data.tau0_s, table_m,
+                                        kStable32Confidence, EdfRule::kStable32);
   ASSERT_EQ(points.size(), rows.size());
+  // The default rule only ever widens Stable32's interval (never a larger EDF).
+  const auto plausible = compute_deviation(c.kind, data.phase, data.tau0_s, table_m);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    EXPECT_LE(plausible[i].edf, points[i].edf) << c.table << " m = " << points[i].m;
+    EXPECT_EQ(plausible[i].alpha, points[i].alpha) << c.table << " m = " << points[i].m;
+    if (c.has_bounds) {
+      ++edf_rule_tally.rows;
+      if (plausible[i].edf == points[i].edf) ++edf_rule_tally.matches;
+    }
+  }
   std::size_t alpha_matches = 0;
   std::size_t alpha_rows = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {

@@ -24,6 +24,7 @@ struct AllanArguments {
   std::string plot;
   std::string fit;
   std::string output;
+  std::string edf = "plausible";
 };
 
 /// DESIGN.md's layout ("adev", "adev_lo", "adev_hi" hold the deviation of every kind), plus
@@ -84,6 +85,7 @@ void run_allan(const AllanArguments& arguments) {
   const OutputFormat format = parse_format(arguments.format);
   const TauSpacing spacing = parse_tau_spacing(arguments.taus, "--taus");
   const Deviation kind = parse_deviation(arguments.deviation);
+  const EdfRule edf_rule = parse_edf_rule(arguments.edf);
   if (!arguments.plot.empty()) check_plot_request(arguments.plot);
 
   // One array of the data: rate samples are integrated into phase where they were read.
@@ -101,7 +103,8 @@ void run_allan(const AllanArguments& arguments) {
   }
   ProgressTicker computing("allan: " + std::string(deviation_name(kind)), 0,
                            standard_error_is_terminal());
-  const auto points = compute_deviation(kind, phase, record.tau0(), m_values);
+  const auto points =
+      compute_deviation(kind, phase, record.tau0(), m_values, kStable32Confidence, edf_rule);
   computing.finish();
 
   std::string text;
@@ -128,6 +131,11 @@ void add_allan_command(CLI::App& app) {
       ->add_option("--deviation", arguments->deviation,
                    "oadev, adev, mdev, tdev, hdev, ohdev, totdev, mtotdev, ttotdev, htotdev, "
                    "htotdev_nobias, theo1, theo1_nobias, mtie, tierms")
+      ->capture_default_str();
+  command
+      ->add_option("--edf", arguments->edf,
+                   "plausible (smallest EDF over the noise types the identification leaves "
+                   "open) or stable32 (the identified type's, as Stable32)")
       ->capture_default_str();
   add_format_option(*command, arguments->format);
   command->add_option("--plot", arguments->plot, "Draw the deviation to FILE.png or FILE.svg");

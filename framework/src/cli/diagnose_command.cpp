@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <optional>
 #include <random>
+#include <string>
 
 #include "command_support.hpp"
 #include "commands.hpp"
@@ -205,8 +206,11 @@ void run_diagnose(const DiagnoseArguments& arguments) {
              (out / "report.md").string());
   for (std::size_t i = 0; i < result.iterations.size(); ++i) {
     const auto& step = result.iterations[i];
-    fmt::print("  step {}: {} (gap {:.3g} -> {:.3g})\n", i + 1, term_type_name(step.effect),
-               step.gap_before, step.gap_after);
+    std::string flag;  // a term on its search bound is never added silently
+    for (const auto& name : step.added_term_at_bound) flag += (flag.empty() ? "" : ", ") + name;
+    if (!flag.empty()) flag = "; on its search bound: " + flag;
+    fmt::print("  step {}: {} (gap {:.3g} -> {:.3g}{})\n", i + 1, term_type_name(step.effect),
+               step.gap_before, step.gap_after, flag);
   }
 }
 

@@ -70,6 +70,12 @@ Deviation parse_deviation(std::string_view name) {
                     "ttotdev, htotdev, htotdev_nobias, theo1, theo1_nobias, mtie or tierms");
 }
 
+EdfRule parse_edf_rule(std::string_view name) {
+  if (name == "plausible") return EdfRule::kPlausibleMinimum;
+  if (name == "stable32") return EdfRule::kStable32;
+  throw ConfigError("edf '" + std::string(name) + "' is unknown: use plausible or stable32");
+}
+
 int difference_order(Deviation kind) {
   switch (kind) {
     case Deviation::kHdev:

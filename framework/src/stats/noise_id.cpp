@@ -86,25 +86,53 @@ PerDifference lag1_of_decimated_differences(std::span<const double> phase, std::
   return r1;
 }
 
-/// Differences the decimated phase until its lag-1 autocorrelation r1[d] says white, or d_max.
-NoiseId noise_from_lag1(const PerDifference& r1, int max_differences) {
+/// z of the two-sided 95 % normal interval of a lag-1 estimate (plausible_alphas).
+constexpr double kPlausibleZ = 1.96;
+/// Fewest d-th differences whose lag-1 autocorrelation plausible_alphas reads.
+constexpr std::size_t kMinPlausibleValues = 4;
+
+AlphaRange widened_to(AlphaRange range, int alpha) {
+  return {std::min(range.low, alpha), std::max(range.high, alpha)};
+}
+
+/// plausible_alphas from the lag-1 autocorrelation r of `values` d-th differences.
+AlphaRange lag1_plausible_range(double r, int d, std::size_t values) {
+  if (values < kMinPlausibleValues || !(r > -1.0)) return {};
+  const double estimate = 2.0 - 2.0 * d - 2.0 * r / (1.0 + r);
+  const double sd_r = std::sqrt(std::max(0.0, 1.0 - r * r) / static_cast<double>(values));
+  const double spread = kPlausibleZ * 2.0 * sd_r / ((1.0 + r) * (1.0 + r));
+  const auto nearest_alpha = [](double x) {
+    return static_cast<int>(std::lround(std::clamp(x, -2.0, 2.0)));  // clamp first: x may be inf
+  };
+  return {nearest_alpha(estimate - spread), nearest_alpha(estimate + spread)};
+}
+
+/// Differences the decimated phase (`points` points) until its lag-1 autocorrelation r1[d]
+/// says white, or d_max.
+NoiseId noise_from_lag1(const PerDifference& r1, int max_differences, std::size_t points) {
   for (int d = 0;; ++d) {
     const double r = r1[static_cast<std::size_t>(d)];
     const double delta = r / (1.0 + r);
     if (delta < 0.25 || d >= max_differences) {
       const double alpha = 2.0 - 2.0 * d - 2.0 * delta;
-      const auto rounded = static_cast<int>(2 - 2 * d - std::lround(2.0 * delta));
-      return {std::clamp(rounded, -2, 2), NoiseIdMethod::kLag1Autocorrelation, alpha};
+      const auto rounded = std::clamp(static_cast<int>(2 - 2 * d - std::lround(2.0 * delta)), -2, 2);
+      const std::size_t values = points - static_cast<std::size_t>(d);
+      return {rounded, NoiseIdMethod::kLag1Autocorrelation, alpha,
+              widened_to(lag1_plausible_range(r, d, values), rounded)};
     }
   }
 }
 
+std::size_t decimated_point_count(std::span<const double> phase, std::size_t m) {
+  return (phase.size() - 1) / m + 1;
+}
+
 NoiseId lag1_noise_id(std::span<const double> phase, std::size_t m, int max_differences) {
-  const std::size_t points = (phase.size() - 1) / m + 1;
+  const std::size_t points = decimated_point_count(phase, m);
   const PerDifference r1 = max_differences >= 3
                                ? lag1_of_decimated_differences<3>(phase, m, points)
                                : lag1_of_decimated_differences<2>(phase, m, points);
-  return noise_from_lag1(r1, max_differences);
+  return noise_from_lag1(r1, max_differences, points);
 }
 
 // ---- The lag-1 statistics of many factors at once (identify_noises) ----
@@ -523,7 +551,7 @@ int white_or_flicker_pm(std::span<const double> phase, std::size_t m) {
   return ratio < std::sqrt(white_pm * flicker_pm) ? 2 : 1;
 }
 
-NoiseId b1_noise_id(Deviation kind, std::span<const double> phase, std::size_t m) {
+NoiseId b1_and_rn_noise_id(Deviation kind, std::span<const double> phase, std::size_t m) {
   // Stable32 evaluates the expected ratios at the estimator's term count (its `#` column), not
   // at the number of averages: that is what reproduces its tables (Cs 5071A, all taus). Fewer
   // than 2 makes every expectation 1 (no information) rather than undefined.
@@ -539,7 +567,23 @@ NoiseId b1_noise_id(Deviation kind, std::span<const double> phase, std::size_t m
   return {white_or_flicker_pm(phase, m), NoiseIdMethod::kB1AndRn, ratio};
 }
 
+/// Stable32's small-sample identification (B1 ratio, then R(n)), with its plausible range.
+NoiseId b1_noise_id(Deviation kind, std::span<const double> phase, std::size_t m) {
+  NoiseId id = b1_and_rn_noise_id(kind, phase, m);
+  id.plausible = widened_to(plausible_alphas(kind, phase, m), id.alpha);
+  return id;
+}
+
 }  // namespace
+
+AlphaRange plausible_alphas(Deviation kind, std::span<const double> phase, std::size_t m) {
+  if (m == 0) throw std::invalid_argument("plausible_alphas: m must be at least 1");
+  if (phase.size() < 2) return {};
+  const int max_differences = difference_order(kind);
+  const std::size_t points = decimated_point_count(phase, m);
+  if (points < static_cast<std::size_t>(max_differences) + kMinPlausibleValues) return {};
+  return lag1_noise_id(phase, m, max_differences).plausible;
+}
 
 double lag1_autocorrelation(std::span<const double> series) {
   if (series.size() < 2) return 0.0;
@@ -633,7 +677,9 @@ std::vector<NoiseId> NoiseIdentification::finish() {
     const int max_differences = difference_order(plan.kind);
     const std::vector<PerDifference> r1 = plan.lag1->finish();
     for (std::size_t i = 0; i < plan.lag1_slots.size(); ++i) {
-      ids[plan.lag1_slots[i]] = noise_from_lag1(r1[i], max_differences);
+      const std::size_t slot = plan.lag1_slots[i];
+      ids[slot] = noise_from_lag1(r1[i], max_differences,
+                                  decimated_point_count(plan.phase, plan.m_values[slot]));
     }
   }
   return ids;

@@ -94,6 +94,24 @@ std::optional<Deviation> deviation_from_name(std::string_view name);
 /// deviation_from_name, or throws ConfigError naming the text and the accepted names.
 Deviation parse_deviation(std::string_view name);
 
+/// Which noise type's EDF sets a point's confidence interval.
+enum class EdfRule {
+  /// The smallest EDF of the identified noise type and the types the identification cannot
+  /// rule out at that m (noise_id.hpp, plausible_alphas), less the PM types (alpha 1, 2) once a
+  /// shorter tau of the run has ruled PM out (a PM variance falls as tau^-2 or faster, every FM
+  /// one no faster than tau^-1). At long taus the identification rests on a few decimated points
+  /// and can slip (to white or flicker PM on a rate record, whose EDF grows with the number of
+  /// overlapping terms rather than with N / m: an interval 25 times too narrow); this rule keeps
+  /// the interval as wide as the least informative plausible type makes it, and never narrower
+  /// than Stable32's. The default (docs/allan.md).
+  kPlausibleMinimum,
+  /// The EDF of the identified noise type alone, as Stable32 computes it (its tables are
+  /// reproduced this way).
+  kStable32,
+};
+/// "plausible" or "stable32" (the CLI's --edf), or throws ConfigError naming the text.
+EdfRule parse_edf_rule(std::string_view name);
+
 /// Order d of the phase difference the variance is built on: 2 (Allan family), 3 (Hadamard).
 int difference_order(Deviation kind);
 /// True for the estimators that use every start index (OADEV, MDEV, TDEV, OHDEV, TOTDEV).
@@ -160,19 +178,22 @@ struct DeviationPoint {
   std::size_t terms = 0;   ///< term_count(kind, m, N)
   int alpha = 0;           ///< identified power-law noise, S_y(f) ~ f^alpha, in [-2, 2]
   double edf = 0.0;        ///< equivalent degrees of freedom of the variance (Greenhall)
+  int edf_alpha = 0;       ///< the noise type whose EDF `edf` is (EdfRule); alpha for kStable32
   double lower = 0.0;      ///< lower bound of the chi-square confidence interval (deviation units)
   double upper = 0.0;      ///< upper bound
 };
 
-/// Deviation, noise type (noise_id.hpp), EDF (edf.hpp) and the chi-square interval
-/// (confidence.hpp) at each averaging factor, in the order given. Like Stable32, a factor with
-/// very few averages takes the noise type of the one before it (keeps_previous_noise_type), so
-/// pass a run's factors in ascending order. `confidence` is the two-sided probability of
-/// [lower, upper]; Stable32 uses 0.683. Throws std::invalid_argument when an m leaves no terms.
+/// Deviation, noise type (noise_id.hpp), EDF (edf.hpp, chosen by `edf_rule`) and the chi-square
+/// interval (confidence.hpp) at each averaging factor, in the order given. Like Stable32, a
+/// factor with very few averages takes the noise type of the one before it
+/// (keeps_previous_noise_type), so pass a run's factors in ascending order; its plausible types
+/// are still read at its own m. `confidence` is the two-sided probability of [lower, upper];
+/// Stable32 uses 0.683. Throws std::invalid_argument when an m leaves no terms.
 /// Cost: the deviations (see deviation_values) plus O(N / m) per factor for the noise type, whose
 /// pass over the phase runs inside the deviations' pass (each stretch read once for both).
 std::vector<DeviationPoint> compute_deviation(Deviation kind, std::span<const double> phase,
                                               double tau0_s, std::span<const std::size_t> m_values,
-                                              double confidence = kStable32Confidence);
+                                              double confidence = kStable32Confidence,
+                                              EdfRule edf_rule = EdfRule::kPlausibleMinimum);
 
 }  // namespace stochnav

@@ -41,15 +41,24 @@ inline constexpr std::size_t kMinLag1Points = 30;
 
 enum class NoiseIdMethod { kLag1Autocorrelation, kB1Ratio, kB1AndRn };
 
+/// The integer noise exponents low <= alpha <= high an identification cannot rule out.
+struct AlphaRange {
+  int low = -2;
+  int high = 2;
+};
+
 struct NoiseId {
   int alpha = 0;  ///< identified exponent, -2 .. 2
   NoiseIdMethod method = NoiseIdMethod::kLag1Autocorrelation;
   /// Lag-1 method: the unrounded estimate 2 - 2 d - 2 delta. Otherwise the measured B1 ratio.
   double statistic = 0.0;
+  /// The plausible exponents (plausible_alphas), always containing alpha.
+  AlphaRange plausible;
 };
 
 /// Noise type of `phase` (N points) at averaging factor m, for the deviation `kind` (which sets
-/// d_max and the B1 term count). Requires m >= 1 and N >= 2m + 2 (throws std::invalid_argument
+/// d_max and the B1 term count), with its plausible range (plausible_alphas, widened to contain
+/// alpha). Requires m >= 1 and N >= 2m + 2 (throws std::invalid_argument
 /// otherwise). Cost O(N / m), plus O(N) when the R(n) ratio is needed.
 NoiseId identify_noise(Deviation kind, std::span<const double> phase, std::size_t m);
 
@@ -59,6 +68,19 @@ NoiseId identify_noise(Deviation kind, std::span<const double> phase, std::size_
 /// alpha but at an exact tie), and bitwise the same for every thread count. Same throws.
 std::vector<NoiseId> identify_noises(Deviation kind, std::span<const double> phase,
                                      std::span<const std::size_t> m_values);
+
+/// How far the identification at m can be trusted: the integer alphas within the approximate
+/// 95 % interval of the lag-1 estimate alpha^ = 2 - 2 d - 2 delta at the difference order d where
+/// the lag-1 method stops (whichever method Stable32 takes at this m). With n = the number of
+/// d-th differences of the decimated phase and r their lag-1 autocorrelation,
+///   sd(r) ~ sqrt((1 - r^2) / n)  (Bartlett, AR(1)),  sd(alpha^) ~ 2 sd(r) / (1 + r)^2,
+/// and the range runs from round(alpha^ - 1.96 sd) to round(alpha^ + 1.96 sd), clamped to
+/// [-2, 2]. Every alpha whose rounding cell the interval reaches is plausible: 30 decimated
+/// points (Riley's minimum) leave sd ~ 0.37 for white noise, so white FM and flicker PM are
+/// rarely told apart there; 1000 points leave sd ~ 0.06. [-2, 2] (nothing ruled out) when fewer
+/// than 4 differences remain (the longest taus). Cost O(N / m). Throws std::invalid_argument
+/// for m == 0.
+AlphaRange plausible_alphas(Deviation kind, std::span<const double> phase, std::size_t m);
 
 /// True where Stable32 reuses the noise type of the previous averaging factor of a run instead
 /// of identifying one: the B1 method would rest on fewer than 8 (overlapping and modified
