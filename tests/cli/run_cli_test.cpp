@@ -509,6 +509,19 @@ TEST_F(RunCli, TieOnMdIsCheckedAgainstTheTallyTakenToTheSensor) {
   EXPECT_NEAR(survey.at("md_m").back(), survey.at("md_m")[last] + 50.0, 1e-5);
 }
 
+/// The numbers of an iscwsa_covariance.csv (its six elements per row, rows in order).
+std::vector<double> covariance_values(const fs::path& path) {
+  std::vector<double> values;
+  std::stringstream file(read(path));
+  std::string line;
+  std::getline(file, line);
+  while (std::getline(file, line)) {
+    const std::vector<std::string> cells = csv_cells(line);
+    for (std::size_t i = 2; i < cells.size(); ++i) values.push_back(std::stod(cells[i]));
+  }
+  return values;
+}
+
 // "survey/error_model": the run writes iscwsa_covariance.csv for its own survey stations (one
 // row per station and source, the first survey station the model's tie-on) and the plot beside
 // the filter's sigmas. MWD Rev5's TOTAL is positive definite past the tie-on; the gyro model
@@ -573,6 +586,27 @@ TEST_F(RunCli, SurveyErrorModelBesideTheFiltersCovariance) {
       }
     }
   }
+  // The gyro magnitudes came from the run's white gyro model: the same file as from a fitted
+  // model with its N (not the OWSG magnitudes': GXY-RN is N / sqrt(60 s) here, not 0.4 deg/h).
+  const std::string fit = dir_->write(
+      "run_gyro_fit.json",
+      R"({"units": "deg/h", "rate_hz": 100, "terms": [{"type": "angle_random_walk", "N": 0.005}]})");
+  nlohmann::json config = recording_config();
+  config["survey"] = {{"error_model", "gyro_ns_ct"}, {"well", well}, {"noise_model", fit}};
+  const fs::path out = dir_->path() / "out_error_model_fit";
+  const auto result =
+      run_cli("run '" + write_config("error_model_fit.json", config) + "' --out '" + out.string() +
+                  "' --data '" + (dir_->path() / "recording").string() + "' --no-plot",
+              dir_->path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const std::vector<double> from_fit = covariance_values(out / "iscwsa_covariance.csv");
+  const std::vector<double> from_run_model = covariance_values(
+      dir_->path() / "out_error_model_gyro_ns_ct" / "iscwsa_covariance.csv");
+  ASSERT_EQ(from_fit.size(), from_run_model.size());
+  for (std::size_t i = 0; i < from_fit.size(); ++i) {
+    EXPECT_NEAR(from_run_model[i], from_fit[i], 1e-9 * std::abs(from_fit[i]));
+  }
+  EXPECT_GT(*std::max_element(from_fit.begin(), from_fit.end()), 0.0);
 }
 
 class BadRun : public RunCli, public ::testing::WithParamInterface<BadRunCase> {};
