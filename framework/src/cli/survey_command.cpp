@@ -83,7 +83,7 @@ survey_error::ContinuousGyroTerms gyro_terms(
   const double run_s = survey_error::continuous_run_time_s(stations, terms);
   const survey_error::MappedGyroTerms mapped =
       survey_error::map_gyro_noise_model(model, gyrocompass_s, run_s, terms);
-  note = fmt::format("from {} (gyrocompass {:g} s, continuous run {:.0f} s)", arguments.noise_model,
+  note = fmt::format("from {}: gyrocompass {:g} s, continuous run {:.0f} s", arguments.noise_model,
                      gyrocompass_s, run_s);
   for (const std::string& ignored : mapped.ignored_terms) note += "; ignored " + ignored;
   return mapped.terms;
@@ -127,7 +127,7 @@ void run_survey(const SurveyArguments& arguments) {
       fmt::format("{}: {} stations x {} sources (+ TOTAL); {}\n",
                   survey_error::tool_model_title(arguments.model), stations.size(),
                   covariance.sources.size(), deepest_sigmas(covariance));
-  if (gyro) summary += fmt::format("{} ({})\n", describe_gyro_terms(terms), gyro_note);
+  if (gyro) summary += fmt::format("{}; {}\n", describe_gyro_terms(terms), gyro_note);
   write_standard_output(summary + fmt::format("wrote {}\n", file.string()));
 }
 
