@@ -264,7 +264,7 @@ void parse_survey_error_model(ParamReader& reader, const fs::path& config_dir,
   }
   const bool gyro = survey.error_model == survey_error::kGyroNsCtModelName;
   const auto only_with = [&](std::string_view key, bool allowed, std::string_view models) {
-    if (!reader.has(key) || allowed) return false;
+    if (!reader.has(key) || allowed) return;
     throw ConfigError(reader.pointer(key) + ": given with \"error_model\": \"" +
                       survey.error_model + "\"; it applies to " + std::string(models) +
                       " only: set \"error_model\" or drop it");
