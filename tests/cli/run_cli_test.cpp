@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -506,6 +509,106 @@ TEST_F(RunCli, TieOnMdIsCheckedAgainstTheTallyTakenToTheSensor) {
   EXPECT_NEAR(survey.at("md_m").back(), survey.at("md_m")[last] + 50.0, 1e-5);
 }
 
+/// The numbers of an iscwsa_covariance.csv (its six elements per row, rows in order).
+std::vector<double> covariance_values(const fs::path& path) {
+  std::vector<double> values;
+  std::stringstream file(read(path));
+  std::string line;
+  std::getline(file, line);
+  while (std::getline(file, line)) {
+    const std::vector<std::string> cells = csv_cells(line);
+    for (std::size_t i = 2; i < cells.size(); ++i) values.push_back(std::stod(cells[i]));
+  }
+  return values;
+}
+
+// "survey/error_model": the run writes iscwsa_covariance.csv for its own survey stations (one
+// row per station and source, the first survey station the model's tie-on) and the plot beside
+// the filter's sigmas. MWD Rev5's TOTAL is positive definite past the tie-on; the gyro model
+// takes its magnitudes from the run's white gyro model.
+TEST_F(RunCli, SurveyErrorModelBesideTheFiltersCovariance) {
+  const std::string well = dir_->write(
+      "run_well.json", R"({"latitude_deg": 46.58, "b_total_nT": 55000, "dip_deg": 65,
+        "declination_deg": -9, "convergence_deg": 0, "gravity_m_s2": 9.806,
+        "earth_rate_deg_h": 15.041, "vertical_section_azimuth_deg": 0,
+        "vertical_inc_limit_deg": 0.0001, "azimuth_reference": "true"})");
+  for (const auto& [model, sources] : {std::pair{"mwd_rev5", 36u}, std::pair{"gyro_ns_ct", 4u}}) {
+    nlohmann::json config = recording_config();
+    config["survey"] = {{"error_model", model}, {"well", well}};
+    const fs::path out = dir_->path() / (std::string("out_error_model_") + model);
+    const auto result =
+        run_cli("run '" + write_config(std::string("error_model_") + model + ".json", config) +
+                    "' --out '" + out.string() + "' --data '" +
+                    (dir_->path() / "recording").string() + "'" +
+                    (std::string(model) == "mwd_rev5" ? " --no-plot" : ""),
+                dir_->path());
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    if (std::string(model) == "gyro_ns_ct" && fs::exists(out / "survey.png")) {
+      EXPECT_TRUE(fs::exists(out / "survey_uncertainty.png")) << "gnuplot drew survey.png";
+    }
+    const auto types =
+        stochnav::testing::read_csv_text_column((out / "survey.csv").string(), "station_type");
+    const auto survey_md =
+        stochnav::testing::read_csv_columns((out / "survey.csv").string()).at("md_m");
+    std::vector<double> station_md;
+    for (std::size_t i = 0; i < types.size(); ++i) {
+      if (types[i] == "survey") station_md.push_back(survey_md[i]);
+    }
+    ASSERT_GE(station_md.size(), 2u);
+    std::stringstream file(read(out / "iscwsa_covariance.csv"));
+    std::string line;
+    std::getline(file, line);
+    EXPECT_EQ(line, "md_m,source,nn_m2,ee_m2,vv_m2,ne_m2,nv_m2,ev_m2");
+    std::vector<std::vector<std::string>> rows;
+    while (std::getline(file, line)) rows.push_back(csv_cells(line));
+    ASSERT_EQ(rows.size(), station_md.size() * sources) << model;
+    for (std::size_t k = 0; k < station_md.size(); ++k) {
+      const std::vector<std::string>& total = rows[(k + 1) * sources - 1];
+      ASSERT_EQ(total.size(), 8u);
+      EXPECT_EQ(total[1], "TOTAL");
+      EXPECT_NEAR(std::stod(total[0]), station_md[k], 1e-6);
+      const double nn = std::stod(total[2]), ee = std::stod(total[3]), vv = std::stod(total[4]);
+      const double ne = std::stod(total[5]), nv = std::stod(total[6]), ev = std::stod(total[7]);
+      if (k == 0) {
+        EXPECT_EQ(nn + ee + vv, 0.0) << "the first station is the model's tie-on";
+        continue;
+      }
+      Eigen::Matrix3d p;
+      p << nn, ne, nv, ne, ee, ev, nv, ev, vv;
+      if (std::string(model) == "mwd_rev5") {
+        EXPECT_EQ(Eigen::LLT<Eigen::Matrix3d>(p).info(), Eigen::Success)
+            << "TOTAL at MD " << station_md[k] << " not positive definite:\n" << p;
+      } else {
+        // Azimuth errors only: horizontal, positive semi-definite (near vertical, tiny).
+        EXPECT_EQ(vv, 0.0);
+        EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(p).eigenvalues().minCoeff(),
+                  -1e-12);
+      }
+    }
+  }
+  // The gyro magnitudes came from the run's white gyro model: the same file as from a fitted
+  // model with its N (not the OWSG magnitudes': GXY-RN is N / sqrt(60 s) here, not 0.4 deg/h).
+  const std::string fit = dir_->write(
+      "run_gyro_fit.json",
+      R"({"units": "deg/h", "rate_hz": 100, "terms": [{"type": "angle_random_walk", "N": 0.005}]})");
+  nlohmann::json config = recording_config();
+  config["survey"] = {{"error_model", "gyro_ns_ct"}, {"well", well}, {"noise_model", fit}};
+  const fs::path out = dir_->path() / "out_error_model_fit";
+  const auto result =
+      run_cli("run '" + write_config("error_model_fit.json", config) + "' --out '" + out.string() +
+                  "' --data '" + (dir_->path() / "recording").string() + "' --no-plot",
+              dir_->path());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const std::vector<double> from_fit = covariance_values(out / "iscwsa_covariance.csv");
+  const std::vector<double> from_run_model = covariance_values(
+      dir_->path() / "out_error_model_gyro_ns_ct" / "iscwsa_covariance.csv");
+  ASSERT_EQ(from_fit.size(), from_run_model.size());
+  for (std::size_t i = 0; i < from_fit.size(); ++i) {
+    EXPECT_NEAR(from_run_model[i], from_fit[i], 1e-9 * std::abs(from_fit[i]));
+  }
+  EXPECT_GT(*std::max_element(from_fit.begin(), from_fit.end()), 0.0);
+}
+
 class BadRun : public RunCli, public ::testing::WithParamInterface<BadRunCase> {};
 
 TEST_P(BadRun, ExitCodeTwoOneLineNoOutput) {
@@ -571,6 +674,19 @@ INSTANTIATE_TEST_SUITE_P(
         BadRunCase{"survey_unknown_key", R"({"survey": {"vs_azimuth_deg": 10}})", "",
                    "/survey/vs_azimuth_deg: unknown key"},
         BadRunCase{"survey_not_object", R"({"survey": 3})", "", "/survey: not an object"},
+        BadRunCase{"survey_error_model_typo", R"({"survey": {"error_model": "mwd_rev6"}})", "",
+                   "/survey/error_model 'mwd_rev6': unknown survey error model; did you mean"},
+        BadRunCase{"survey_mwd_without_well", R"({"survey": {"error_model": "mwd_rev5"}})", "",
+                   "/survey/well: missing; \"error_model\": \"mwd_rev5\" needs the well file"},
+        BadRunCase{"survey_noise_model_with_mwd",
+                   R"({"survey": {"error_model": "none", "noise_model": "fit.json"}})", "",
+                   "/survey/noise_model: given with \"error_model\": \"none\""},
+        BadRunCase{"survey_well_missing_file",
+                   R"({"survey": {"error_model": "gyro_ns_ct", "well": "absent_well.json"}})", "",
+                   "/survey/well: file not found"},
+        BadRunCase{"survey_gyrocompass_time_zero",
+                   R"({"survey": {"error_model": "gyro_ns_ct", "gyrocompass_time_s": 0}})", "",
+                   "/survey/gyrocompass_time_s"},
         BadRunCase{"open_loop", R"({"filter": {"feedback": "open_loop"}})", "",
                    "/filter/feedback: found \"open_loop\"; the navigator has one mode"}),
     [](const ::testing::TestParamInfo<BadRunCase>& case_info) { return case_info.param.name; });

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -276,6 +278,174 @@ TEST(SurveyCli, RunListingTieOnAndProjectionRowsAreSkipped) {
   EXPECT_EQ(file.rows.at({500.0, "TOTAL"}), std::vector<double>(6, 0.0)) << "the tie-on is exact";
   EXPECT_EQ(file.rows.count({572.5, "TOTAL"}), 0u);
 }
+
+// ---------------------------------------------------------------------------------------------
+// --model gyro_ns_ct: the OWSG continuous-gyro terms.
+
+/// Vertical to 300 m, a build of 3 deg / 30 m at azimuth 45 deg to 45 deg, a hold to 1200 m:
+/// gyrocompass stations to 15 deg, continuous from there.
+std::string gyro_listing_csv() {
+  std::ostringstream out;
+  out << "md_m,inclination_deg,azimuth_deg\n";
+  for (int md = 0; md <= 1200; md += 30) {
+    const double inclination = std::clamp((md - 300) / 10.0, 0.0, 45.0);
+    out << md << ',' << inclination << ',' << (inclination > 0 ? 45 : 0) << '\n';
+  }
+  return out.str();
+}
+
+constexpr std::size_t kGyroListingStations = 41;
+const std::vector<std::string> kGyroSources = {"GXY-RN", "GXY-GD", "GXY-GRW", "TOTAL"};
+
+TEST(SurveyCliGyro, OwsgMagnitudesFromAListing) {
+  TempDir dir;
+  const std::string listing = dir.write("listing.csv", gyro_listing_csv());
+  const std::string well = dir.write("well.json", example_well_json().dump());
+  const auto out = dir.path() / "out";
+  const auto result = run_survey(dir, listing, well, "gyro_ns_ct", out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("GXY-RN 0.4 deg/h, GXY-GD 0.5 deg/h, GXY-GRW 0.25 deg/sqrt(h)"),
+            std::string::npos)
+      << result.out;
+  const auto file = read_survey_covariance_file(out / "iscwsa_covariance.csv");
+  EXPECT_EQ(file.header, "md_m,source,nn_m2,ee_m2,vv_m2,ne_m2,nv_m2,ev_m2");
+  ASSERT_EQ(file.row_count, kGyroListingStations * kGyroSources.size());
+  for (int md = 0; md <= 1200; md += 30) {
+    std::vector<double> sum(6, 0.0);
+    for (std::size_t s = 0; s + 1 < kGyroSources.size(); ++s) {
+      const auto& row = file.rows.at({md, kGyroSources[s]});
+      for (std::size_t i = 0; i < 6; ++i) sum[i] += row[i];
+    }
+    const auto& total = file.rows.at({md, "TOTAL"});
+    for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(total[i], sum[i], 1e-12 * (1 + total[0]));
+    // Azimuth errors move a station horizontally only.
+    EXPECT_EQ(total[2], 0.0) << "VV at MD " << md;
+  }
+  EXPECT_GT(file.rows.at({1200.0, "TOTAL"})[0], 0.0);
+  EXPECT_GT(file.rows.at({1200.0, "GXY-GD"})[1], 0.0) << "the continuous survey drifts";
+  EXPECT_EQ(file.rows.at({300.0, "GXY-GD"})[1], 0.0) << "a gyrocompass station does not";
+}
+
+// A noise model whose mapping gives exactly the OWSG magnitudes (N = 0.25 deg/sqrt(h) is
+// GXY-GRW; N / sqrt(T) = 0.4 deg/h at T = 1406.25 s; 0.664 B = 0.5 deg/h) reproduces the OWSG
+// file; as written by `stochnav fit`, with the coefficients' sigmas.
+TEST(SurveyCliGyro, NoiseModelMappedToTheMagnitudes) {
+  TempDir dir;
+  const std::string listing = dir.write("listing.csv", gyro_listing_csv());
+  const std::string well = dir.write("well.json", example_well_json().dump());
+  const double b = 0.5 / std::sqrt(2.0 * std::log(2.0) / M_PI);
+  const nlohmann::json fit = {
+      {"units", "deg/h"},
+      {"rate_hz", 100},
+      {"terms",
+       {{{"type", "angle_random_walk"}, {"N", 0.25}, {"N_sigma", 0.001}},
+        {{"type", "bias_instability"}, {"B", b}, {"B_sigma", nullptr}},
+        {{"type", "sinusoid"}, {"amplitude", 0.1}, {"frequency_hz", 2}}}}};
+  const std::string noise_model = dir.write("fit.json", fit.dump());
+  const auto owsg = run_survey(dir, listing, well, "gyro_ns_ct", (dir.path() / "owsg").string());
+  ASSERT_EQ(owsg.exit_code, 0) << owsg.err;
+  const auto mapped = run_survey(
+      dir, listing, well,
+      "gyro_ns_ct --noise-model '" + noise_model + "' --gyrocompass-time-s 1406.25",
+      (dir.path() / "mapped").string());
+  ASSERT_EQ(mapped.exit_code, 0) << mapped.err;
+  EXPECT_NE(mapped.out.find("ignored sinusoid"), std::string::npos) << mapped.out;
+  const auto expected = read_survey_covariance_file(dir.path() / "owsg" / "iscwsa_covariance.csv");
+  const auto found = read_survey_covariance_file(dir.path() / "mapped" / "iscwsa_covariance.csv");
+  ASSERT_EQ(found.row_count, expected.row_count);
+  for (const auto& [key, values] : expected.rows) {
+    for (std::size_t i = 0; i < 6; ++i) {
+      EXPECT_NEAR(found.rows.at(key)[i], values[i], 1e-9 * (1e-9 + std::abs(values[i])))
+          << key.second << " at MD " << key.first;
+    }
+  }
+  // A slower run drifts longer between stations: GXY-GD grows as 1 / speed.
+  const auto slow = run_survey(dir, listing, well,
+                               "gyro_ns_ct --noise-model '" + noise_model +
+                                   "' --gyrocompass-time-s 1406.25 --running-speed-m-h 1371.6",
+                               (dir.path() / "slow").string());
+  ASSERT_EQ(slow.exit_code, 0) << slow.err;
+  const auto slow_file = read_survey_covariance_file(dir.path() / "slow" / "iscwsa_covariance.csv");
+  EXPECT_NEAR(slow_file.rows.at({1200.0, "GXY-GD"})[0],
+              4.0 * expected.rows.at({1200.0, "GXY-GD"})[0],
+              1e-9 * expected.rows.at({1200.0, "GXY-GD"})[0]);
+}
+
+struct SurveyGyroBadInputCase {
+  std::string name;
+  std::string model_and_options;  ///< after --model; FIT stands for the noise model file's path
+  nlohmann::json noise_model;     ///< fit.json's content
+  nlohmann::json well;
+  std::string expected_fragment;
+};
+
+void PrintTo(const SurveyGyroBadInputCase& c, std::ostream* os) { *os << c.name; }
+
+const nlohmann::json kGoodGyroFit = {
+    {"units", "deg/h"}, {"rate_hz", 100}, {"terms", {{{"type", "angle_random_walk"}, {"N", 0.1}}}}};
+
+class SurveyGyroBadInput : public ::testing::TestWithParam<SurveyGyroBadInputCase> {};
+
+TEST_P(SurveyGyroBadInput, ExitCodeTwoOneLineNoOutputFolder) {
+  const SurveyGyroBadInputCase& c = GetParam();
+  TempDir dir;
+  const std::string listing = dir.write("listing.csv", gyro_listing_csv());
+  const std::string well = dir.write("well.json", c.well.dump());
+  const std::string fit = dir.write("fit.json", c.noise_model.dump());
+  std::string model = c.model_and_options;
+  if (const auto at = model.find("FIT"); at != std::string::npos) {
+    model.replace(at, 3, "'" + fit + "'");
+  }
+  const auto out = dir.path() / "out";
+  const auto result = run_survey(dir, listing, well, model, out.string());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  ASSERT_FALSE(result.err.empty());
+  EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << "one line: " << result.err;
+  EXPECT_NE(result.err.find(c.expected_fragment), std::string::npos) << result.err;
+  EXPECT_FALSE(std::filesystem::exists(out)) << "a failed run left " << out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SurveyGyroBadInput,
+    ::testing::Values(
+        SurveyGyroBadInputCase{"noise_model_with_mwd", "mwd_rev5 --noise-model FIT", kGoodGyroFit,
+                               example_well_json(),
+                               "--noise-model applies to --model gyro_ns_ct only"},
+        SurveyGyroBadInputCase{"speed_with_mwd", "mwd_rev4 --running-speed-m-h 1000",
+                               kGoodGyroFit, example_well_json(),
+                               "--running-speed-m-h applies to --model gyro_ns_ct only"},
+        SurveyGyroBadInputCase{"time_without_noise_model", "gyro_ns_ct --gyrocompass-time-s 60",
+                               kGoodGyroFit, example_well_json(),
+                               "--gyrocompass-time-s maps a noise model"},
+        SurveyGyroBadInputCase{"time_zero", "gyro_ns_ct --noise-model FIT --gyrocompass-time-s 0",
+                               kGoodGyroFit, example_well_json(), "--gyrocompass-time-s"},
+        SurveyGyroBadInputCase{"speed_negative", "gyro_ns_ct --running-speed-m-h -5", kGoodGyroFit,
+                               example_well_json(), "--running-speed-m-h"},
+        SurveyGyroBadInputCase{"accelerometer_model", "gyro_ns_ct --noise-model FIT",
+                               {{"units", "m/s^2"},
+                                {"rate_hz", 100},
+                                {"terms", {{{"type", "angle_random_walk"}, {"N", 0.1}}}}},
+                               example_well_json(),
+                               "fit.json: /units: found \"m/s^2\"; expected a gyro rate unit"},
+        SurveyGyroBadInputCase{"negative_coefficient", "gyro_ns_ct --noise-model FIT",
+                               {{"units", "deg/h"},
+                                {"rate_hz", 100},
+                                {"terms", {{{"type", "angle_random_walk"}, {"N", -0.1}}}}},
+                               example_well_json(), "fit.json: /terms/0/N"},
+        SurveyGyroBadInputCase{"noise_model_not_an_object", "gyro_ns_ct --noise-model FIT",
+                               "{not json", example_well_json(), "fit.json"},
+        SurveyGyroBadInputCase{"no_earth_rate", "gyro_ns_ct", kGoodGyroFit,
+                               well_with("earth_rate_deg_h", 0.0),
+                               "well.json: /earth_rate_deg_h: 0; the gyro model gyrocompasses"},
+        SurveyGyroBadInputCase{"at_the_pole", "gyro_ns_ct", kGoodGyroFit,
+                               well_with("latitude_deg", 90.0),
+                               "well.json: /latitude_deg: 90; a gyrocompass cannot"},
+        SurveyGyroBadInputCase{"typo_model", "gyro_ns_tc", kGoodGyroFit, example_well_json(),
+                               "--model 'gyro_ns_tc': unknown survey error model; did you mean "
+                               "'gyro_ns_ct'?"}),
+    [](const ::testing::TestParamInfo<SurveyGyroBadInputCase>& case_info) {
+      return case_info.param.name;
+    });
 
 TEST(SurveyCli, MissingListingFileNamesIt) {
   TempDir dir;

@@ -22,7 +22,9 @@ struct RunArguments {
   bool no_plot = false;
 };
 
-void print_summary(const NavigationRunResult& result, const std::string& out) {
+/// `error_model`: the run config's "survey/error_model" (its file is named unless "none").
+void print_summary(const NavigationRunResult& result, const std::string& out,
+                   const std::string& error_model) {
   std::string text = fmt::format("{} epochs ({:.0f} s of data) in {:.2f} s; filter health: {}\n",
                            result.epochs, result.duration_s, result.wall_seconds,
                            result.health.ok() ? "ok" : "TROUBLE (see metrics.json)");
@@ -40,6 +42,7 @@ void print_summary(const NavigationRunResult& result, const std::string& out) {
   text += fmt::format("{} survey station(s)\n", result.survey_stations);
   text += "wrote " + out + "/{nav,biases,covariance,states,innovations" +
           (result.has_truth ? ",errors" : "") + ",survey}.csv, metrics.json" +
+          (error_model != "none" ? ", iscwsa_covariance.csv" : "") +
           (result.error_series.size() > 1 ? ", errors.png" : "") + '\n';
   write_standard_output(text);
 }
@@ -64,7 +67,7 @@ void add_run_command(CLI::App& app) {
     options.out_dir = arguments->out;
     options.progress = true;
     options.plot = !arguments->no_plot;
-    print_summary(run_navigation(config, options), arguments->out);
+    print_summary(run_navigation(config, options), arguments->out, config.survey.error_model);
   });
 }
 

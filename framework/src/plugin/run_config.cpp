@@ -8,6 +8,8 @@
 #include "stochnav/core/errors.hpp"
 #include "stochnav/io/json_document.hpp"
 #include "stochnav/plugin/params.hpp"
+#include "stochnav/survey_error/survey_inputs.hpp"
+#include "stochnav/survey_error/tool_models.hpp"
 
 namespace stochnav::plugin {
 namespace fs = std::filesystem;
@@ -250,7 +252,51 @@ InitialErrorConfig parse_initial_error(const nlohmann::json& json, const std::st
   return error;
 }
 
-SurveyConfig parse_survey(const nlohmann::json& json, const std::string& pointer) {
+/// "survey"'s error-model keys (SurveyConfig): the files read here, so a bad one stops the
+/// run before it starts.
+void parse_survey_error_model(ParamReader& reader, const fs::path& config_dir,
+                              SurveyConfig& survey) {
+  if (reader.has("error_model")) {
+    survey.error_model = reader.text("error_model");
+    if (survey.error_model != "none") {
+      survey_error::check_tool_model_name(survey.error_model, reader.pointer("error_model"));
+    }
+  }
+  const bool gyro = survey.error_model == survey_error::kGyroNsCtModelName;
+  const auto only_with = [&](std::string_view key, bool allowed, std::string_view models) {
+    if (!reader.has(key) || allowed) return;
+    throw ConfigError(reader.pointer(key) + ": given with \"error_model\": \"" +
+                      survey.error_model + "\"; it applies to " + std::string(models) +
+                      " only: set \"error_model\" or drop it");
+  };
+  only_with("well", survey.error_model != "none", "an error model");
+  only_with("noise_model", gyro, "\"gyro_ns_ct\"");
+  only_with("gyrocompass_time_s", gyro, "\"gyro_ns_ct\"");
+  only_with("running_speed_m_h", gyro, "\"gyro_ns_ct\"");
+  if (reader.has("well")) {
+    const std::string path = existing_file(reader, "well", config_dir).string();
+    survey.well = survey_error::read_well_parameters(path);
+    if (gyro) survey_error::check_well_for_gyro(*survey.well, path);
+  } else if (survey.error_model != "none" && !gyro) {
+    throw ConfigError(reader.pointer("well") + ": missing; \"error_model\": \"" +
+                      survey.error_model +
+                      "\" needs the well file of `stochnav survey --well` (magnetic field, "
+                      "gravity; docs/survey-error-model.md)");
+  }
+  if (reader.has("noise_model")) {
+    survey.gyro_noise_model = survey_error::read_gyro_noise_model(
+        existing_file(reader, "noise_model", config_dir).string());
+  }
+  if (reader.has("gyrocompass_time_s")) {
+    survey.gyrocompass_time_s = reader.number("gyrocompass_time_s", Bound::kPositive, "s");
+  }
+  if (reader.has("running_speed_m_h")) {
+    survey.running_speed_m_h = reader.number("running_speed_m_h", Bound::kPositive, "m/h");
+  }
+}
+
+SurveyConfig parse_survey(const nlohmann::json& json, const std::string& pointer,
+                          const fs::path& config_dir) {
   ParamReader reader(json, pointer);
   SurveyConfig survey;
   if (reader.has("vertical_section_azimuth_deg")) {
@@ -295,6 +341,7 @@ SurveyConfig parse_survey(const nlohmann::json& json, const std::string& pointer
   if (reader.has("grid_convergence_deg")) {
     survey.grid_convergence_deg = number_in(reader, "grid_convergence_deg", -10.0, 10.0, "deg");
   }
+  parse_survey_error_model(reader, config_dir, survey);
   reader.finish();
   return survey;
 }
@@ -486,7 +533,7 @@ RunConfig parse_run_config(const nlohmann::json& document, const fs::path& confi
     reader.finish();
   }
   if (const auto& survey = object_at(root, "survey", false); !survey.is_null()) {
-    config.survey = parse_survey(survey, root.pointer("survey"));
+    config.survey = parse_survey(survey, root.pointer("survey"), config_dir);
   }
   root.finish();
   return config;

@@ -5,7 +5,7 @@
 #include "mwd_models.hpp"
 #include "stochnav/core/angles.hpp"
 #include "stochnav/core/errors.hpp"
-#include "stochnav/core/nearest_name.hpp"
+#include "stochnav/survey_error/tool_models.hpp"
 
 namespace stochnav::survey_error {
 
@@ -58,14 +58,9 @@ const SurveyErrorModel& survey_error_model(std::string_view name) {
   static const SurveyErrorModel rev4 = make_mwd_rev4_model();
   if (name == rev5.name) return rev5;
   if (name == rev4.name) return rev4;
-  const auto names = survey_error_model_names();
-  std::string message = "--model '" + std::string(name) + "': unknown survey error model; ";
-  if (const auto nearest = nearest_name(name, names)) {
-    message += "did you mean '" + *nearest + "'?";
-  } else {
-    message += "use mwd_rev5 (ISCWSA MWD Rev5.11) or mwd_rev4 (ISCWSA MWD Rev4)";
-  }
-  throw ConfigError(message);
+  check_tool_model_name(name, "--model");
+  throw ConfigError("--model '" + std::string(name) +
+                    "': not an ISCWSA MWD model; use mwd_rev5 or mwd_rev4");
 }
 
 }  // namespace stochnav::survey_error

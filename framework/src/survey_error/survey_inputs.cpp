@@ -3,12 +3,15 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cmath>
+#include <numbers>
 #include <string_view>
 
 #include "stochnav/core/angles.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/io/csv_table_reader.hpp"
 #include "stochnav/io/json_document.hpp"
+#include "stochnav/model/noise_model_json.hpp"
 #include "stochnav/plugin/params.hpp"
 
 namespace stochnav::survey_error {
@@ -141,6 +144,37 @@ void check_listing_against_well(const std::vector<ListingStation>& stations,
       "{}: /tie_on_tvd_m: missing, and {} starts at MD {:g} m, not at the surface; add "
       "\"tie_on_tvd_m\": the TVD (m) of its first station, for the depth-stretch term DSTG",
       well_path, listing_path, stations.front().md_m));
+}
+
+void check_well_for_gyro(const WellParameters& well, const std::string& well_path) {
+  if (!(well.earth_rate_rad_s > 0.0)) {
+    throw ConfigError(well_path +
+                      ": /earth_rate_deg_h: 0; the gyro model gyrocompasses, so give the Earth "
+                      "rate (> 0, e.g. 15.041 deg/h)");
+  }
+  if (!(std::abs(well.latitude_rad) < std::numbers::pi / 2.0)) {
+    throw ConfigError(fmt::format(
+        "{}: /latitude_deg: {:g}; a gyrocompass cannot find north at a pole: the gyro model "
+        "needs a latitude in (-90, 90) deg",
+        well_path, well.latitude_rad * kDegPerRad));
+  }
+}
+
+NoiseModel read_gyro_noise_model(const std::string& path) {
+  const nlohmann::json json = read_json_document(path, "the gyro noise model (--noise-model)");
+  NoiseModel model;
+  try {
+    model = noise_model_from_json(json);
+  } catch (const ConfigError& error) {
+    throw ConfigError(path + ": " + error.what());
+  }
+  if (quantity_of(model.unit) != Quantity::kAngularRate) {
+    throw ConfigError(fmt::format(
+        "{}: /units: found \"{}\"; expected a gyro rate unit (deg/h, deg/s or rad/s): give the "
+        "fitted noise model of the tool's x-y gyros",
+        path, unit_name(model.unit)));
+  }
+  return model;
 }
 
 }  // namespace stochnav::survey_error

@@ -68,6 +68,8 @@
 
 namespace stochnav {
 
+struct SurveyErrorModelRequest;  // experiment/survey_error_files.hpp
+
 /// The hole's direction at a point (deg; inclination from vertical down, azimuth from true
 /// north).
 struct SurveyDirection {
@@ -261,9 +263,13 @@ class SurveyRecorder final {
 ///                       otherwise). The ellipses, centred on the minimum-curvature points, and
 ///                       the +/-2-sigma TVD bars are magnified by the factor in the title (1, 2
 ///                       or 5 x 10^k) so that the largest ellipse spans about 3 % of the plan.
+///   iscwsa_covariance.csv, survey_uncertainty.png
+///                       with `error_model`: the survey tool model's covariance of the stations
+///                       beside the filter's (experiment/survey_error_files.hpp)
 /// Throws InputError when a file cannot be written or gnuplot fails.
 std::vector<std::unique_ptr<PendingFile>> write_survey_files(
     const SurveyRecorder& recorder, const SurveyTieOn& tie_on, const std::filesystem::path& out_dir,
-    bool plot, const SurveyListingOptions& listing = {});
+    bool plot, const SurveyListingOptions& listing = {},
+    const SurveyErrorModelRequest* error_model = nullptr);
 
 }  // namespace stochnav

@@ -44,7 +44,12 @@
 //                "tie_on_tvd_m": 1200,                 // tie-on TVD below the datum, optional
 //                "sensor_to_bit_m": 12.5,              // survey sensor behind the bit, [0, 200]
 //                "tie_on_md_tolerance_m": 5,           // tie-on MD vs the tally, (0, 1000]
-//                "grid_convergence_deg": 1.2}          // grid north from true, [-10, 10]
+//                "grid_convergence_deg": 1.2,          // grid north from true, [-10, 10]
+//                "error_model": "gyro_ns_ct",          // none | mwd_rev5 | mwd_rev4 | gyro_ns_ct
+//                "well": "well.json",                  // `stochnav survey --well` file
+//                "noise_model": "gyro_fit.json",       // gyro_ns_ct: fitted x-y gyro model
+//                "gyrocompass_time_s": 60,             // gyro_ns_ct with a noise model, > 0
+//                "running_speed_m_h": 2743.2}          // gyro_ns_ct, > 0
 //   }
 // Three-axis values accept a number (all axes) or [x, y, z]. With "fit", the noise model is
 // fitted to the calibration record by the plugin's fitter (params then hold its fit options).
@@ -64,6 +69,8 @@
 
 #include "stochnav/filter/filter_options.hpp"
 #include "stochnav/plugin/noise_model_plugin.hpp"
+#include "stochnav/survey_error/gyro_noise_mapping.hpp"
+#include "stochnav/survey_error/well_parameters.hpp"
 
 namespace stochnav::plugin {
 
@@ -229,6 +236,22 @@ struct SurveyConfig {
   /// "grid_convergence_deg" (deg), [-10, 10]: grid north's angle from true north, clockwise
   /// positive; survey.csv's grid_azimuth_deg = azimuth_deg - this. Absent: grid_azimuth_deg NaN.
   std::optional<double> grid_convergence_deg;
+  /// "error_model": the survey tool model (survey_error/tool_models.hpp) whose covariance the
+  /// run writes beside the filter's for its survey stations (iscwsa_covariance.csv,
+  /// survey_uncertainty.png; experiment/survey.hpp). "none" (default): neither file.
+  std::string error_model = "none";
+  /// "well": a `stochnav survey --well` file (survey_error/survey_inputs.hpp), read here.
+  /// Required for mwd_rev5/mwd_rev4 (the magnetic field); for gyro_ns_ct absent means the
+  /// tie-on's latitude, 15.041 deg/h, 9.80665 m/s^2, true north.
+  std::optional<survey_error::WellParameters> well;
+  /// "noise_model" (gyro_ns_ct): a fitted gyro noise model file (`stochnav fit` JSON) mapped to
+  /// GXY-RN/GD/GRW (survey_error/gyro_noise_mapping.hpp). Absent: the run's own gyro model when
+  /// it is white (plugin "white", fitted or not), else the OWSG magnitudes.
+  std::optional<NoiseModel> gyro_noise_model;
+  /// "gyrocompass_time_s" (s), > 0: T of the mapping.
+  double gyrocompass_time_s = survey_error::kDefaultGyrocompassTime_s;
+  /// "running_speed_m_h" (m/h), > 0: the continuous survey's speed; absent: OWSG's 2743.2.
+  std::optional<double> running_speed_m_h;
 };
 
 struct RunConfig {

@@ -28,7 +28,8 @@
 // to K, not their whole error), RN independent between gyrocompass stations but the same
 // initialising error at every continuous station. The position error of a station is then
 // linear in the independent variables and its covariance exact to first order
-// (leg_effects.hpp, propagate_loadings).
+// (leg_effects.hpp, propagate_loadings). The magnitudes from a fitted gyro noise model:
+// gyro_noise_mapping.hpp; `stochnav survey --model gyro_ns_ct`: tool_models.hpp.
 
 #include <span>
 #include <vector>

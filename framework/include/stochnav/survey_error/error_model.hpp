@@ -103,8 +103,9 @@ struct SurveyErrorModel {
 };
 
 /// The model called `name` ("mwd_rev5" = ISCWSA MWD Rev5.11, 35 sources; "mwd_rev4", 27
-/// sources). Throws ConfigError "--model 'NAME': unknown survey error model; use mwd_rev5 or
-/// mwd_rev4" (with a "did you mean" for a likely typo).
+/// sources). Throws ConfigError "--model 'NAME': unknown survey error model; use ..." (with a
+/// "did you mean" for a likely typo; tool_models.hpp), or "not an ISCWSA MWD model" for
+/// gyro_ns_ct, which is not a table of ISCWSA sources.
 const SurveyErrorModel& survey_error_model(std::string_view name);
 
 /// The names survey_error_model() knows, in a stable order.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "stochnav/model/noise_model.hpp"
 #include "stochnav/survey_error/error_propagation.hpp"
 #include "stochnav/survey_error/well_parameters.hpp"
 
@@ -41,5 +42,15 @@ WellParameters read_well_parameters(const std::string& path);
 void check_listing_against_well(const std::vector<ListingStation>& stations,
                                 const WellParameters& well, const std::string& well_path,
                                 const std::string& listing_path);
+
+/// Throws ConfigError when the well cannot carry a gyrocompass model (gyro_ns_ct): an Earth
+/// rate of 0 ("/earth_rate_deg_h") or a latitude of +-90 deg ("/latitude_deg"), naming
+/// `well_path` (a file, or a run config's JSON pointer to its "well").
+void check_well_for_gyro(const WellParameters& well, const std::string& well_path);
+
+/// A fitted noise model of the x-y gyros (the JSON of `stochnav fit`, model/noise_model_json.hpp)
+/// from `path`: InputError when it cannot be read or is not JSON, ConfigError "<path>:
+/// <pointer>: problem" when it is not a valid noise model or not in a gyro rate unit.
+NoiseModel read_gyro_noise_model(const std::string& path);
 
 }  // namespace stochnav::survey_error

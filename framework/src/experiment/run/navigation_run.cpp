@@ -23,6 +23,7 @@
 #include "stochnav/experiment/station_qc.hpp"
 #include "stochnav/experiment/streaming_aligner.hpp"
 #include "stochnav/experiment/survey.hpp"
+#include "stochnav/experiment/survey_error_files.hpp"
 #include "stochnav/filter/heading_hypotheses.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
@@ -460,7 +461,10 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
                                        config.survey.tie_on_tvd_m,
                                        config.survey.sensor_to_bit_m,
                                        config.survey.grid_convergence_deg};
-    files->commit(result, options.plot, survey, tie_on, listing);
+    const std::optional<SurveyErrorModelRequest> error_model =
+        survey_error_model_request(config.survey, tie_on, *plugins.gyro);
+    files->commit(result, options.plot, survey, tie_on, listing,
+                  error_model ? &*error_model : nullptr);
   }
   return result;
 }

@@ -175,7 +175,7 @@ void remove_previous_run(const std::filesystem::path& out_dir) {
       "metrics.json", "nav.csv",    "biases.csv",        "innovations.csv",
       "errors.csv",   "errors.png", "covariance.csv",    "survey.csv",
       "survey.png",   "well_path.csv", "survey_errors.csv", "states.csv",
-      "trajectory.xml"};
+      "trajectory.xml", "iscwsa_covariance.csv", "survey_uncertainty.png"};
   std::error_code ignored;
   for (const char* name : kRunFiles) std::filesystem::remove(out_dir / name, ignored);
 }
@@ -183,7 +183,8 @@ void remove_previous_run(const std::filesystem::path& out_dir) {
 }  // namespace
 
 void RunFiles::commit(const NavigationRunResult& result, bool plot, const SurveyRecorder& survey,
-                      const SurveyTieOn& tie_on, const SurveyListingOptions& listing) {
+                      const SurveyTieOn& tie_on, const SurveyListingOptions& listing,
+                      const SurveyErrorModelRequest* error_model) {
   remove_previous_run(out_dir_);
   const std::filesystem::path plot_path = out_dir_ / "errors.png";
   if (plot && result.has_truth && result.error_series.size() > 1) {
@@ -196,7 +197,7 @@ void RunFiles::commit(const NavigationRunResult& result, bool plot, const Survey
     }
   }
   std::vector<std::unique_ptr<PendingFile>> survey_files =
-      write_survey_files(survey, tie_on, out_dir_, plot, listing);
+      write_survey_files(survey, tie_on, out_dir_, plot, listing, error_model);
   // metrics.json last: its presence says the run completed.
   nav_.commit();
   biases_.commit();

@@ -56,7 +56,8 @@ class RunFiles final {
   /// metrics.json, errors.png (when `plot` and gnuplot is present), the survey files
   /// (experiment/survey.hpp), then every file renamed into place.
   void commit(const NavigationRunResult& result, bool plot, const SurveyRecorder& survey,
-              const SurveyTieOn& tie_on, const SurveyListingOptions& listing);
+              const SurveyTieOn& tie_on, const SurveyListingOptions& listing,
+              const SurveyErrorModelRequest* error_model = nullptr);
 
  private:
   OutputFolder folder_;  // first: created before the files, removed after them on failure

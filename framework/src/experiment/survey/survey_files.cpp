@@ -14,6 +14,7 @@
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/experiment/survey.hpp"
+#include "stochnav/experiment/survey_error_files.hpp"
 #include "stochnav/experiment/survey_listing.hpp"
 #include "stochnav/experiment/witsml_trajectory.hpp"
 #include "stochnav/report/gnuplot.hpp"
@@ -205,11 +206,10 @@ std::unique_ptr<PendingFile> pending_survey_plot(
 
 }  // namespace
 
-std::vector<std::unique_ptr<PendingFile>> write_survey_files(const SurveyRecorder& recorder,
-                                                             const SurveyTieOn& recorded_tie_on,
-                                                             const std::filesystem::path& out_dir,
-                                                             bool plot,
-                                                             const SurveyListingOptions& options) {
+std::vector<std::unique_ptr<PendingFile>> write_survey_files(
+    const SurveyRecorder& recorder, const SurveyTieOn& recorded_tie_on,
+    const std::filesystem::path& out_dir, bool plot, const SurveyListingOptions& options,
+    const SurveyErrorModelRequest* error_model) {
   const std::vector<SurveyStation> stations = as_listed(recorder.stations());
   const SurveyTieOn tie_on = as_listed(recorded_tie_on);
   const std::vector<WellPathPoint> minimum_curvature_stations =
@@ -246,6 +246,11 @@ std::vector<std::unique_ptr<PendingFile>> write_survey_files(const SurveyRecorde
     if (auto picture =
             pending_survey_plot(recorder, minimum_curvature_stations, out_dir / "survey.png")) {
       files.push_back(std::move(picture));
+    }
+  }
+  if (error_model != nullptr) {
+    for (auto& file : write_survey_error_files(*error_model, stations, out_dir, plot)) {
+      files.push_back(std::move(file));
     }
   }
   return files;

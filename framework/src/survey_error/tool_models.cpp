@@ -1,0 +1,56 @@
+#include "stochnav/survey_error/tool_models.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "stochnav/core/errors.hpp"
+#include "stochnav/core/nearest_name.hpp"
+#include "stochnav/survey_error/error_model.hpp"
+
+namespace stochnav::survey_error {
+
+std::span<const std::string> tool_model_names() {
+  static const std::array<std::string, 3> names = {"mwd_rev5", "mwd_rev4",
+                                                   std::string(kGyroNsCtModelName)};
+  return names;
+}
+
+void check_tool_model_name(std::string_view name, std::string_view where) {
+  const auto names = tool_model_names();
+  if (std::find(names.begin(), names.end(), name) != names.end()) return;
+  std::string message =
+      std::string(where) + " '" + std::string(name) + "': unknown survey error model; ";
+  if (const auto nearest = nearest_name(name, names)) {
+    message += "did you mean '" + *nearest + "'?";
+  } else {
+    message +=
+        "use mwd_rev5 (ISCWSA MWD Rev5.11), mwd_rev4 (ISCWSA MWD Rev4) or gyro_ns_ct (the OWSG "
+        "continuous-gyro terms)";
+  }
+  throw ConfigError(message);
+}
+
+std::string tool_model_title(std::string_view name) {
+  if (name == kGyroNsCtModelName) return "OWSG GYRO-NS-CT continuous-gyro terms";
+  return survey_error_model(name).title;
+}
+
+SurveyCovariance tool_model_covariance(std::string_view name,
+                                       std::span<const ListingStation> stations,
+                                       const WellParameters& well,
+                                       const ContinuousGyroTerms& gyro) {
+  check_tool_model_name(name, "--model");
+  if (name != kGyroNsCtModelName) {
+    return propagate_survey_errors(survey_error_model(name), stations, well);
+  }
+  SurveyCovariance result;
+  for (const ListingStation& station : stations) result.md_m.push_back(station.md_m);
+  result.sources = continuous_gyro_covariance(gyro, stations, well);
+  result.total_nev_m2.assign(stations.size(), Eigen::Matrix3d::Zero());
+  for (const SourceCovariance& source : result.sources) {
+    for (std::size_t k = 0; k < stations.size(); ++k) result.total_nev_m2[k] += source.nev_m2[k];
+  }
+  return result;
+}
+
+}  // namespace stochnav::survey_error
