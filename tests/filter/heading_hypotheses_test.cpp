@@ -280,22 +280,11 @@ class FaultyStaticAid final : public plugin::AidPlugin {
   bool measure(double t_s, const NavState& state, const plugin::ImuSample&,
                Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::MatrixXd> h,
                Eigen::Ref<Eigen::MatrixXd> r) const override {
-    const EarthRadii radii = earth_radii(site_.latitude_rad);
-    z(0) = (state.longitude_rad - site_.longitude_rad) * (radii.transverse_m + site_.height_m) *
-           std::cos(site_.latitude_rad);
-    z(1) = (state.latitude_rad - site_.latitude_rad) * (radii.meridian_m + site_.height_m);
-    z(2) = state.height_m - site_.height_m;
-    z.tail<3>() = state.v_n;
+    testing::static_measurement(site_, state, kPositionSigma, kVelocitySigma, z, h, r);
     std::mt19937_64 engine(static_cast<std::uint64_t>(std::llround(t_s)));
     std::normal_distribution<double> normal(0.0, 1.0);
     for (int i = 0; i < 6; ++i) z(i) -= (i < 3 ? kPositionSigma : kVelocitySigma) * normal(engine);
     if (fault_ == Fault::kBurst && in_fault(t_s)) z.tail<3>().array() -= 0.1;
-    h.setZero();
-    h.block<3, 3>(0, plugin::core_state::kPosition).setIdentity();
-    h.block<3, 3>(3, plugin::core_state::kVelocity).setIdentity();
-    r.setZero();
-    r.diagonal().head<3>().setConstant(kPositionSigma * kPositionSigma);
-    r.diagonal().tail<3>().setConstant(kVelocitySigma * kVelocitySigma);
     return true;
   }
   std::string describe() const override { return "faulty_static"; }

@@ -88,6 +88,27 @@ class TestWhiteNoise final : public plugin::NoiseModelPlugin {
   double n_;
 };
 
+/// The noise-free measurement of a tool at rest at `site`: z = (the ENU position offset of
+/// `state` from the site (m), its velocity (m/s)), H on the core position and velocity states,
+/// R = diag(sigma_position^2 x 3, sigma_velocity^2 x 3).
+inline void static_measurement(const NavState& site, const NavState& state,
+                               double sigma_position_m, double sigma_velocity_mps,
+                               Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::MatrixXd> h,
+                               Eigen::Ref<Eigen::MatrixXd> r) {
+  const EarthRadii radii = earth_radii(site.latitude_rad);
+  z(0) = (state.longitude_rad - site.longitude_rad) * (radii.transverse_m + site.height_m) *
+         std::cos(site.latitude_rad);
+  z(1) = (state.latitude_rad - site.latitude_rad) * (radii.meridian_m + site.height_m);
+  z(2) = state.height_m - site.height_m;
+  z.segment<3>(3) = state.v_n;
+  h.setZero();
+  h.block<3, 3>(0, plugin::core_state::kPosition).setIdentity();
+  h.block<3, 3>(3, plugin::core_state::kVelocity).setIdentity();
+  r.setZero();
+  r.diagonal().head<3>().setConstant(sigma_position_m * sigma_position_m);
+  r.diagonal().tail<3>().setConstant(sigma_velocity_mps * sigma_velocity_mps);
+}
+
 /// Position (ENU, against the site) and zero velocity at 1 Hz, with measurement noise drawn
 /// from exactly the R it reports, so that a consistent filter sees what it assumes.
 class NoisyStaticAid final : public plugin::AidPlugin {
@@ -107,21 +128,10 @@ class NoisyStaticAid final : public plugin::AidPlugin {
   bool measure(double, const NavState& state, const plugin::ImuSample&,
                Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::MatrixXd> h,
                Eigen::Ref<Eigen::MatrixXd> r) const override {
-    const EarthRadii radii = earth_radii(site_.latitude_rad);
-    z(0) = (state.longitude_rad - site_.longitude_rad) * (radii.transverse_m + site_.height_m) *
-           std::cos(site_.latitude_rad);
-    z(1) = (state.latitude_rad - site_.latitude_rad) * (radii.meridian_m + site_.height_m);
-    z(2) = state.height_m - site_.height_m;
-    z.segment<3>(3) = state.v_n;
+    static_measurement(site_, state, sigma_position_m_, sigma_velocity_mps_, z, h, r);
     for (int i = 0; i < 6; ++i) {
       z(i) -= (i < 3 ? sigma_position_m_ : sigma_velocity_mps_) * normal_(engine_);
     }
-    h.setZero();
-    h.block<3, 3>(0, plugin::core_state::kPosition).setIdentity();
-    h.block<3, 3>(3, plugin::core_state::kVelocity).setIdentity();
-    r.setZero();
-    r.diagonal().head<3>().setConstant(sigma_position_m_ * sigma_position_m_);
-    r.diagonal().tail<3>().setConstant(sigma_velocity_mps_ * sigma_velocity_mps_);
     return true;
   }
   std::string describe() const override { return "noisy_static"; }

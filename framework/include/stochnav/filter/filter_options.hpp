@@ -125,11 +125,10 @@ struct FilterOptions {
   /// hypothesis_robust_weights"): an innovation gated out by every hypothesis does not weigh
   /// them (the aid, not a heading, failed there), and each one that does counts by a Student-t
   /// likelihood with 5 degrees of freedom, whose influence is bounded, instead of a Gaussian
-  /// one. Under axial vibration at 8.37 Hz the ROP's innovations were gated out
-  /// 362 times in 10 min (NIS 154 on average); read as Gaussian, differences of a part in a
-  /// thousand in S between hypotheses collapsed the bank onto a heading 24 deg off (weight
-  /// 0.994) on a sliding well at 74 N (docs/drilling-envelope.md, section 4, fix 6). false:
-  /// the ablation.
+  /// one. Under axial vibration at 8.37 Hz the ROP's innovations were gated out 362 times in
+  /// 10 min (NIS 154 on average); read as Gaussian, differences of a part in a thousand in S
+  /// between hypotheses collapsed the bank onto a heading 24 deg off (weight 0.995) on a
+  /// sliding well at 74 N (docs/drilling-envelope.md, section 4, fix 6). false: the ablation.
   bool heading_hypotheses_robust_weights = true;
 
   /// Covariance products by blocks (filter/error_state_filter.hpp, BlockTransition and

@@ -184,9 +184,9 @@ void add_survey_qc(const std::vector<SurveyStation>& stations, NavigationRunResu
 // hypotheses, none holding kResolvedWeight of the weight, reports the mixture's mean and
 // covariance; with headings tens of degrees apart the errors are not Gaussian (along a circle
 // of the drilled length), and a heading in the prior's tail leaves the 3-sigma box in position
-// while the azimuth stays inside (sliding east-west at 74 N: north 4.2 sigma, azimuth 2.9; docs/
-// drilling-envelope.md, section 7). Not optimistic, which says the covariance is too small:
-// unresolved, with a warning.
+// while the azimuth stays about inside (sliding east-west at 74 N: north 4.9 sigma, azimuth 3.1;
+// docs/drilling-envelope.md, section 4, fix 6). Not "optimistic", which says the covariance is
+// too small: unresolved, with a warning.
 constexpr double kResolvedWeight = 0.9;
 
 void add_heading_resolution(const HeadingHypotheses& bank, NavigationRunResult& result) {
