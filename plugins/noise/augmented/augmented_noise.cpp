@@ -30,6 +30,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -241,6 +242,8 @@ stochnav::plugin::ValueCodec<std::vector<TermType>> fit_terms_codec() {
                                                      "a term name");
       }
       names.push_back(json[i].get<std::string>());
+      // An unknown name is refused at its own index.
+      stochnav::parse_fit_terms(std::span(&names.back(), 1), pointer + "/" + std::to_string(i));
     }
     return stochnav::parse_fit_terms(names, pointer);
   };
