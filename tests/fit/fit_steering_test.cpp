@@ -22,11 +22,11 @@ namespace {
 
 using fit_testing::simulated_fit_data;
 
-constexpr double kRateHz = 100.0;
+constexpr double kSteeringRateHz = 100.0;
 
 // White noise plus one Gauss-Markov term (plain units; N per sqrt(s), sigma, tau_c in s).
 NoiseModel white_and_gauss_markov(double tau_c_s) {
-  return {Unit::kPlain, kRateHz, {AngleRandomWalkTerm{1e-3}, GaussMarkovTerm{2e-3, tau_c_s}}};
+  return {Unit::kPlain, kSteeringRateHz, {AngleRandomWalkTerm{1e-3}, GaussMarkovTerm{2e-3, tau_c_s}}};
 }
 
 const std::vector<TermType> kWhiteGm = {TermType::kAngleRandomWalk, TermType::kGaussMarkov};
@@ -40,7 +40,7 @@ TEST(FitSteering, FixedCorrelationTimeIsHeldExactlyAndTheOthersAreRecovered) {
                            .controls = {{.term = 1, .parameter = 1, .fixed = tau_c}}};
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     const FitResult fit =
-        fit_noise_terms(simulated_fit_data(truth, std::size_t{1} << 17, kRateHz, seed), options);
+        fit_noise_terms(simulated_fit_data(truth, std::size_t{1} << 17, kSteeringRateHz, seed), options);
     ASSERT_EQ(fit.model.terms.size(), 2u);
     const auto& gm = std::get<GaussMarkovTerm>(fit.model.terms[1]);
     EXPECT_EQ(gm.tau_c, tau_c) << "seed " << seed;
@@ -59,7 +59,7 @@ TEST(FitSteering, BoundIsRespectedAndNotAFailedParameter) {
   // The truth (tau_c = 0.5 s) is below the range given: tau_c stops on the bound given, which
   // is a warning, not a parameter on its search bound.
   const FitData data =
-      simulated_fit_data(white_and_gauss_markov(0.5), std::size_t{1} << 17, kRateHz, 5);
+      simulated_fit_data(white_and_gauss_markov(0.5), std::size_t{1} << 17, kSteeringRateHz, 5);
   const FitOptions options{.terms = kWhiteGm,
                            .controls = {{.term = 1, .parameter = 1, .lower = 1.0, .upper = 50.0}}};
   const FitResult fit = fit_noise_terms(data, options);
@@ -89,14 +89,14 @@ TEST(FitSteering, BoundIsRespectedAndNotAFailedParameter) {
 TEST(FitSteering, StartsLeaveTheShortCorrelationMinimumAndNameTheTerms) {
   const NoiseModel truth{
       Unit::kPlain,
-      kRateHz,
+      kSteeringRateHz,
       {AngleRandomWalkTerm{1e-3}, GaussMarkovTerm{5e-3, 1.0}, GaussMarkovTerm{2.5e-3, 100.0}}};
   const std::vector<TermType> terms = {TermType::kAngleRandomWalk, TermType::kGaussMarkov,
                                        TermType::kGaussMarkov};
   const auto tau_c = [](const FitResult& fit, std::size_t term) {
     return std::get<GaussMarkovTerm>(fit.model.terms[term]).tau_c;
   };
-  const FitData first = simulated_fit_data(truth, 200000, kRateHz, 1);
+  const FitData first = simulated_fit_data(truth, 200000, kSteeringRateHz, 1);
   const FitResult confined =
       fit_noise_terms(first, {.terms = terms,
                               .controls = {{.term = 1, .parameter = 1, .upper = 2.7},
@@ -109,7 +109,7 @@ TEST(FitSteering, StartsLeaveTheShortCorrelationMinimumAndNameTheTerms) {
                                         {.term = 2, .parameter = 1, .start = 100.0}}};
   for (std::uint64_t seed = 1; seed <= 2; ++seed) {
     const FitResult fit = fit_noise_terms(
-        seed == 1 ? first : simulated_fit_data(truth, 200000, kRateHz, seed), started);
+        seed == 1 ? first : simulated_fit_data(truth, 200000, kSteeringRateHz, seed), started);
     EXPECT_FALSE(fit.diagnostics.failed()) << fit.diagnostics.failure();
     EXPECT_LT(fit.diagnostics.reduced_chi_square(), 2.0);
     EXPECT_NEAR(tau_c(fit, 1), 1.0, 0.5) << "seed " << seed;
@@ -120,7 +120,7 @@ TEST(FitSteering, StartsLeaveTheShortCorrelationMinimumAndNameTheTerms) {
 
 TEST(FitSteering, BadControlsAreRefusedNamingTheOption) {
   const FitData data =
-      simulated_fit_data(white_and_gauss_markov(2.0), std::size_t{1} << 12, kRateHz, 1);
+      simulated_fit_data(white_and_gauss_markov(2.0), std::size_t{1} << 12, kSteeringRateHz, 1);
   const auto message = [&](FitOptions options) {
     try {
       fit_noise_terms(data, options);
