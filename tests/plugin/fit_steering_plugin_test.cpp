@@ -63,7 +63,8 @@ TEST(FitSteeringPlugins, GaussMarkovHoldsAFixedCorrelationTimeWithEitherMethod) 
 TEST(FitSteeringPlugins, BoundsAndStartsReachTheFit) {
   const auto bounded = fit("augmented", {{"terms", {"angle_random_walk", "gauss_markov"}},
                                          {"bound", {{"gauss_markov.tau_c", {8.0, 20.0}}}}});
-  for (const auto& model : bounded->params()["models"]) {
+  const nlohmann::json params = bounded->params();  // a range-for would not keep it alive
+  for (const auto& model : params["models"]) {
     const double tau_c = model["terms"][1]["tau_c"].get<double>();
     EXPECT_GE(tau_c, 8.0);
     EXPECT_LE(tau_c, 20.0);
