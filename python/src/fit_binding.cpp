@@ -15,6 +15,7 @@
 #include "stochnav/fit/fit_result_json.hpp"
 #include "stochnav/fit/gmwm_data.hpp"
 #include "stochnav/fit/gmwm_fit.hpp"
+#include "stochnav/fit/parameter_control_names.hpp"
 #include "stochnav/model/reporting_units.hpp"
 #include "stochnav/stats/deviation.hpp"
 #include "stochnav/stats/phase.hpp"
@@ -57,10 +58,25 @@ void refuse_failed(const FitResult& result, bool keep_failed) {
   }
 }
 
+/// start, fix and bound: the CLI's --start, --fix and --bound (TERM[#K].PARAM=V,...;
+/// docs/allan.md, "Steering a fit"), for the given terms, in the reporting units of `unit`.
+struct Steering {
+  std::string start, fix, bound;
+  std::vector<ParameterControl> controls(std::span<const TermType> terms, Unit unit) const {
+    if (start.empty() && fix.empty() && bound.empty()) return {};
+    if (terms.empty()) {
+      throw ConfigError(
+          "start, fix, bound: they steer the terms given; pass terms=[...] as well");
+    }
+    return parse_parameter_controls(terms, unit, start, fix, bound);
+  }
+};
+
 /// method="gmwm": the library calls of `stochnav fit --method gmwm --terms ...` on an array.
 PythonNoiseModel fit_by_gmwm(const py::object& x, double rate, const py::object& terms,
                              const std::string& data, const std::string& unit, bool robust,
-                             const std::string& gauss_markov_sampling, bool keep_failed) {
+                             const std::string& gauss_markov_sampling, bool keep_failed,
+                             const Steering& steering) {
   if (terms.is_none()) {
     throw ConfigError(
         "terms: method=\"gmwm\" needs the terms, e.g. terms=[\"angle_random_walk\", "
@@ -75,6 +91,7 @@ PythonNoiseModel fit_by_gmwm(const py::object& x, double rate, const py::object&
   const DataKind kind = data_kind_argument(data);
   const double rate_hz = rate_argument(rate);
   const Unit signal_unit = unit_argument(unit);
+  options.controls = steering.controls(options.terms, signal_unit);
   const SampleArray samples(x, "x");
   FitResult result;
   {
@@ -96,9 +113,12 @@ PythonNoiseModel fit_by_gmwm(const py::object& x, double rate, const py::object&
 PythonNoiseModel fit(const py::object& x, double rate, const py::object& terms,
                      const std::string& method, const std::string& data, const std::string& unit,
                      const std::string& taus, const std::string& loss, const std::string& criterion,
-                     bool keep_failed, bool robust, const std::string& gauss_markov_sampling) {
+                     bool keep_failed, bool robust, const std::string& gauss_markov_sampling,
+                     const std::string& start, const std::string& fix, const std::string& bound) {
+  const Steering steering{start, fix, bound};
   if (method == "gmwm") {
-    return fit_by_gmwm(x, rate, terms, data, unit, robust, gauss_markov_sampling, keep_failed);
+    return fit_by_gmwm(x, rate, terms, data, unit, robust, gauss_markov_sampling, keep_failed,
+                       steering);
   }
   if (method != "avar") {
     throw ConfigError("method '" + method +
@@ -118,6 +138,7 @@ PythonNoiseModel fit(const py::object& x, double rate, const py::object& terms,
   const DataKind kind = data_kind_argument(data);
   const double rate_hz = rate_argument(rate);
   const Unit signal_unit = unit_argument(unit);
+  options.controls = steering.controls(options.terms, signal_unit);
   const TauSpacing spacing = parse_tau_spacing(taus, "taus", false);
   const SampleArray samples(x, "x");
   FitResult result;
@@ -206,6 +227,11 @@ robust : bool
 gauss_markov_sampling : str
     method="gmwm": "mean" (samples are interval means, default) or "point" (a discrete AR1,
     the R gmwm package's).
+start, fix, bound : str
+    Steering, either method, as the CLI's --start, --fix and --bound (docs/allan.md, "Steering
+    a fit"): "TERM[#K].PARAM=V,..." (starting values; fixed values, reported with sigma 0) and
+    "TERM[#K].PARAM=LOW:HIGH,..." (search ranges), in the reporting units of `unit`, e.g.
+    fix="gauss_markov#2.tau_c=100". They need `terms`.
 
 Returns
 -------
@@ -223,7 +249,8 @@ void bind_fit(py::module_& module) {
              py::arg("method") = "avar", py::arg("data") = "rate", py::arg("unit") = "plain",
              py::arg("taus") = "octave", py::arg("loss") = "huber", py::arg("criterion") = "bic",
              py::arg("keep_failed") = false, py::arg("robust") = false,
-             py::arg("gauss_markov_sampling") = "mean", doc.c_str());
+             py::arg("gauss_markov_sampling") = "mean", py::arg("start") = "",
+             py::arg("fix") = "", py::arg("bound") = "", doc.c_str());
 }
 
 }  // namespace stochnav::python

@@ -43,3 +43,36 @@ def test_adis_white_noise_is_dropped_and_the_refit_passes():
     assert [t["type"] for t in fitted.terms] == ["gauss_markov", "rate_random_walk"]
     assert fitted.diagnostics["dropped_terms"][0].startswith("angle_random_walk")
     assert fitted.diagnostics["j_test"]["p_value"] > 0.01
+
+
+def test_steering_equals_the_cli_with_either_method(cli, tmp_path):
+    """start, fix and bound reach both methods as the CLI's options do: the terms of
+    `stochnav fit --fix ... --bound ...`, the fixed value held exactly (sigma 0)."""
+    y = white_and_walk()
+    path = tmp_path / "record.txt"
+    np.savetxt(path, y, fmt="%.17g")
+    for method in ("avar", "gmwm"):
+        fitted = stochnav.fit(y, 100.0, terms=TERMS, method=method,
+                              fix="rate_random_walk.K=2e-4", bound="angle_random_walk.N=1e-4:1e-2")
+        run = cli("fit", "--method", method, "--input", path, "--rate", "100", "--terms",
+                  ",".join(TERMS), "--fix", "rate_random_walk.K=2e-4",
+                  "--bound", "angle_random_walk.N=1e-4:1e-2", "--format", "json")
+        assert run.returncode == 0, run.stderr
+        # The CLI integrates the text record as it reads it: equal to rounding.
+        expected = json.loads(run.stdout)["terms"]
+        assert [t["type"] for t in fitted.terms] == [t["type"] for t in expected]
+        for term, cli_term in zip(fitted.terms, expected):
+            for key, value in cli_term.items():
+                if isinstance(value, float):
+                    assert abs(term[key] - value) <= 1e-9 * abs(value), (method, key)
+        k = fitted.terms[1]
+        assert k["type"] == "rate_random_walk" and k["K"] == 2e-4 and k["K_sigma"] == 0
+
+
+def test_steering_needs_the_terms():
+    try:
+        stochnav.fit(white_and_walk(), 100.0, fix="rate_random_walk.K=2e-4")
+    except stochnav.ConfigError as error:
+        assert "terms" in str(error)
+    else:
+        raise AssertionError("steering without terms was accepted")
