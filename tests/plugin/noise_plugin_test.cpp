@@ -211,6 +211,34 @@ TEST(WhiteFit, FlickerFloorUsesTheFloorMatchedRandomWalk) {
   }
 }
 
+// The floor-matched rule keeps to the user's steering: a fixed K stays at its value, a bound
+// clamps the rule's K into it, and quality names the parameter the controls changed. Without
+// them the rule's K for this floor is 4-7 deg/h/sqrt(h) (the test above).
+TEST(WhiteFit, FloorMatchedRuleKeepsTheUsersFixedValuesAndBounds) {
+  NoiseModel truth{Unit::kRadPerSecond,
+                   100.0,
+                   {AngleRandomWalkTerm{2e-4 * std::numbers::pi / 180.0 / 60.0},
+                    BiasInstabilityTerm{0.5 * kDegPerHourRad}}};
+  const auto record = simulated_record(truth, 600.0, 100);
+  const auto fit = [&](const nlohmann::json& steering) {
+    nlohmann::json params = {{"rate_random_walk", true}};
+    params.update(steering);
+    return registry().fit_noise_model("white", record, params, context_for(SensorGroup::kGyro),
+                                      "/p");
+  };
+  const auto fixed = fit({{"fix", {{"rate_random_walk.K", 0.25}}}});
+  const auto bounded = fit({{"bound", {{"rate_random_walk.K", {0.01, 1.0}}}}});
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::string name(1, "xyz"[axis]);
+    SCOPED_TRACE(fixed->fit_quality().dump());
+    EXPECT_NEAR(fixed->params()["K"][axis].get<double>(), 0.25, 1e-12);
+    const nlohmann::json& q = bounded->fit_quality()[name];
+    ASSERT_EQ(q["method"], "floor_matched") << q.dump();
+    EXPECT_NEAR(bounded->params()["K"][axis].get<double>(), 1.0, 1e-12);
+    EXPECT_EQ(q["steered"], nlohmann::json::array({"rate_random_walk.K"}));
+  }
+}
+
 // A record built to put K on its bound: white noise plus a strong 0.5 Hz sinusoid, whose Allan
 // variance rises to a bump below 1 s and falls away at long tau. Fitted with N and K, the fit
 // pushes K up towards the bump far past the random walk the longest taus allow (the read-off

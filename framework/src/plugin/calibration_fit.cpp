@@ -1,5 +1,6 @@
 #include "stochnav/plugin/calibration_fit.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "stochnav/core/errors.hpp"
@@ -74,6 +75,27 @@ std::array<FitResult, 3> fit_calibration_axes(const CalibrationRecord& record,
   return results;
 }
 
+namespace {
+
+// `rule_value` of term `term` (its only parameter) as the user's controls allow: the fixed value
+// when it is fixed, else clamped into the bounds given. A changed value appends the parameter's
+// label to `steered`.
+double steered_value(double rule_value, std::span<const TermType> terms,
+                     std::span<const ParameterControl> controls, std::size_t term,
+                     nlohmann::json& steered) {
+  double value = rule_value;
+  for (const ParameterControl& control : controls) {
+    if (control.term != term || control.parameter != 0) continue;
+    if (control.fixed) value = *control.fixed;
+    if (control.lower) value = std::max(value, *control.lower);
+    if (control.upper) value = std::min(value, *control.upper);
+  }
+  if (value != rule_value) steered.push_back(parameter_label(terms, term, 0));
+  return value;
+}
+
+}  // namespace
+
 WhiteWalkFit fit_white_walk(const CalibrationRecord& record, bool with_walk,
                             CalibrationEstimator estimator,
                             std::span<const ParameterControl> controls) {
@@ -114,9 +136,15 @@ WhiteWalkFit fit_white_walk(const CalibrationRecord& record, bool with_walk,
       weight += d.edf[i];
     }
     const double floor_avar = weighted / weight;
-    out.n[axis] = std::sqrt(d.avar[near_one] * d.tau_s[near_one]);
-    out.k[axis] = std::sqrt(floor_avar * 3.0 / d.tau_s[reliable]);
+    // The user's steering still holds: a fixed value stays, a bound clamps the rule's value.
+    nlohmann::json steered = nlohmann::json::array();
+    out.n[axis] = steered_value(std::sqrt(d.avar[near_one] * d.tau_s[near_one]),
+                                options.terms, controls, 0, steered);
+    out.k[axis] =
+        steered_value(std::sqrt(floor_avar * 3.0 / d.tau_s[reliable]), options.terms, controls, 1,
+                      steered);
     quality["method"] = "floor_matched";
+    if (!steered.empty()) quality["steered"] = steered;
     quality["failed_fit"] = fit.diagnostics.failure();
     quality["tau_n_s"] = d.tau_s[near_one];
     quality["tau_k_s"] = d.tau_s[reliable];

@@ -48,7 +48,7 @@ struct WhiteWalkFit {
   std::array<double, 3> k{};
   /// Per axis (fit_quality): calibration_fit_quality's fields plus "method": "fit" | "floor_matched"
   /// and, for floor_matched, "failed_fit" (FitDiagnostics::failure of the N + K fit), "tau_n_s",
-  /// "tau_k_s".
+  /// "tau_k_s", "floor_adev" and, when the controls changed a value, "steered".
   nlohmann::json quality;
 };
 
@@ -69,7 +69,9 @@ inline constexpr double kReliableEdf = 10.0;
 /// the record measures; the model stays at or below the floor in between. N only (no walk)
 /// keeps the fit, its failure reported in quality.
 /// `estimator` and `controls` (of the terms {angle_random_walk, rate_random_walk if with_walk})
-/// steer the N (+ K) fit as in fit_calibration_axes; the floor rule reads the Allan variance.
+/// steer the N (+ K) fit as in fit_calibration_axes; the floor rule reads the Allan variance and
+/// keeps to them too: a fixed N or K keeps its value, a bound clamps the rule's value (quality
+/// "steered" lists the parameters the controls changed).
 WhiteWalkFit fit_white_walk(const CalibrationRecord& record, bool with_walk,
                             CalibrationEstimator estimator = CalibrationEstimator::kAllanVariance,
                             std::span<const ParameterControl> controls = {});
