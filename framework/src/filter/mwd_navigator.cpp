@@ -92,7 +92,8 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
       filter_(initial_covariance(layout_, options, gyro_noise, accel_noise)),
       interval_start_s_(initial.t_s),
       c_nb_(initial.q_nb.toRotationMatrix()),
-      smoothed_specific_force_n_(-gravity_n(initial.latitude_rad, initial.height_m)) {
+      smoothed_specific_force_n_(-gravity_n(initial.latitude_rad, initial.height_m)),
+      oscillation_(options.vibration_velocity_threshold_mps, initial.v_n) {
   for (auto [group, model] :
        {std::pair{&gyro_augmented_, &gyro_noise}, std::pair{&accel_augmented_, &accel_noise}}) {
     group->model = model;
@@ -171,7 +172,8 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   compensated.delta_v_b =
       compensated_increment(raw.delta_v_b, accel_bias_b_ + sensor_correction(accel_augmented_),
                             accel_scale_.estimate, dt);
-  const Eigen::Vector3d v_start = ins_.state().v_n;
+  // The interval aids compare the rig's rates with the velocity less the tool's vibration.
+  const Eigen::Vector3d v_start = ins_.state().v_n - oscillation_.velocity_n();
   ins_.update(compensated);
 
   const Eigen::Matrix3d c_end = ins_.state().q_nb.toRotationMatrix();
@@ -210,7 +212,7 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   if (!interval_aids_.empty()) {
     const InsIntervalAccumulator::Epoch interval_epoch{
         .v_start_n = v_start,
-        .v_end_n = ins_.state().v_n,
+        .v_end_n = ins_.state().v_n - oscillation_.velocity_n(),
         .c_nb_mid = c_mid,
         .delta_v_b = c_mid.transpose() * coupling_delta_v_n,
         .scale_factor_delta_v_b = scale_factor_delta_v_b,
@@ -255,9 +257,11 @@ Eigen::Vector3d MwdNavigator::reference_specific_force_increment(
   const Eigen::Vector3d acceleration_dt =
       reference_.pending_change_n + rotation.cross(reference_.v_n) * dt_s;
   reference_.pending_change_n.setZero();
-  const Eigen::Vector3d increment =
+  Eigen::Vector3d increment =
       acceleration_dt +
       (reference_.smoothed_specific_force_n - reference_.smoothed_acceleration_n) * dt_s;
+  // The vibration the reference lacks: the velocity error inherits phi x its change too.
+  increment += oscillation_.update(state.v_n, dt_s);
   if (dt_s > 0.0) {
     const double weight = std::min(dt_s, kReferenceSmoothing_s) / kReferenceSmoothing_s;
     reference_.smoothed_acceleration_n +=

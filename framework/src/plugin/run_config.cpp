@@ -458,6 +458,9 @@ FilterConfig parse_filter_section(const nlohmann::json& json, const std::string&
       "heading_hypothesis_consider", out.heading_hypotheses_consider_heading);
   out.heading_hypotheses_robust_weights = reader.boolean_or(
       "heading_hypothesis_robust_weights", out.heading_hypotheses_robust_weights);
+  out.vibration_velocity_threshold_mps =
+      reader.number_or("vibration_velocity_threshold_m_s", out.vibration_velocity_threshold_mps,
+                       Bound::kNonNegative, "m/s");
   if (reader.has("max_consecutive_rejections")) {
     const std::uint64_t count = non_negative_integer(reader, "max_consecutive_rejections");
     if (count > 1'000'000'000u) {

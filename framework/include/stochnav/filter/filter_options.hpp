@@ -131,6 +131,15 @@ struct FilterOptions {
   /// sliding well at 74 N (docs/drilling-envelope.md, section 4, fix 6). false: the ablation.
   bool heading_hypotheses_robust_weights = true;
 
+  /// RMS (m/s) above which the INS velocity's oscillation (filter/velocity_oscillation.hpp: its
+  /// part above about 1 Hz, axial vibration of the string) enters the velocity-attitude coupling
+  /// beside the reference trajectory the aids state (run config "filter/vibration_velocity_
+  /// threshold_m_s"; 0: never, the ablation). Without it a 9-min episode of 2.8 g at 8 Hz moved
+  /// the bank over the heading of a sliding east-west well at 74 N by 15-35 deg and halved its
+  /// sigma (docs/drilling-envelope.md, section 4, fix 7). 0.02 is 40 times the INS velocity noise
+  /// in that band and a thirtieth of that episode's oscillation; the one value tried.
+  double vibration_velocity_threshold_mps = 0.02;
+
   /// Covariance products by blocks (filter/error_state_filter.hpp, BlockTransition and
   /// JosephForm::kExpanded): augmented states cost O(n^2) per propagation and update instead of
   /// O(n^3), with the same results to rounding. false: the dense products, kept as the

@@ -41,6 +41,7 @@
 #include "stochnav/filter/filter_options.hpp"
 #include "stochnav/filter/ins_interval_accumulator.hpp"
 #include "stochnav/filter/sparse_map.hpp"
+#include "stochnav/filter/velocity_oscillation.hpp"
 #include "stochnav/ins/nav_state.hpp"
 #include "stochnav/ins/strapdown.hpp"
 #include "stochnav/plugin/aid_plugin.hpp"
@@ -204,6 +205,8 @@ class MwdNavigator final {
     Eigen::Vector3d smoothed_specific_force_n = Eigen::Vector3d::Zero();  // m/s^2, measured
   };
   ReferenceTrajectory reference_;
+  // The tool's vibration, which the reference lacks (FilterOptions::vibration_velocity_threshold).
+  VelocityOscillation oscillation_;
 
   Eigen::MatrixXd phi_, q_d_;  // n x n scratch (D x D, the head, when structured)
   Eigen::Matrix3d bias_walk_;
