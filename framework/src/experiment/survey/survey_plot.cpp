@@ -197,7 +197,7 @@ std::string survey_plot_script(const SurveyPlotData& data) {
     script += ellipses_datablock(stations, points, magnification);
   }
   script += "set multiplot layout 1,2 title 'survey: INS path and minimum-curvature stations'\n";
-  script += "set grid\nset key below noenhanced\nset bmargin 7\n";
+  script += "set grid\nset key below noenhanced\nset bmargin 8\n";
 
   // Plan view: one scale for east and north when the well spreads in both; else each axis
   // its own range (said in the title), so a long straight hole is not squashed to a line.
