@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -384,7 +385,11 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
   config["survey"] = {{"vertical_section_azimuth_deg", 90},
                       {"ellipse_confidence", 0.95},
                       {"datum_elevation_m", 30},
-                      {"grid_convergence_deg", 1.25}};
+                      {"grid_convergence_deg", 1.25},
+                      {"well_reference",
+                       {{"easting_m", 431000.0}, {"northing_m", 6520000.0},
+                        {"scale_factor", 0.9996}}},
+                      {"length_unit", "ft"}};
   const fs::path out = dir_->path() / "out_listing";
   const auto result =
       run_cli("run '" + write_config("listing.json", config) + "' --out '" + out.string() +
@@ -402,7 +407,7 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
       "closure_azimuth_deg,vertical_section_m,ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,"
       "ellipse_semi_minor_m,ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m,azimuth_defined,"
       "gyro_toolface,mc_north_m,mc_east_m,mc_tvd_m,md_sigma_m,station_type,grid_azimuth_deg,"
-      "highside_sigma_m,lateral_sigma_m,alonghole_sigma_m"))
+      "highside_sigma_m,lateral_sigma_m,alonghole_sigma_m,map_easting_m,map_northing_m"))
       << header_line;
   const std::vector<std::string> header = csv_cells(header_line);
   std::vector<std::vector<std::string>> rows;
@@ -456,6 +461,29 @@ TEST_F(RunCli, SurveyListingColumnsFollowTheSurveySection) {
   EXPECT_TRUE(std::isfinite(cell(r, "ne_m2")));
   EXPECT_TRUE(std::isfinite(cell(r, "nv_m2")));
   EXPECT_TRUE(std::isfinite(cell(r, "ev_m2")));
+  // Map coordinates: the well reference's plus the offsets turned by 1.25 deg, times 0.9996.
+  const double g = 1.25 * std::numbers::pi / 180.0;
+  EXPECT_EQ(cell(0, "map_easting_m"), 431000.0);
+  EXPECT_NEAR(cell(r, "map_easting_m"),
+              431000.0 + 0.9996 * (cell(r, "east_m") * std::cos(g) -
+                                   cell(r, "north_m") * std::sin(g)),
+              1e-3);
+  EXPECT_NEAR(cell(r, "map_northing_m"),
+              6520000.0 + 0.9996 * (cell(r, "north_m") * std::cos(g) +
+                                    cell(r, "east_m") * std::sin(g)),
+              1e-3);
+  // "length_unit": "ft": survey_ft.csv beside survey.csv, row for row.
+  std::stringstream feet(read(out / "survey_ft.csv"));
+  std::string feet_header;
+  std::getline(feet, feet_header);
+  EXPECT_TRUE(feet_header.starts_with("station_type,md_ft,")) << feet_header;
+  std::vector<std::string> first_feet_row;
+  std::string line;
+  std::getline(feet, line);
+  first_feet_row = csv_cells(line);
+  ASSERT_GE(first_feet_row.size(), 2u);
+  EXPECT_EQ(first_feet_row[0], "tie_on");
+  EXPECT_NEAR(std::stod(first_feet_row[1]), 450.0 / 0.3048, 1e-4);
 }
 
 // The tally reads the bit's depth (450.45 m at the start: 450 m with the scenario's 1e-3 scale
@@ -671,6 +699,22 @@ INSTANTIATE_TEST_SUITE_P(
                    "/survey/tie_on_md_tolerance_m"},
         BadRunCase{"survey_grid_convergence_far", R"({"survey": {"grid_convergence_deg": 12}})", "",
                    "/survey/grid_convergence_deg: 12"},
+        BadRunCase{"survey_well_reference_without_convergence",
+                   R"({"survey": {"well_reference": {"easting_m": 1, "northing_m": 2}}})", "",
+                   "/survey/well_reference: given without grid_convergence_deg"},
+        BadRunCase{"survey_well_reference_missing_northing",
+                   R"({"survey": {"grid_convergence_deg": 0,
+                                  "well_reference": {"easting_m": 1}}})",
+                   "", "/survey/well_reference/northing_m: missing"},
+        BadRunCase{"survey_well_reference_scale_far",
+                   R"({"survey": {"grid_convergence_deg": 0, "well_reference":
+                       {"easting_m": 1, "northing_m": 2, "scale_factor": 1.5}}})",
+                   "", "/survey/well_reference/scale_factor: 1.5"},
+        BadRunCase{"survey_well_reference_not_object",
+                   R"({"survey": {"grid_convergence_deg": 0, "well_reference": [1, 2]}})", "",
+                   "/survey/well_reference: not an object"},
+        BadRunCase{"survey_length_unit_feet", R"({"survey": {"length_unit": "feet"}})", "",
+                   "/survey/length_unit: found \"feet\"; expected one of \"m\", \"ft\""},
         BadRunCase{"survey_unknown_key", R"({"survey": {"vs_azimuth_deg": 10}})", "",
                    "/survey/vs_azimuth_deg: unknown key"},
         BadRunCase{"survey_not_object", R"({"survey": 3})", "", "/survey: not an object"},

@@ -324,6 +324,42 @@ TEST(SurveyListing, GridAzimuthAndTheEllipseInTheHolesFrame) {
   EXPECT_TRUE(std::isnan(survey_listing(stations, tie_on_at(1000.0), {})[0].grid_azimuth_deg));
 }
 
+// Map coordinates: the well reference's plus the offsets turned into grid north and scaled.
+// A station 1 km due east with grid north 2 deg east of true lies at grid azimuth 88 deg: its
+// easting grows by k cos 2 deg km and its northing by k sin 2 deg km; 1 km due north goes
+// k cos 2 deg km up and k sin 2 deg km west. The grid distance is k times the ground's, and
+// the grid azimuth of the offset is the listed grid azimuth of a hole pointing at it.
+TEST(SurveyListing, MapCoordinatesFromTheWellReference) {
+  const MapReference reference{500000.0, 6200000.0, 0.9996};
+  const double g = 2.0 * kRadPerDeg;
+  const MapCoordinates east = map_coordinates(reference, 2.0, 0.0, 1000.0);
+  EXPECT_NEAR(east.easting_m, 500000.0 + 0.9996 * 1000.0 * std::cos(g), 1e-9);
+  EXPECT_NEAR(east.northing_m, 6200000.0 + 0.9996 * 1000.0 * std::sin(g), 1e-9);
+  const MapCoordinates north = map_coordinates(reference, 2.0, 1000.0, 0.0);
+  EXPECT_NEAR(north.easting_m, 500000.0 - 0.9996 * 1000.0 * std::sin(g), 1e-9);
+  EXPECT_NEAR(north.northing_m, 6200000.0 + 0.9996 * 1000.0 * std::cos(g), 1e-9);
+  const MapCoordinates origin = map_coordinates(reference, 2.0, 0.0, 0.0);
+  EXPECT_EQ(origin.easting_m, 500000.0);
+  EXPECT_EQ(origin.northing_m, 6200000.0);
+
+  // In the listing: a hole at true azimuth 30 deg, 600 m out; its grid offset's azimuth is the
+  // listed grid azimuth and its length k x the closure.
+  std::vector<SurveyStation> stations = {station_at(1700.0, 60.0, 30.0, 600.0 * std::cos(0.5236),
+                                                    600.0 * std::sin(0.5236), 400.0)};
+  SurveyListingOptions options;
+  options.grid_convergence_deg = 2.0;
+  options.map_reference = reference;
+  const auto listing = survey_listing(stations, tie_on_at(1000.0), options);
+  const double de = listing[0].map_easting_m - reference.easting_m;
+  const double dn = listing[0].map_northing_m - reference.northing_m;
+  EXPECT_NEAR(std::hypot(de, dn), 0.9996 * listing[0].closure_m, 1e-6);
+  EXPECT_NEAR(std::atan2(de, dn) * kDegPerRad, listing[0].closure_azimuth_deg - 2.0, 1e-9);
+  EXPECT_NEAR(listing[0].grid_azimuth_deg, 28.0, 1e-12);
+  // Without a map reference: NaN.
+  options.map_reference.reset();
+  EXPECT_TRUE(std::isnan(survey_listing(stations, tie_on_at(1000.0), options)[0].map_easting_m));
+}
+
 // ---------------------------------------------------------------- file
 
 std::vector<std::string> read_lines(const std::filesystem::path& path) {
@@ -361,7 +397,7 @@ TEST(SurveyListing, SurveyCsvCarriesTheColumnsAfterTheQc) {
       "vertical_section_m,ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,ellipse_semi_minor_m,"
       "ellipse_azimuth_deg,tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface,mc_north_m,"
       "mc_east_m,mc_tvd_m,md_sigma_m,station_type,grid_azimuth_deg,highside_sigma_m,"
-      "lateral_sigma_m,alonghole_sigma_m";
+      "lateral_sigma_m,alonghole_sigma_m,map_easting_m,map_northing_m";
   ASSERT_TRUE(survey[0].ends_with(listing_columns)) << survey[0];
   const auto header = split(survey[0]);
   EXPECT_NE(survey[1].find(",tie_on,"), std::string::npos) << survey[1];

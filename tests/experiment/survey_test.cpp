@@ -1,5 +1,6 @@
 #include "stochnav/experiment/survey.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -511,7 +512,8 @@ constexpr const char* kListingColumns =
     ",dls_deg_30m,build_deg_30m,turn_deg_30m,closure_m,closure_azimuth_deg,vertical_section_m,"
     "ne_m2,nv_m2,ev_m2,ellipse_semi_major_m,ellipse_semi_minor_m,ellipse_azimuth_deg,"
     "tvd_below_datum_m,tvdss_m,azimuth_defined,gyro_toolface,mc_north_m,mc_east_m,mc_tvd_m,"
-    "md_sigma_m,station_type,grid_azimuth_deg,highside_sigma_m,lateral_sigma_m,alonghole_sigma_m";
+    "md_sigma_m,station_type,grid_azimuth_deg,highside_sigma_m,lateral_sigma_m,alonghole_sigma_m,"
+    "map_easting_m,map_northing_m";
 
 // The first `count` cells of a CSV row.
 std::string first_cells(const std::string& row, int count) {
@@ -563,14 +565,16 @@ TEST(SurveyFiles, AppearOnlyOnCommit) {
 
   const auto well_path = read_lines(dir.path() / "well_path.csv");
   EXPECT_EQ(well_path[0], "source,md_m,north_m,east_m,tvd_m");
-  std::size_t minimum_curvature_rows = 0, ins_rows = 0;
+  std::size_t minimum_curvature_rows = 0, ins_rows = 0, truth_rows = 0;
   for (std::size_t i = 1; i < well_path.size(); ++i) {
     if (well_path[i].starts_with("minimum_curvature,")) ++minimum_curvature_rows;
     if (well_path[i].starts_with("ins,")) ++ins_rows;
+    if (well_path[i].starts_with("truth,")) ++truth_rows;
   }
   EXPECT_EQ(minimum_curvature_rows, 1u + recorder.stations().size());  // tie-on + stations
   EXPECT_EQ(ins_rows, recorder.ins_path().size());
-  EXPECT_EQ(well_path.size(), 1u + minimum_curvature_rows + ins_rows);
+  EXPECT_EQ(truth_rows, ins_rows) << "truth at every epoch: the true path beside the INS's";
+  EXPECT_EQ(well_path.size(), 1u + minimum_curvature_rows + ins_rows + truth_rows);
   EXPECT_EQ(well_path[1], "minimum_curvature,1000,0,0,0");
 }
 
@@ -749,6 +753,152 @@ TEST(SurveyPlot, EllipseMagnificationIsOneTwoOrFiveTimesAPowerOfTen) {
     EXPECT_LE(factor * axis_m, 0.03 * 5000.0 * (1 + 1e-12)) << axis_m;
     EXPECT_GT(factor * axis_m, 0.03 * 5000.0 / 2.5) << axis_m;
   }
+}
+
+// Issue #27, feet: survey_ft.csv holds survey.csv's rows in international feet with DLS per
+// 100 ft, while survey.csv keeps its names and metres.
+TEST(SurveyFiles, FeetListingBesideTheMetreOne) {
+  SurveyTieOn tie_on = kTieOn;
+  tie_on.direction = SurveyDirection{0.5, 30.0};
+  SurveyRecorder recorder(tie_on);
+  for (const Epoch& e : three_connections()) {
+    recorder.observe(
+        state_at(e.t_s, 0.0, 0.0, e.tvd_m, attitude_deg(e.t_s < 3.0 ? 0.5 : 40.0 + e.t_s, 20.0,
+                                                        60.0)),
+        known_covariance(), e.stationary, 1000.0 + e.tvd_m, nullptr);
+  }
+  recorder.finish();
+  const testing::TempDir dir;
+  SurveyListingOptions options;
+  options.sensor_to_bit_m = 12.5;
+  options.datum_elevation_m = 30.0;
+  options.length_unit = SurveyLengthUnit::kFoot;
+  auto files = write_survey_files(recorder, tie_on, dir.path(), false, options);
+  for (auto& file : files) file->commit();
+  const auto metres = survey_columns(dir.path() / "survey.csv");
+  EXPECT_EQ(read_lines(dir.path() / "survey.csv")[0],
+            std::string(kSurveyHeader) + kListingColumns)
+      << "survey.csv keeps its columns and units";
+  const auto feet_lines = read_lines(dir.path() / "survey_ft.csv");
+  ASSERT_EQ(feet_lines.size(), read_lines(dir.path() / "survey.csv").size()) << "row for row";
+  EXPECT_TRUE(feet_lines[0].starts_with("station_type,md_ft,inclination_deg,azimuth_deg,"))
+      << feet_lines[0];
+  EXPECT_TRUE(feet_lines[1].starts_with("tie_on,")) << feet_lines[1];
+  EXPECT_TRUE(feet_lines.back().starts_with("projection_to_bit,")) << feet_lines.back();
+  const auto feet = survey_columns(dir.path() / "survey_ft.csv");
+  constexpr double kFoot_m = 0.3048;
+  for (std::size_t row = 0; row < metres.at("md_m").size(); ++row) {
+    SCOPED_TRACE(row);
+    for (const auto& [in_feet, in_metres] :
+         {std::pair{"md_ft", "md_m"}, std::pair{"tvd_ft", "tvd_m"},
+          std::pair{"tvd_below_datum_ft", "tvd_below_datum_m"},
+          std::pair{"mc_north_ft", "mc_north_m"}, std::pair{"north_sigma_ft", "north_sigma_m"}}) {
+      const double expected = metres.at(in_metres)[row] / kFoot_m;
+      const double listed = feet.at(in_feet)[row];
+      if (std::isnan(expected)) {
+        EXPECT_TRUE(std::isnan(listed)) << in_feet;  // e.g. the tie-on's unrecorded sigmas
+      } else {
+        EXPECT_NEAR(listed, expected, 1e-5) << in_feet;
+      }
+    }
+    EXPECT_EQ(feet.at("inclination_deg")[row], metres.at("inclination_deg")[row]);
+    const double dls_30m = metres.at("dls_deg_30m")[row];
+    if (std::isnan(dls_30m)) {
+      EXPECT_TRUE(std::isnan(feet.at("dls_deg_100ft")[row]));
+    } else {
+      // deg/30 m x (100 ft / 30 m) = deg/30 m x 1.016.
+      EXPECT_NEAR(feet.at("dls_deg_100ft")[row], dls_30m * 1.016, 1e-6 * (1.0 + dls_30m));
+    }
+  }
+  EXPECT_GT(feet.at("dls_deg_100ft")[2], 0.0) << "a station that builds";
+}
+
+TEST(SurveyRecorder, TruthPathBesideTheInsPathWhenThereIsTruth) {
+  const SurveyRecorder with_truth = recorded_run(true);
+  const std::vector<WellPathPoint> truth = with_truth.truth_path();
+  ASSERT_EQ(truth.size(), with_truth.ins_path().size());
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    // recorded_run's truth is the estimate itself.
+    EXPECT_NEAR(truth[i].north_m, with_truth.ins_path()[i].north_m, 1e-9);
+    EXPECT_NEAR(truth[i].tvd_m, with_truth.ins_path()[i].tvd_m, 1e-9);
+  }
+  EXPECT_TRUE(recorded_run(false).truth_path().empty());
+}
+
+/// A plan of `points` points from (0, 0) to (north_m, east_m), TVD = MD, with stations.
+SurveyPlotData straight_plan(double north_m, double east_m, bool with_truth) {
+  SurveyPlotData data;
+  constexpr int kPoints = 50;
+  for (int k = 0; k <= kPoints; ++k) {
+    const double f = static_cast<double>(k) / kPoints;
+    const double md = 1000.0 * f;
+    data.ins_path.push_back({md, north_m * f, east_m * f, md});
+    if (with_truth) data.truth_path.push_back({md, north_m * f + 0.5, east_m * f - 0.3, md + 1.0});
+    if (k % 10 == 0 && k > 0) {
+      SurveyStation station;
+      station.md_m = md;
+      station.horizontal_covariance_m2 << 0.04, 0.0, 0.0, 0.01;
+      station.tvd_sigma_m = 0.2;
+      data.stations.push_back(station);
+      data.minimum_curvature_stations.push_back({md, north_m * f, east_m * f, md});
+    }
+  }
+  data.vertical_section_azimuth_deg = 45.0;
+  return data;
+}
+
+// Issue #27: the plan view of a long straight hole is not squashed to a few pixels: each axis
+// spans its own data (at least 1 m), said in the title; the ellipses are then true size.
+TEST(SurveyPlot, LongStraightHoleGetsIndependentAxes) {
+  const SurveyPlotData data = straight_plan(2000.0, 3.0, false);
+  const PlanViewAxes axes = plan_view_axes(data);
+  EXPECT_FALSE(axes.equal_scales);
+  EXPECT_LE(axes.north_min_m, 0.0);
+  EXPECT_GE(axes.north_max_m, 2000.0);
+  EXPECT_LE(axes.east_min_m, 0.0);
+  EXPECT_GE(axes.east_max_m, 3.0);
+  EXPECT_LT(axes.east_max_m - axes.east_min_m, 10.0) << "the east axis spans the hole's drift";
+  const std::string script = survey_plot_script(data);
+  EXPECT_NE(script.find("set size noratio\nset xrange ["), std::string::npos) << script;
+  EXPECT_EQ(script.find("set size ratio -1"), std::string::npos);
+  EXPECT_NE(script.find("axes scaled independently"), std::string::npos);
+  EXPECT_NE(script.find("2-sigma ellipses x1"), std::string::npos) << "true size";
+  EXPECT_NE(script.find(fmt::format("set xrange [{:.9g}:{:.9g}]", axes.east_min_m,
+                                    axes.east_max_m)),
+            std::string::npos);
+  EXPECT_NE(script.find(fmt::format("set yrange [{:.9g}:{:.9g}]", axes.north_min_m,
+                                    axes.north_max_m)),
+            std::string::npos);
+  // A perfectly straight hole still has a readable (1 m) east axis.
+  const PlanViewAxes straight = plan_view_axes(straight_plan(2000.0, 0.0, false));
+  EXPECT_GE(straight.east_max_m - straight.east_min_m, 1.0);
+}
+
+TEST(SurveyPlot, SpreadWellKeepsOneScale) {
+  const SurveyPlotData data = straight_plan(600.0, 400.0, false);
+  const PlanViewAxes axes = plan_view_axes(data);
+  EXPECT_TRUE(axes.equal_scales);
+  EXPECT_NEAR(axes.east_max_m - axes.east_min_m, axes.north_max_m - axes.north_min_m, 1e-9);
+  const std::string script = survey_plot_script(data);
+  EXPECT_NE(script.find("set size ratio -1"), std::string::npos) << script;
+  EXPECT_EQ(script.find("axes scaled independently"), std::string::npos);
+}
+
+// The truth path in both views when there is truth; the vertical section along the listing's
+// azimuth (45 deg: a point at north 1, east 1 is sqrt(2) along it).
+TEST(SurveyPlot, TruthPathAndTheListingsSectionAzimuth) {
+  const std::string with_truth = survey_plot_script(straight_plan(100.0, 100.0, true));
+  // east north tvd section of the first truth point (0.5 N, -0.3 E, TVD 1).
+  EXPECT_NE(with_truth.find("$truth << EOD\n-0.3 0.5 1 "), std::string::npos) << with_truth;
+  EXPECT_NE(with_truth.find("$truth using 1:2"), std::string::npos) << "plan view";
+  EXPECT_NE(with_truth.find("$truth using 4:3"), std::string::npos) << "vertical section";
+  EXPECT_NE(with_truth.find("vertical section along azimuth 45.0 deg"), std::string::npos);
+  // The second INS point: north 2, east 2, section 2 sqrt(2).
+  EXPECT_NE(with_truth.find(fmt::format("\n2 2 20 {:.9g}\n", 2.0 * std::numbers::sqrt2)),
+            std::string::npos)
+      << with_truth.substr(0, 200);
+  const std::string without_truth = survey_plot_script(straight_plan(100.0, 100.0, false));
+  EXPECT_EQ(without_truth.find("$truth"), std::string::npos);
 }
 
 TEST(SurveyFiles, PlotIsAPngAndLeavesNoTemporaries) {

@@ -7,9 +7,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <pugixml.hpp>
 #include <string>
 #include <vector>
+
+#include "temp_dir.hpp"
 
 namespace stochnav {
 namespace {
@@ -100,7 +106,7 @@ TEST(WitsmlTrajectory, StationsInTheSchemasOrderWithSurveyCsvsValues) {
     const pugi::xml_node station = stations[i];
     const SurveyStation& s = listing.stations[i - 1];
     EXPECT_TRUE(in_order(station, kStationOrder)) << xml;
-    EXPECT_STREQ(station.child("typeTrajStation").text().get(), "MD INCL and AZI");
+    EXPECT_STREQ(station.child("typeTrajStation").text().get(), "gyro inertial");
     EXPECT_STREQ(station.child("md").attribute("uom").value(), "m");
     EXPECT_STREQ(station.child("incl").attribute("uom").value(), "dega");
     EXPECT_DOUBLE_EQ(number(station, "md"), s.md_m);
@@ -122,6 +128,82 @@ TEST(WitsmlTrajectory, StationsInTheSchemasOrderWithSurveyCsvsValues) {
   EXPECT_STREQ(stations[2].child("statusTrajStation").text().get(), "open")
       << "a station its static QC flags is not validated";
   EXPECT_EQ(xml.find("nan"), std::string::npos) << xml;
+}
+
+/// two_stations() with the tie-on's direction known and a projection to the bit 12.5 m ahead.
+Listing with_projection_to_bit() {
+  Listing listing = two_stations();
+  listing.tie_on.direction = SurveyDirection{10.0, 40.0};
+  listing.options.sensor_to_bit_m = 12.5;
+  listing.stations.push_back(projected_to_bit(listing.stations.back(), 12.5));
+  listing.rows = survey_listing(listing.stations, listing.tie_on, listing.options);
+  return listing;
+}
+
+// The projection to the bit, the listing's last row, is the trajectory's last station:
+// "hold to delta-MD" (WITSML 1.4.1.1's TrajStationType has no "projected" value; this one
+// "holds angle, azimuth to a specified delta measured depth"), no status (not a measurement).
+TEST(WitsmlTrajectory, ProjectionToTheBitHoldsAngleAndAzimuth) {
+  const Listing listing = with_projection_to_bit();
+  const std::string xml =
+      witsml_trajectory_xml(listing.stations, listing.rows, listing.tie_on, listing.options);
+  pugi::xml_document document;
+  ASSERT_TRUE(document.load_string(xml.c_str())) << xml;
+  const pugi::xml_node trajectory = document.child("trajectorys").child("trajectory");
+  std::vector<pugi::xml_node> stations;
+  for (pugi::xml_node node : trajectory.children("trajectoryStation")) stations.push_back(node);
+  ASSERT_EQ(stations.size(), 4u) << "the tie-in point, two stations, the bit";
+  const pugi::xml_node bit = stations.back();
+  EXPECT_STREQ(bit.attribute("uid").value(), "projection-to-bit");
+  EXPECT_STREQ(bit.child("typeTrajStation").text().get(), "hold to delta-MD");
+  EXPECT_TRUE(in_order(bit, kStationOrder)) << xml;
+  EXPECT_DOUBLE_EQ(number(bit, "md"), 1072.5);
+  EXPECT_DOUBLE_EQ(number(bit, "mdDelta"), 12.5);
+  EXPECT_DOUBLE_EQ(number(bit, "incl"), listing.stations[1].inclination_deg);
+  EXPECT_NEAR(number(bit, "dls"), 0.0, 1e-12) << "straight ahead";
+  EXPECT_TRUE(bit.child("statusTrajStation").empty());
+  EXPECT_DOUBLE_EQ(number(trajectory, "mdMx"), 1072.5);
+  EXPECT_STREQ(stations[1].child("typeTrajStation").text().get(), "gyro inertial");
+}
+
+// Against the WITSML 1.4.1.1 XSD (Energistics' obj_trajectory.xsd, in its folder tree: it
+// imports ../../abstract_v1.0). The schema is under the Energistics licence and not in this
+// repository: STOCHNAV_WITSML_XSD names the file (docs/navigation.md says where to get it);
+// without it, or without xmllint (Debian libxml2-utils), the test is skipped.
+TEST(WitsmlTrajectory, ValidatesAgainstTheWitsml1411Schema) {
+  const char* schema = std::getenv("STOCHNAV_WITSML_XSD");
+  if (schema == nullptr || !std::filesystem::is_regular_file(schema)) {
+    GTEST_SKIP() << "STOCHNAV_WITSML_XSD does not name the WITSML 1.4.1.1 obj_trajectory.xsd "
+                    "(not redistributed here; docs/navigation.md, trajectory.xml)";
+  }
+  if (std::system("command -v xmllint > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "no xmllint (Debian package libxml2-utils)";
+  }
+  const testing::TempDir dir;
+  Listing listing = with_projection_to_bit();
+  listing.stations[0].qc.flagged = true;  // one "open" station
+  const std::string document = dir.write(
+      "trajectory.xml",
+      witsml_trajectory_xml(listing.stations, listing.rows, listing.tie_on, listing.options));
+  // And a listing without datum, tie-on direction or projection (the optional elements left
+  // out).
+  const Listing plain = two_stations();
+  SurveyListingOptions no_datum = plain.options;
+  no_datum.datum_elevation_m.reset();
+  no_datum.tie_on_tvd_m.reset();
+  const std::string plain_document = dir.write(
+      "plain.xml", witsml_trajectory_xml(plain.stations, plain.rows, plain.tie_on, no_datum));
+  for (const std::string& path : {document, plain_document}) {
+    const std::string log = dir.file("xmllint.log");
+    const std::string command = "xmllint --noout --schema '" + std::string(schema) + "' '" +
+                                path + "' > '" + log + "' 2>&1";
+    const int status = std::system(command.c_str());
+    std::ifstream in(log);
+    const std::string output((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
+    EXPECT_EQ(status, 0) << output;
+    EXPECT_NE(output.find("validates"), std::string::npos) << output;
+  }
 }
 
 }  // namespace

@@ -153,8 +153,9 @@ double number_in(ParamReader& reader, std::string_view key, double low, double h
                  std::string_view unit) {
   const double value = reader.number(key, Bound::kAny, unit);
   if (!(value >= low && value <= high)) {
-    throw ConfigError(reader.pointer(key) + ": " + std::to_string(value) + " " +
-                      std::string(unit) + " is out of range; expected a value in [" +
+    throw ConfigError(reader.pointer(key) + ": " + std::to_string(value) +
+                      (unit.empty() ? "" : " " + std::string(unit)) +
+                      " is out of range; expected a value in [" +
                       std::to_string(low) + ", " + std::to_string(high) + "]");
   }
   return value;
@@ -340,6 +341,28 @@ SurveyConfig parse_survey(const nlohmann::json& json, const std::string& pointer
   }
   if (reader.has("grid_convergence_deg")) {
     survey.grid_convergence_deg = number_in(reader, "grid_convergence_deg", -10.0, 10.0, "deg");
+  }
+  if (reader.has("well_reference")) {
+    if (!survey.grid_convergence_deg) {
+      throw ConfigError(reader.pointer("well_reference") +
+                        ": given without grid_convergence_deg; add \"grid_convergence_deg\" "
+                        "(grid north's angle from true north at the well, deg; 0 if the map's "
+                        "grid north is true north there)");
+    }
+    ParamReader reference(object_at(reader, "well_reference", true),
+                          reader.pointer("well_reference"));
+    SurveyConfig::WellReference map;
+    map.easting_m = number_in(reference, "easting_m", -1e8, 1e8, "m");
+    map.northing_m = number_in(reference, "northing_m", -1e8, 1e8, "m");
+    if (reference.has("scale_factor")) {
+      map.scale_factor = number_in(reference, "scale_factor", 0.99, 1.01, "");
+    }
+    reference.finish();
+    survey.well_reference = map;
+  }
+  if (reader.has("length_unit")) {
+    static constexpr std::array<std::string_view, 2> kUnits = {"m", "ft"};
+    survey.length_unit = reader.choice_or("length_unit", "m", kUnits);
   }
   parse_survey_error_model(reader, config_dir, survey);
   reader.finish();

@@ -89,6 +89,19 @@ struct SurveyTieOn {
   std::optional<SurveyDirection> direction;
 };
 
+/// The map (projected CRS) coordinates of the well reference, the origin of north_m/east_m.
+struct MapReference {
+  double easting_m = 0.0;   ///< map easting of the tie-on (m, the CRS's false-origin frame)
+  double northing_m = 0.0;  ///< map northing of the tie-on (m)
+  /// Grid scale factor at the well (combined point scale and elevation factor): map distance
+  /// = k x ground distance, in [0.99, 1.01]; 1 by default.
+  double scale_factor = 1.0;
+};
+
+/// The unit of the extra listing a run writes: kMetre (survey.csv only, the default) or
+/// kFoot (survey_ft.csv too: the international foot, 0.3048 m exactly).
+enum class SurveyLengthUnit { kMetre, kFoot };
+
 /// The references of the listing columns of survey.csv (experiment/survey_listing.hpp; the run
 /// config's "survey" section, plugin/run_config.hpp).
 struct SurveyListingOptions {
@@ -102,6 +115,12 @@ struct SurveyListingOptions {
   /// Grid convergence (deg): grid north's angle from true north, clockwise positive (grid
   /// azimuth = true azimuth - convergence); absent: no grid azimuth (NaN).
   std::optional<double> grid_convergence_deg;
+  /// The well reference's (the tie-on's) map coordinates: with them (and grid_convergence_deg)
+  /// the listing gives every station's map easting and northing
+  /// (experiment/survey_listing.hpp, map_coordinates); absent: those columns NaN.
+  std::optional<MapReference> map_reference;
+  /// kFoot: write survey_ft.csv beside survey.csv (write_survey_files).
+  SurveyLengthUnit length_unit = SurveyLengthUnit::kMetre;
 };
 
 /// What a row of survey.csv is (its column station_type).
@@ -212,6 +231,9 @@ class SurveyRecorder final {
   const std::vector<SurveyStation>& station_errors() const { return errors_; }
   /// The INS path in the tie-on frame, thinned (for the plot and well_path.csv).
   const std::vector<WellPathPoint>& ins_path() const { return ins_path_; }
+  /// The TRUE path in the tie-on frame at the epochs of ins_path() that had truth (same
+  /// thinning, MD the INS point's); empty for a run without truth.
+  std::vector<WellPathPoint> truth_path() const;
 
  private:
   /// (north, east, tvd) of a state in the tie-on frame (m).
@@ -222,7 +244,8 @@ class SurveyRecorder final {
                                   const Eigen::Vector3d& position_m, double md_m) const;
   SurveyStation station_error(const SurveyStation& station, const NavState& state,
                               const NavState& truth) const;
-  void append_to_ins_path(const WellPathPoint& point);
+  /// Appends the epoch's INS point and its truth point (NaN coordinates without truth).
+  void append_to_paths(const WellPathPoint& point, const WellPathPoint& truth_point);
   void close_open_station();
 
   SurveyTieOn tie_on_;
@@ -234,6 +257,7 @@ class SurveyRecorder final {
   std::vector<SurveyStation> stations_;
   std::vector<SurveyStation> errors_;
   std::vector<WellPathPoint> ins_path_;
+  std::vector<WellPathPoint> truth_path_;  ///< parallel to ins_path_; NaN where no truth
   double ins_path_length_m_ = 0.0;
   std::optional<Eigen::Vector3d> previous_position_m_;  ///< last observed (north, east, tvd)
   std::size_t observed_count_ = 0;         ///< observe() calls so far (index of the next epoch)
@@ -250,19 +274,27 @@ class SurveyRecorder final {
 ///   survey.csv          the tie-on row, the stations and, with listing.sensor_to_bit_m > 0,
 ///                       the projection to the bit (header as DESIGN.md, then the QC columns,
 ///                       then the listing's of experiment/survey_listing.hpp under `listing`,
-///                       then station_type). MD, inclination and azimuth enter the derived
+///                       station_type, ..., map_easting_m, map_northing_m). MD, inclination and azimuth enter the derived
 ///                       columns as printed (9 significant digits).
-///   trajectory.xml      the tie-on and the survey stations (not the projection) as a WITSML
-///                       1.4.1.1 trajectory (experiment/witsml_trajectory.hpp)
+///   survey_ft.csv       with listing.length_unit kFoot: survey.csv's rows in international
+///                       feet (0.3048 m), DLS/build/turn in deg/100 ft, columns named with
+///                       _ft / _100ft (docs/navigation.md); map coordinates are not converted
+///                       (their foot is the map projection's: international or US survey)
+///   trajectory.xml      the tie-on, the survey stations and the projection to the bit as a
+///                       WITSML 1.4.1.1 trajectory (experiment/witsml_trajectory.hpp)
 ///   survey_errors.csv   the stations' errors (DESIGN.md's and the QC columns, not the
 ///                       listing's), only when there are any
-///   well_path.csv       md_m, north/east/tvd by minimum curvature at the stations, and the INS
-///                       path's points (column "source": minimum_curvature | ins)
-///   survey.png          plan view and vertical section, 2-sigma horizontal ellipses at the
-///                       stations (when `plot` and gnuplot is installed; silently left out
-///                       otherwise). The ellipses, centred on the minimum-curvature points, and
-///                       the +/-2-sigma TVD bars are magnified by the factor in the title (1, 2
-///                       or 5 x 10^k) so that the largest ellipse spans about 3 % of the plan.
+///   well_path.csv       md_m, north/east/tvd by minimum curvature at the stations, the INS
+///                       path's points and, with truth, the true path's (column "source":
+///                       minimum_curvature | ins | truth)
+///   survey.png          plan view and vertical section along the listing's VS azimuth,
+///                       2-sigma horizontal ellipses at the stations, the truth path when
+///                       there is truth (when `plot` and gnuplot is installed; silently left
+///                       out otherwise; survey/survey_plot.hpp). With one scale for east and
+///                       north the ellipses, centred on the minimum-curvature points, and the
+///                       +/-2-sigma TVD bars are magnified by the factor in the title (1, 2 or
+///                       5 x 10^k) so that the largest ellipse spans about 3 % of the plan; a
+///                       long straight hole gets independent axes and true-size ellipses.
 ///   iscwsa_covariance.csv, survey_uncertainty.png
 ///                       with `error_model`: the survey tool model's covariance of the stations
 ///                       beside the filter's (experiment/survey_error_files.hpp)

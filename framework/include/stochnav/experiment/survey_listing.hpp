@@ -64,6 +64,18 @@
 //                        along the hole t = (sin I cos A, sin I sin A, cos I), all in (north,
 //                        east, down): sqrt(x^T P x) with P the NEV covariance (I, A: the listed
 //                        inclination and azimuth; near vertical h and l turn with the azimuth)
+//   map_easting_m, map_northing_m
+//                        the station's map (grid) coordinates: the well reference's
+//                        (SurveyListingOptions::map_reference, the tie-on's) plus the
+//                        north/east offsets from it turned into grid north by the grid
+//                        convergence g and scaled by the grid scale factor k (map_coordinates):
+//                          E = E0 + k (east cos g - north sin g)
+//                          N = N0 + k (north cos g + east sin g)   (m)
+//                        A local tangent-plane approximation: the offsets are metres in the
+//                        tie-on's level frame, the projection's convergence and scale taken
+//                        constant over the well (their change over a few km of departure,
+//                        ~1e-5 relative, is below the survey's uncertainty). NaN without a map
+//                        reference
 //
 // The vertical-section azimuth, when not given, is the tie-on's azimuth (the planned direction
 // at the start) when the tie-on's attitude is known and more than 1 deg from vertical, else the
@@ -103,7 +115,21 @@ struct StationListing {
   double highside_sigma_m = 0.0;   ///< 1-sigma along the high side (m)
   double lateral_sigma_m = 0.0;    ///< 1-sigma across the hole, to the right (m)
   double alonghole_sigma_m = 0.0;  ///< 1-sigma along the hole (m)
+  double map_easting_m = 0.0;      ///< map easting (m); NaN without a map reference
+  double map_northing_m = 0.0;     ///< map northing (m); NaN without a map reference
 };
+
+/// A point's map coordinates (m).
+struct MapCoordinates {
+  double easting_m = 0.0;
+  double northing_m = 0.0;
+};
+
+/// The map coordinates of the point north_m, east_m (m, true north and east in the tie-on's
+/// level frame) from the well reference, with grid convergence `convergence_deg` (grid north's
+/// angle from true north, clockwise positive): see map_easting_m above.
+MapCoordinates map_coordinates(const MapReference& reference, double convergence_deg,
+                               double north_m, double east_m);
 
 /// A horizontal error ellipse: semi-axes (m) and the major axis' azimuth, [0, 180) deg.
 struct HorizontalEllipse {

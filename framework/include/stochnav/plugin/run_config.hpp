@@ -45,6 +45,9 @@
 //                "sensor_to_bit_m": 12.5,              // survey sensor behind the bit, [0, 200]
 //                "tie_on_md_tolerance_m": 5,           // tie-on MD vs the tally, (0, 1000]
 //                "grid_convergence_deg": 1.2,          // grid north from true, [-10, 10]
+//                "well_reference": {"easting_m": 500000, "northing_m": 6200000,
+//                                   "scale_factor": 0.9996},  // map coordinates, optional
+//                "length_unit": "ft",                  // m | ft: ft adds survey_ft.csv
 //                "error_model": "gyro_ns_ct",          // none | mwd_rev5 | mwd_rev4 | gyro_ns_ct
 //                "well": "well.json",                  // `stochnav survey --well` file
 //                "noise_model": "gyro_fit.json",       // gyro_ns_ct: fitted x-y gyro model
@@ -236,6 +239,20 @@ struct SurveyConfig {
   /// "grid_convergence_deg" (deg), [-10, 10]: grid north's angle from true north, clockwise
   /// positive; survey.csv's grid_azimuth_deg = azimuth_deg - this. Absent: grid_azimuth_deg NaN.
   std::optional<double> grid_convergence_deg;
+  /// "well_reference": the map (projected CRS) coordinates of the tie-on, the origin of the
+  /// listing's north/east: "easting_m" and "northing_m" (m, finite, |x| <= 1e8, required) and
+  /// "scale_factor" (the grid scale factor at the well, [0.99, 1.01], default 1). Only with
+  /// grid_convergence_deg (the offsets are turned into grid north). Absent: survey.csv's
+  /// map_easting_m / map_northing_m NaN.
+  struct WellReference {
+    double easting_m = 0.0;
+    double northing_m = 0.0;
+    double scale_factor = 1.0;
+  };
+  std::optional<WellReference> well_reference;
+  /// "length_unit": "m" (default: survey.csv only) or "ft" (survey_ft.csv too: the listing in
+  /// international feet, 0.3048 m, DLS per 100 ft). survey.csv stays in metres either way.
+  std::string length_unit = "m";
   /// "error_model": the survey tool model (survey_error/tool_models.hpp) whose covariance the
   /// run writes beside the filter's for its survey stations (iscwsa_covariance.csv,
   /// survey_uncertainty.png; experiment/survey.hpp). "none" (default): neither file.

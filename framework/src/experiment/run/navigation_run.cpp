@@ -455,12 +455,19 @@ NavigationRunResult run_navigation(const plugin::RunConfig& config,
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   if (files) {
-    const SurveyListingOptions listing{config.survey.vertical_section_azimuth_deg,
-                                       config.survey.ellipse_confidence,
-                                       config.survey.datum_elevation_m,
-                                       config.survey.tie_on_tvd_m,
-                                       config.survey.sensor_to_bit_m,
-                                       config.survey.grid_convergence_deg};
+    SurveyListingOptions listing;
+    listing.vertical_section_azimuth_deg = config.survey.vertical_section_azimuth_deg;
+    listing.ellipse_confidence = config.survey.ellipse_confidence;
+    listing.datum_elevation_m = config.survey.datum_elevation_m;
+    listing.tie_on_tvd_m = config.survey.tie_on_tvd_m;
+    listing.sensor_to_bit_m = config.survey.sensor_to_bit_m;
+    listing.grid_convergence_deg = config.survey.grid_convergence_deg;
+    if (const auto& reference = config.survey.well_reference) {
+      listing.map_reference =
+          MapReference{reference->easting_m, reference->northing_m, reference->scale_factor};
+    }
+    listing.length_unit =
+        config.survey.length_unit == "ft" ? SurveyLengthUnit::kFoot : SurveyLengthUnit::kMetre;
     const std::optional<SurveyErrorModelRequest> error_model =
         survey_error_model_request(config.survey, tie_on, *plugins.gyro);
     files->commit(result, options.plot, survey, tie_on, listing,

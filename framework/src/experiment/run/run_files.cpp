@@ -175,7 +175,7 @@ void remove_previous_run(const std::filesystem::path& out_dir) {
       "metrics.json", "nav.csv",    "biases.csv",        "innovations.csv",
       "errors.csv",   "errors.png", "covariance.csv",    "survey.csv",
       "survey.png",   "well_path.csv", "survey_errors.csv", "states.csv",
-      "trajectory.xml", "iscwsa_covariance.csv", "survey_uncertainty.png"};
+      "trajectory.xml", "iscwsa_covariance.csv", "survey_uncertainty.png", "survey_ft.csv"};
   std::error_code ignored;
   for (const char* name : kRunFiles) std::filesystem::remove(out_dir / name, ignored);
 }

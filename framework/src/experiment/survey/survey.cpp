@@ -162,7 +162,12 @@ void SurveyRecorder::observe(const NavState& state, const Eigen::Matrix<double, 
   if (previous_position_m_) ins_path_length_m_ += (position_m - *previous_position_m_).norm();
   previous_position_m_ = position_m;
   const double md_m = measured_depth_m.value_or(tie_on_.measured_depth_m + ins_path_length_m_);
-  append_to_ins_path({md_m, position_m.x(), position_m.y(), position_m.z()});
+  WellPathPoint truth_point{md_m, std::nan(""), std::nan(""), std::nan("")};
+  if (truth != nullptr) {
+    const Eigen::Vector3d true_position_m = tie_on_position_m(*truth);
+    truth_point = {md_m, true_position_m.x(), true_position_m.y(), true_position_m.z()};
+  }
+  append_to_paths({md_m, position_m.x(), position_m.y(), position_m.z()}, truth_point);
 
   if (!stationary) {
     close_open_station();
@@ -240,16 +245,31 @@ void SurveyRecorder::close_open_station() {
   open_error_.reset();
 }
 
-void SurveyRecorder::append_to_ins_path(const WellPathPoint& point) {
+std::vector<WellPathPoint> SurveyRecorder::truth_path() const {
+  std::vector<WellPathPoint> path;
+  for (const WellPathPoint& p : truth_path_) {
+    if (!std::isnan(p.north_m)) path.push_back(p);
+  }
+  return path;
+}
+
+void SurveyRecorder::append_to_paths(const WellPathPoint& point, const WellPathPoint& truth_point) {
   // Memory stays flat over a 200-h record: the path keeps epochs 0, s, 2s, ... (s doubles
   // whenever it is full) plus the latest epoch, so it always reaches the current position.
+  // The truth path is thinned alike, point for point.
   const std::size_t epoch = observed_count_++;
-  if (last_path_point_is_extra_) ins_path_.pop_back();
+  if (last_path_point_is_extra_) {
+    ins_path_.pop_back();
+    truth_path_.pop_back();
+  }
   ins_path_.push_back(point);
+  truth_path_.push_back(truth_point);
   last_path_point_is_extra_ = epoch % path_stride_ != 0;
   if (last_path_point_is_extra_ || ins_path_.size() < kMaxInsPathPoints) return;
+  keep_every_other_point(truth_path_);
   if (keep_every_other_point(ins_path_)) {
     ins_path_.push_back(point);
+    truth_path_.push_back(truth_point);
     last_path_point_is_extra_ = true;
   }
   path_stride_ *= 2;

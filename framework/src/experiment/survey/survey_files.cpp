@@ -43,7 +43,19 @@ constexpr std::string_view kListingHeader =
     // What the row is (experiment/survey.hpp): tie_on | survey | projection_to_bit.
     "station_type,"
     // Grid north and the ellipse in the hole's frame (experiment/survey_listing.hpp).
-    "grid_azimuth_deg,highside_sigma_m,lateral_sigma_m,alonghole_sigma_m";
+    "grid_azimuth_deg,highside_sigma_m,lateral_sigma_m,alonghole_sigma_m,"
+    // Map coordinates from the well reference's (experiment/survey_listing.hpp).
+    "map_easting_m,map_northing_m";
+/// survey_ft.csv: survey.csv's rows in international feet (write_survey_files).
+constexpr std::string_view kFeetListingHeader =
+    "station_type,md_ft,inclination_deg,azimuth_deg,grid_azimuth_deg,tvd_ft,"
+    "tvd_below_datum_ft,tvdss_ft,north_ft,east_ft,vertical_section_ft,dls_deg_100ft,"
+    "build_deg_100ft,turn_deg_100ft,closure_ft,closure_azimuth_deg,mc_north_ft,mc_east_ft,"
+    "mc_tvd_ft,north_sigma_ft,east_sigma_ft,tvd_sigma_ft,ellipse_semi_major_ft,"
+    "ellipse_semi_minor_ft,ellipse_azimuth_deg,md_sigma_ft";
+constexpr double kMetresPerFoot = 0.3048;  ///< the international foot (exact)
+/// A rate per 30 m to the same rate per 100 ft.
+constexpr double kPer30mToPer100ft = 100.0 * kMetresPerFoot / 30.0;
 constexpr std::string_view kWellPathHeader = "source,md_m,north_m,east_m,tvd_m";
 
 /// A CSV number: 9 significant digits (0.01 mm at 1 km, 1 ms at 200 h); any NaN as "nan" (the
@@ -158,7 +170,52 @@ std::string stations_csv(const std::vector<SurveyStation>& stations,
       const double hole_frame_columns[] = {l.grid_azimuth_deg, l.highside_sigma_m,
                                            l.lateral_sigma_m, l.alonghole_sigma_m};
       append_cells(csv, hole_frame_columns, true);
+      // Map coordinates are millions of metres: fixed decimals, not 9 significant digits.
+      for (double metres : {l.map_easting_m, l.map_northing_m}) {
+        csv += ',' + csv_micrometres(metres);
+      }
     }
+    csv += '\n';
+  }
+  return csv;
+}
+
+/// survey_ft.csv: the rows of survey.csv (`stations`, `listing` parallel) in feet.
+std::string feet_listing_csv(const std::vector<SurveyStation>& stations,
+                             const std::vector<StationListing>& listing) {
+  std::string csv = std::string(kFeetListingHeader) + '\n';
+  const auto ft = [](double metres) { return metres / kMetresPerFoot; };
+  for (std::size_t row = 0; row < stations.size(); ++row) {
+    const SurveyStation& s = stations[row];
+    const StationListing& l = listing[row];
+    csv += station_type_name(s.type);
+    const double columns[] = {ft(s.md_m),
+                              s.inclination_deg,
+                              s.azimuth_deg,
+                              l.grid_azimuth_deg,
+                              ft(s.tvd_m),
+                              ft(l.tvd_below_datum_m),
+                              ft(l.tvdss_m),
+                              ft(s.north_m),
+                              ft(s.east_m),
+                              ft(l.vertical_section_m),
+                              l.dls_deg_30m * kPer30mToPer100ft,
+                              l.build_deg_30m * kPer30mToPer100ft,
+                              l.turn_deg_30m * kPer30mToPer100ft,
+                              ft(l.closure_m),
+                              l.closure_azimuth_deg};
+    append_cells(csv, columns, true);
+    for (double metres : {l.mc_north_m, l.mc_east_m, l.mc_tvd_m}) {
+      csv += ',' + csv_micrometres(ft(metres));
+    }
+    const double uncertainty_columns[] = {ft(s.north_sigma_m),
+                                          ft(s.east_sigma_m),
+                                          ft(s.tvd_sigma_m),
+                                          ft(l.ellipse_semi_major_m),
+                                          ft(l.ellipse_semi_minor_m),
+                                          l.ellipse_azimuth_deg,
+                                          ft(s.md_sigma_m)};
+    append_cells(csv, uncertainty_columns, true);
     csv += '\n';
   }
   return csv;
@@ -173,11 +230,13 @@ void append_well_path_rows(std::string& csv, std::string_view source,
 }
 
 std::string well_path_csv(const std::vector<WellPathPoint>& minimum_curvature_stations,
-                          const std::vector<WellPathPoint>& ins_path, double tie_on_md_m) {
+                          const std::vector<WellPathPoint>& ins_path,
+                          const std::vector<WellPathPoint>& truth_path, double tie_on_md_m) {
   std::string csv = std::string(kWellPathHeader) + '\n';
   append_well_path_rows(csv, "minimum_curvature", {{tie_on_md_m, 0.0, 0.0, 0.0}});
   append_well_path_rows(csv, "minimum_curvature", minimum_curvature_stations);
   append_well_path_rows(csv, "ins", ins_path);
+  append_well_path_rows(csv, "truth", truth_path);
   return csv;
 }
 
@@ -190,17 +249,16 @@ std::unique_ptr<PendingFile> pending_text_file(const std::filesystem::path& path
 
 /// survey.png rendered into a PendingFile, or null when gnuplot is not installed (the plot is
 /// optional; the numbers are complete without it).
-std::unique_ptr<PendingFile> pending_survey_plot(
-    const SurveyRecorder& recorder, const std::vector<WellPathPoint>& minimum_curvature_stations,
-    const std::filesystem::path& path) {
-  if (recorder.ins_path().empty()) return nullptr;
+std::unique_ptr<PendingFile> pending_survey_plot(const SurveyPlotData& data,
+                                                 const std::filesystem::path& path) {
+  if (data.ins_path.empty()) return nullptr;
   try {
     check_plot_request(path);
   } catch (const ConfigError&) {
     return nullptr;
   }
   auto pending = std::make_unique<PendingFile>(path);
-  plot_survey(recorder, minimum_curvature_stations, *pending);
+  plot_survey(data, *pending);
   return pending;
 }
 
@@ -232,19 +290,27 @@ std::vector<std::unique_ptr<PendingFile>> write_survey_files(
       tie_on_listing(rows.front(), listed_after_tie_on, tie_on, listing)};
   listing_rows.insert(listing_rows.end(), station_rows.begin(), station_rows.end());
   files.push_back(pending_text_file(out_dir / "survey.csv", stations_csv(rows, &listing_rows)));
-  // The tie-in point and the stations (their listing rows are station_rows' first ones).
-  files.push_back(pending_text_file(
-      out_dir / "trajectory.xml", witsml_trajectory_xml(stations, station_rows, tie_on, listing)));
+  if (listing.length_unit == SurveyLengthUnit::kFoot) {
+    files.push_back(
+        pending_text_file(out_dir / "survey_ft.csv", feet_listing_csv(rows, listing_rows)));
+  }
+  // The tie-in point, the stations and the projection to the bit.
+  files.push_back(
+      pending_text_file(out_dir / "trajectory.xml",
+                        witsml_trajectory_xml(listed_after_tie_on, station_rows, tie_on, listing)));
   if (!recorder.station_errors().empty()) {
     files.push_back(
         pending_text_file(out_dir / "survey_errors.csv", stations_csv(recorder.station_errors())));
   }
-  files.push_back(pending_text_file(
-      out_dir / "well_path.csv",
-      well_path_csv(minimum_curvature_stations, recorder.ins_path(), tie_on.measured_depth_m)));
+  const std::vector<WellPathPoint> truth_path = recorder.truth_path();
+  files.push_back(pending_text_file(out_dir / "well_path.csv",
+                                    well_path_csv(minimum_curvature_stations, recorder.ins_path(),
+                                                  truth_path, tie_on.measured_depth_m)));
   if (plot) {
-    if (auto picture =
-            pending_survey_plot(recorder, minimum_curvature_stations, out_dir / "survey.png")) {
+    const SurveyPlotData plot_data{recorder.ins_path(), truth_path, recorder.stations(),
+                                   minimum_curvature_stations,
+                                   *listing.vertical_section_azimuth_deg};
+    if (auto picture = pending_survey_plot(plot_data, out_dir / "survey.png")) {
       files.push_back(std::move(picture));
     }
   }

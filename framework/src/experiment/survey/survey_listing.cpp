@@ -104,10 +104,28 @@ void set_position_columns(StationListing& row, const SurveyStation& s, double vs
   } else {
     row.grid_azimuth_deg = kUndefined;
   }
+  if (options.map_reference) {
+    const MapCoordinates map = map_coordinates(
+        *options.map_reference, options.grid_convergence_deg.value_or(0.0), s.north_m, s.east_m);
+    row.map_easting_m = map.easting_m;
+    row.map_northing_m = map.northing_m;
+  } else {
+    row.map_easting_m = row.map_northing_m = kUndefined;
+  }
   set_hole_frame_sigmas(row, s);
 }
 
 }  // namespace
+
+MapCoordinates map_coordinates(const MapReference& reference, double convergence_deg,
+                               double north_m, double east_m) {
+  // Grid north is turned clockwise from true north by the convergence: an offset at true
+  // azimuth A lies at grid azimuth A - g.
+  const double g = convergence_deg * kRadPerDeg;
+  const double k = reference.scale_factor;
+  return {reference.easting_m + k * (east_m * std::cos(g) - north_m * std::sin(g)),
+          reference.northing_m + k * (north_m * std::cos(g) + east_m * std::sin(g))};
+}
 
 double ellipse_scale(double confidence) { return std::sqrt(-2.0 * std::log1p(-confidence)); }
 

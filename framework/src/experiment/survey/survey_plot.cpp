@@ -9,6 +9,9 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <string_view>
+#include <tuple>
+#include <utility>
 
 #include "stochnav/core/angles.hpp"
 #include "stochnav/report/gnuplot.hpp"
@@ -37,22 +40,47 @@ EllipseAxes two_sigma_axes(const Eigen::Matrix2d& covariance_ne_m2) {
   return {semi_axis(1), semi_axis(0)};
 }
 
-/// Largest of the east and north spans of everything in the plan view (m).
-double plan_extent_m(const std::vector<WellPathPoint>& ins_path,
-                     const std::vector<WellPathPoint>& stations) {
+/// The east and north bounds of every point of the plan view.
+struct PlanBounds {
+  double east_min = std::numeric_limits<double>::infinity();
+  double east_max = -std::numeric_limits<double>::infinity();
   double north_min = std::numeric_limits<double>::infinity();
-  double north_max = -north_min;
-  double east_min = north_min;
-  double east_max = -north_min;
-  for (const auto* points : {&ins_path, &stations}) {
-    for (const WellPathPoint& p : *points) {
-      north_min = std::min(north_min, p.north_m);
-      north_max = std::max(north_max, p.north_m);
+  double north_max = -std::numeric_limits<double>::infinity();
+  void add(const std::vector<WellPathPoint>& points) {
+    for (const WellPathPoint& p : points) {
       east_min = std::min(east_min, p.east_m);
       east_max = std::max(east_max, p.east_m);
+      north_min = std::min(north_min, p.north_m);
+      north_max = std::max(north_max, p.north_m);
     }
   }
-  return std::max(north_max - north_min, east_max - east_min);
+};
+
+PlanBounds plan_bounds(const SurveyPlotData& data) {
+  PlanBounds bounds;
+  bounds.add(data.ins_path);
+  bounds.add(data.truth_path);
+  bounds.add(data.minimum_curvature_stations);
+  // The stations' 2-sigma ellipses at true size (the magnification is 1 with independent
+  // scales): the extent of an ellipse with semi-axes a, b along a unit x is hypot(a.x, b.x).
+  for (std::size_t i = 0; i < data.minimum_curvature_stations.size() && i < data.stations.size();
+       ++i) {
+    const EllipseAxes axes = two_sigma_axes(data.stations[i].horizontal_covariance_m2);
+    const WellPathPoint& p = data.minimum_curvature_stations[i];
+    const double north_extent = std::hypot(axes.major_ne.x(), axes.minor_ne.x());
+    const double east_extent = std::hypot(axes.major_ne.y(), axes.minor_ne.y());
+    if (std::isnan(north_extent) || std::isnan(east_extent)) continue;
+    bounds.add({{p.md_m, p.north_m - north_extent, p.east_m - east_extent, p.tvd_m},
+                {p.md_m, p.north_m + north_extent, p.east_m + east_extent, p.tvd_m}});
+  }
+  return bounds;
+}
+
+/// A range [low, high] padded by 5 % on either side and widened about its middle to `span`.
+std::pair<double, double> padded_range(double low, double high, double span) {
+  const double middle = 0.5 * (low + high);
+  const double half = 0.5 * std::max(high - low, span) * 1.1;
+  return {middle - half, middle + half};
 }
 
 /// Horizontal displacement along an azimuth (m): the x axis of the vertical section.
@@ -60,11 +88,12 @@ double section_displacement_m(const WellPathPoint& p, double azimuth_rad) {
   return p.north_m * std::cos(azimuth_rad) + p.east_m * std::sin(azimuth_rad);
 }
 
-/// Datablock $ins: east north tvd section.
-std::string ins_datablock(const std::vector<WellPathPoint>& ins_path, double section_azimuth_rad) {
-  std::string block = "$ins << EOD\n";
+/// Datablock `$name`: east north tvd section, one row per point.
+std::string path_datablock(std::string_view name, const std::vector<WellPathPoint>& path,
+                           double section_azimuth_rad) {
+  std::string block = fmt::format("${} << EOD\n", name);
   auto out = std::back_inserter(block);
-  for (const WellPathPoint& p : ins_path) {
+  for (const WellPathPoint& p : path) {
     fmt::format_to(out, "{:.9g} {:.9g} {:.9g} {:.9g}\n", p.east_m, p.north_m, p.tvd_m,
                    section_displacement_m(p, section_azimuth_rad));
   }
@@ -105,12 +134,6 @@ std::string ellipses_datablock(const std::vector<SurveyStation>& stations,
   return block + "EOD\n";
 }
 
-/// An azimuth in [0, 360) deg from atan2's (-pi, pi] rad.
-double azimuth_deg(double azimuth_rad) {
-  const double degrees = azimuth_rad * kDegPerRad;
-  return degrees < 0.0 ? degrees + 360.0 : degrees;
-}
-
 std::string magnification_label(double magnification) {
   return fmt::format("x{:g}", magnification);
 }
@@ -129,43 +152,66 @@ double ellipse_magnification(double largest_major_axis_m, double plot_extent_m,
   return decade;
 }
 
-void plot_survey(const SurveyRecorder& recorder,
-                 const std::vector<WellPathPoint>& minimum_curvature_stations,
-                 PendingFile& output) {
-  const std::vector<WellPathPoint>& ins_path = recorder.ins_path();
-  const std::vector<SurveyStation>& stations = recorder.stations();
-  if (ins_path.empty()) return;
+PlanViewAxes plan_view_axes(const SurveyPlotData& data) {
+  const PlanBounds bounds = plan_bounds(data);
+  PlanViewAxes axes;
+  if (!(bounds.east_max >= bounds.east_min)) return axes;  // no point
+  const double east_span = bounds.east_max - bounds.east_min;
+  const double north_span = bounds.north_max - bounds.north_min;
+  const double larger = std::max({east_span, north_span, kMinimumPlanSpan_m});
+  axes.equal_scales = std::min(east_span, north_span) >= kEqualScaleRatio * larger;
+  // Equal scales: both axes span the larger extent (the picture is then as wide as high).
+  const double east_minimum = axes.equal_scales ? larger : kMinimumPlanSpan_m;
+  const double north_minimum = axes.equal_scales ? larger : kMinimumPlanSpan_m;
+  std::tie(axes.east_min_m, axes.east_max_m) =
+      padded_range(bounds.east_min, bounds.east_max, east_minimum);
+  std::tie(axes.north_min_m, axes.north_max_m) =
+      padded_range(bounds.north_min, bounds.north_max, north_minimum);
+  return axes;
+}
 
+std::string survey_plot_script(const SurveyPlotData& data) {
+  const std::vector<SurveyStation>& stations = data.stations;
+  const std::vector<WellPathPoint>& points = data.minimum_curvature_stations;
+  const PlanViewAxes axes = plan_view_axes(data);
   double largest_major_axis_m = 0.0;
   for (const SurveyStation& s : stations) {
     largest_major_axis_m = std::max(
         largest_major_axis_m, 2.0 * two_sigma_axes(s.horizontal_covariance_m2).major_ne.norm());
   }
-  const double magnification = ellipse_magnification(
-      largest_major_axis_m, plan_extent_m(ins_path, minimum_curvature_stations));
-  // The vertical section is drawn along the closure: from the tie-on to the last station (to
-  // the INS path's end when there is no station).
-  const WellPathPoint& closure_point =
-      minimum_curvature_stations.empty() ? ins_path.back() : minimum_curvature_stations.back();
-  const double section_azimuth_rad = std::atan2(closure_point.east_m, closure_point.north_m);
-  const bool has_stations = !minimum_curvature_stations.empty();
+  // With equal scales the ellipses are magnified to be seen on a km-long plan; with
+  // independent scales the narrow axis already spans them at true size (plan_view_axes).
+  const double magnification =
+      axes.equal_scales
+          ? ellipse_magnification(largest_major_axis_m, (axes.east_max_m - axes.east_min_m) / 1.1)
+          : 1.0;
+  const double section_azimuth_rad = data.vertical_section_azimuth_deg * kRadPerDeg;
+  const bool has_stations = !points.empty();
+  const bool has_truth = !data.truth_path.empty();
   const std::string magnified = magnification_label(magnification);
 
-  std::string script = ins_datablock(ins_path, section_azimuth_rad);
+  std::string script = path_datablock("ins", data.ins_path, section_azimuth_rad);
+  if (has_truth) script += path_datablock("truth", data.truth_path, section_azimuth_rad);
   if (has_stations) {
-    script += stations_datablock(stations, minimum_curvature_stations, section_azimuth_rad,
-                                 magnification);
-    script += ellipses_datablock(stations, minimum_curvature_stations, magnification);
+    script += stations_datablock(stations, points, section_azimuth_rad, magnification);
+    script += ellipses_datablock(stations, points, magnification);
   }
   script += "set multiplot layout 1,2 title 'survey: INS path and minimum-curvature stations'\n";
-  script += "set grid\nset key below noenhanced\nset bmargin 7\n";
+  script += "set grid\nset key below noenhanced\nset bmargin 8\n";
 
-  // Plan view, equal scales so the path and the ellipses keep their shape.
+  // Plan view: one scale for east and north when the well spreads in both; else each axis
+  // its own range (said in the title), so a long straight hole is not squashed to a line.
   script += fmt::format(
-      "set title 'plan view (2-sigma ellipses {})' noenhanced\nset size ratio -1\n"
+      "set title 'plan view (2-sigma ellipses {}{})' noenhanced\n{}\n"
+      "set xrange [{:.9g}:{:.9g}]\nset yrange [{:.9g}:{:.9g}]\n"
       "set xlabel 'east (m)'\nset ylabel 'north (m)'\n"
       "plot $ins using 1:2 with lines lw 1.5 lc rgb '#1f77b4' title 'INS path'",
-      magnified);
+      magnified, axes.equal_scales ? "" : "; axes scaled independently",
+      axes.equal_scales ? "set size ratio -1" : "set size noratio", axes.east_min_m,
+      axes.east_max_m, axes.north_min_m, axes.north_max_m);
+  if (has_truth) {
+    script += ", $truth using 1:2 with lines lw 1 dt 2 lc rgb 'black' title 'truth'";
+  }
   if (has_stations) {
     script += fmt::format(
         ", $stations using 1:2 with points pt 7 ps 0.5 lc rgb '#d62728' "
@@ -175,13 +221,16 @@ void plot_survey(const SurveyRecorder& recorder,
   }
   script += '\n';
 
-  // Vertical section, TVD growing downwards.
+  // Vertical section along the listing's azimuth, TVD growing downwards.
   script += fmt::format(
       "set title 'vertical section along azimuth {:.1f} deg' noenhanced\nset size noratio\n"
-      "set yrange [*:*] reverse\n"
-      "set xlabel 'horizontal displacement (m)'\nset ylabel 'TVD (m)'\n"
+      "set xrange [*:*]\nset yrange [*:*] reverse\n"
+      "set xlabel 'vertical section (m)'\nset ylabel 'TVD (m)'\n"
       "plot $ins using 4:3 with lines lw 1.5 lc rgb '#1f77b4' title 'INS path'",
-      azimuth_deg(section_azimuth_rad));
+      data.vertical_section_azimuth_deg);
+  if (has_truth) {
+    script += ", $truth using 4:3 with lines lw 1 dt 2 lc rgb 'black' title 'truth'";
+  }
   if (has_stations) {
     script += fmt::format(
         ", $stations using 4:3:5 with yerrorbars pt 7 ps 0.5 lc rgb '#d62728' "
@@ -189,7 +238,12 @@ void plot_survey(const SurveyRecorder& recorder,
         magnified);
   }
   script += "\nunset multiplot\n";
-  render_gnuplot(script, output);
+  return script;
+}
+
+void plot_survey(const SurveyPlotData& data, PendingFile& output) {
+  if (data.ins_path.empty()) return;
+  render_gnuplot(survey_plot_script(data), output);
 }
 
 }  // namespace stochnav

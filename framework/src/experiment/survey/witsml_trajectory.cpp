@@ -50,8 +50,15 @@ void add_station(pugi::xml_node trajectory, const std::string& uid, const Statio
   add_measure(node, "mdDelta", v.md_delta_m, "m");
   add_measure(node, "tvdDelta", v.tvd_delta_m, "m");
   if (v.station == nullptr) return;
-  add_text(node, "modelToolError", "stochnav INS filter covariance (1 sigma)");
-  add_text(node, "statusTrajStation", v.station->qc.flagged ? "open" : "position");
+  if (v.station->type == SurveyStationType::kProjectionToBit) {
+    // Not a measurement: no status; its covariance is the last station's.
+    add_text(node, "modelToolError",
+             "stochnav INS filter covariance of the last survey station (1 sigma); the "
+             "projection's own error is not included");
+  } else {
+    add_text(node, "modelToolError", "stochnav INS filter covariance (1 sigma)");
+    add_text(node, "statusTrajStation", v.station->qc.flagged ? "open" : "position");
+  }
   const Eigen::Matrix3d& p = v.station->position_covariance_nev_m2;
   pugi::xml_node cov = node.append_child("matrixCov");
   add_measure(cov, "varianceNN", p(0, 0), "m2");
@@ -116,8 +123,10 @@ std::string witsml_trajectory_xml(const std::vector<SurveyStation>& stations,
   for (std::size_t i = 0; i < stations.size(); ++i) {
     const SurveyStation& s = stations[i];
     const StationListing& row = listing.at(i);
-    add_station(trajectory, fmt::format("station-{}", i + 1),
-                {.type = "MD INCL and AZI",
+    const bool projection = s.type == SurveyStationType::kProjectionToBit;
+    add_station(trajectory, projection ? std::string("projection-to-bit")
+                                       : fmt::format("station-{}", i + 1),
+                {.type = projection ? "hold to delta-MD" : "gyro inertial",
                  .md_m = s.md_m,
                  .tvd_m = tvd_origin_m + s.tvd_m,
                  .incl_deg = s.inclination_deg,
