@@ -62,6 +62,21 @@ LegReach leg_reach(WeightingFunction function);
 /// kXym4e, kXcla.
 bool has_near_vertical_form(WeightingFunction function);
 
+/// Whether `function` is a stationary gyrocompass term (kGxyB1, kGxyB2, kGxyG4), whose
+/// azimuth error a continuous survey carries forward from its initialising station
+/// (SurveyErrorModel::continuous_start_inclination_rad).
+bool is_gyrocompass_weighting(WeightingFunction function);
+
+/// dA/de of a gyrocompass term at `station` (rad of azimuth per rad/s of gyro error, i.e. s),
+/// with Omega = well.earth_rate_rad_s and lat = well.latitude_rad:
+///   kGxyB1  sin AzT / (Omega cos(lat) cos I)
+///   kGxyB2  cos AzT / (Omega cos(lat))
+///   kGxyG4  sin AzT tan I / (Omega cos(lat))
+/// Requires is_gyrocompass_weighting(function) (else 0), I < pi/2, Omega > 0 and
+/// |lat| < pi/2 (the caller checks; the values diverge there).
+double gyrocompass_azimuth_weight_s(WeightingFunction function, const StationGeometry& station,
+                                    const WellParameters& well);
+
 /// The weights of `function` at `station`. `tortuosity_rad_per_m`: the model's default
 /// tortuosity (XCLA, XCLH). The caller evaluates a near-vertical station with
 /// has_near_vertical_form() at inclination 0 (error_propagation.cpp does).
