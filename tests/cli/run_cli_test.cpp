@@ -578,7 +578,8 @@ TEST_F(RunCli, SurveyErrorModelBesideTheFiltersCovariance) {
       // Both models' totals (the gyro tool model's with its depth and misalignment terms)
       // are positive definite past the tie-on, with a vertical part.
       EXPECT_EQ(Eigen::LLT<Eigen::Matrix3d>(p).info(), Eigen::Success)
-          << model << " TOTAL at MD " << station_md[k] << " not positive definite:\n" << p;
+          << model << " TOTAL at MD " << station_md[k] << " not positive definite:\n"
+          << p;
       EXPECT_GT(vv, 0.0) << model;
     }
   }

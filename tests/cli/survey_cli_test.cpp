@@ -296,9 +296,9 @@ std::string gyro_listing_csv() {
 
 constexpr std::size_t kGyroListingStations = 41;
 const std::vector<std::string> kGyroSources = {
-    "DRFR",    "DSFS",    "DSTG",   "XYM1",   "XYM2",    "XYM3E",   "XYM4E",
-    "XCLA",    "XCLH",    "AXYZ-MIS", "AXYZ-SF", "AXYZ-ZB", "GXY-B1S", "GXY-B2S",
-    "GXY-G4",  "GXY-RN",  "GXY-GD", "GXY-GRW", "SAGE",    "TOTAL"};
+    "DRFR",   "DSFS",   "DSTG",     "XYM1",    "XYM2",    "XYM3E",   "XYM4E",
+    "XCLA",   "XCLH",   "AXYZ-MIS", "AXYZ-SF", "AXYZ-ZB", "GXY-B1S", "GXY-B2S",
+    "GXY-G4", "GXY-RN", "GXY-GD",   "GXY-GRW", "SAGE",    "TOTAL"};
 
 TEST(SurveyCliGyro, OwsgMagnitudesFromAListing) {
   TempDir dir;

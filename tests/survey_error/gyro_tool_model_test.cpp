@@ -65,10 +65,10 @@ const SourceCovariance& source_named(const SurveyCovariance& covariance, const s
 TEST(GyroToolModel, TheOwsgSourcesInTheOwsgOrder) {
   const SurveyCovariance covariance = tool_model_covariance(
       kGyroNsCtModelName, tool_test_well(), tool_test_site(), owsg_gyro_ns_ct_terms());
-  const std::vector<std::string> expected = {
-      "DRFR",    "DSFS",    "DSTG",    "XYM1",   "XYM2",   "XYM3E",  "XYM4E",
-      "XCLA",    "XCLH",    "AXYZ-MIS", "AXYZ-SF", "AXYZ-ZB", "GXY-B1S", "GXY-B2S",
-      "GXY-G4",  "GXY-RN",  "GXY-GD",  "GXY-GRW", "SAGE"};
+  const std::vector<std::string> expected = {"DRFR",    "DSFS",    "DSTG",    "XYM1",    "XYM2",
+                                             "XYM3E",   "XYM4E",   "XCLA",    "XCLH",    "AXYZ-MIS",
+                                             "AXYZ-SF", "AXYZ-ZB", "GXY-B1S", "GXY-B2S", "GXY-G4",
+                                             "GXY-RN",  "GXY-GD",  "GXY-GRW", "SAGE"};
   ASSERT_EQ(covariance.sources.size(), expected.size());
   for (std::size_t i = 0; i < expected.size(); ++i) {
     EXPECT_EQ(covariance.sources[i].code, expected[i]);
@@ -242,14 +242,26 @@ std::vector<SimulatedSource> simulated_table_sources(const std::vector<ListingSt
   };
   using Weights = std::array<double, 3>;
   return {
-      {"DRFR", true, scale * 0.35, [](std::size_t) { return Weights{1, 0, 0}; }},
-      {"DSFS", false, scale * 0.00056, [&s](std::size_t k) { return Weights{s[k].md_m, 0, 0}; }},
+      {"DRFR", true, scale * 0.35,
+       [](std::size_t) {
+         return Weights{1, 0, 0};
+       }},
+      {"DSFS", false, scale * 0.00056,
+       [&s](std::size_t k) {
+         return Weights{s[k].md_m, 0, 0};
+       }},
       {"DSTG", false, scale * 2.5e-7,
-       [&s, tvd](std::size_t k) { return Weights{s[k].md_m * tvd[k], 0, 0}; }},
+       [&s, tvd](std::size_t k) {
+         return Weights{s[k].md_m * tvd[k], 0, 0};
+       }},
       {"XYM1", false, scale * 0.1 * deg,
-       [inc](std::size_t k) { return Weights{0, std::abs(std::sin(inc(k))), 0}; }},
+       [inc](std::size_t k) {
+         return Weights{0, std::abs(std::sin(inc(k))), 0};
+       }},
       {"XYM2", false, scale * 0.1 * deg,
-       [inc](std::size_t k) { return Weights{0, 0, -std::sin(inc(k))}; }},
+       [inc](std::size_t k) {
+         return Weights{0, 0, -std::sin(inc(k))};
+       }},
       {"XYM3E", true, scale * 0.3 * deg,
        [inc, azi, short_interval](std::size_t k) {
          const double f = short_interval(k) * std::abs(std::cos(inc(k)));
@@ -260,11 +272,18 @@ std::vector<SimulatedSource> simulated_table_sources(const std::vector<ListingSt
          const double f = short_interval(k) * std::abs(std::cos(inc(k)));
          return Weights{0, f * std::sin(azi(k)), f * std::cos(azi(k))};
        }},
-      {"AXYZ-MIS", false, scale * 0.0095 * deg, [](std::size_t) { return Weights{0, 1, 0}; }},
+      {"AXYZ-MIS", false, scale * 0.0095 * deg,
+       [](std::size_t) {
+         return Weights{0, 1, 0};
+       }},
       {"AXYZ-SF", false, scale * 0.000111,
-       [inc](std::size_t k) { return Weights{0, 1.3 * std::sin(inc(k)) * std::cos(inc(k)), 0}; }},
+       [inc](std::size_t k) {
+         return Weights{0, 1.3 * std::sin(inc(k)) * std::cos(inc(k)), 0};
+       }},
       {"AXYZ-ZB", false, scale * 0.0017,
-       [inc, well](std::size_t k) { return Weights{0, std::sin(inc(k)) / well.gravity_m_s2, 0}; }},
+       [inc, well](std::size_t k) {
+         return Weights{0, std::sin(inc(k)) / well.gravity_m_s2, 0};
+       }},
       {"GXY-B1S", false, scale * 0.15 * deg_h,
        [inc, azi, compass, horizontal_rate](std::size_t k) {
          const std::size_t c = compass(k);
@@ -282,7 +301,9 @@ std::vector<SimulatedSource> simulated_table_sources(const std::vector<ListingSt
                         std::sin(inc(k)) * std::sin(azi(c)) * std::tan(inc(c)) / horizontal_rate};
        }},
       {"SAGE", false, scale * 0.08 * deg,
-       [inc](std::size_t k) { return Weights{0, std::pow(std::sin(inc(k)), 0.25), 0}; }},
+       [inc](std::size_t k) {
+         return Weights{0, std::pow(std::sin(inc(k)), 0.25), 0};
+       }},
   };
 }
 
@@ -463,9 +484,8 @@ TEST_P(GyroToolMonteCarlo, SimulatedScatterMatchesThePropagatedCovariance) {
     }
   }
   ASSERT_EQ(simulated.size(), GetParam().codes.size());
-  EXPECT_TRUE(
-      tool_monte_carlo_agrees(simulated, nullptr, summed_sources(propagated, GetParam().codes),
-                              true));
+  EXPECT_TRUE(tool_monte_carlo_agrees(simulated, nullptr,
+                                      summed_sources(propagated, GetParam().codes), true));
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -492,9 +512,9 @@ TEST(GyroToolMonteCarloWhole, EverySourceButTheUnseenTortuosityTogether) {
   for (const auto& source : simulated_table_sources(stations, well, kMonteCarloScale, true)) {
     codes.push_back(source.code);
   }
-  EXPECT_TRUE(tool_monte_carlo_agrees(
-      simulated_table_sources(stations, well, kMonteCarloScale, true), &continuous,
-      summed_sources(propagated, codes), true));
+  EXPECT_TRUE(
+      tool_monte_carlo_agrees(simulated_table_sources(stations, well, kMonteCarloScale, true),
+                              &continuous, summed_sources(propagated, codes), true));
 }
 
 TEST(GyroToolMonteCarloWhole, GyrocompassTermsEvaluatedAtEveryStationFailTheSameTest) {
@@ -510,8 +530,7 @@ TEST(GyroToolMonteCarloWhole, GyrocompassTermsEvaluatedAtEveryStationFailTheSame
     if (source.code == "GXY-B1S") simulated.push_back(std::move(source));
   }
   EXPECT_FALSE(
-      tool_monte_carlo_agrees(simulated, nullptr, summed_sources(not_carried, {"GXY-B1S"}),
-                              false));
+      tool_monte_carlo_agrees(simulated, nullptr, summed_sources(not_carried, {"GXY-B1S"}), false));
 }
 
 }  // namespace

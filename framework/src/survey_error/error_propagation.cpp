@@ -58,9 +58,8 @@ std::vector<StationEffect> source_effects(const SurveyErrorModel& model, const E
 void check_gyrocompass_geometry(const SurveyErrorModel& model,
                                 const std::vector<StationGeometry>& geometry,
                                 const WellParameters& well, std::size_t initialising) {
-  const bool any = std::any_of(model.sources.begin(), model.sources.end(), [](const auto& s) {
-    return is_gyrocompass_weighting(s.weighting);
-  });
+  const bool any = std::any_of(model.sources.begin(), model.sources.end(),
+                               [](const auto& s) { return is_gyrocompass_weighting(s.weighting); });
   if (!any) return;
   const auto reject = [](const std::string& reason) {
     throw std::invalid_argument("survey_error::propagate_survey_errors: " + reason);
@@ -71,8 +70,7 @@ void check_gyrocompass_geometry(const SurveyErrorModel& model,
   }
   for (std::size_t k = 1; k < geometry.size() && k <= initialising; ++k) {
     if (!(geometry[k].inclination_rad < std::numbers::pi / 2.0)) {
-      reject("the gyrocompass station " + std::to_string(k) +
-             " is at 90 deg inclination or above");
+      reject("the gyrocompass station " + std::to_string(k) + " is at 90 deg inclination or above");
     }
   }
 }
@@ -94,9 +92,10 @@ SurveyCovariance propagate_survey_errors(const SurveyErrorModel& model,
   result.total_nev_m2.assign(stations.size(), Matrix3d::Zero());
   const bool grid = well.azimuth_reference == AzimuthReference::kGrid;
   for (const ErrorSource& source : model.sources) {
-    SourceCovariance covariance{source.code, source.mode,
-                                propagate_effects(source_effects(model, source, geometry, well, initialising),
-                                                  source.magnitude_si(), source.mode)};
+    SourceCovariance covariance{
+        source.code, source.mode,
+        propagate_effects(source_effects(model, source, geometry, well, initialising),
+                          source.magnitude_si(), source.mode)};
     for (std::size_t k = 0; k < stations.size(); ++k) {
       if (grid) covariance.nev_m2[k] = true_to_grid(covariance.nev_m2[k], well.convergence_rad);
       result.total_nev_m2[k] += covariance.nev_m2[k];

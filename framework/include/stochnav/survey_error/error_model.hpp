@@ -1,8 +1,8 @@
 #pragma once
 // The ISCWSA MWD survey error models as data: each error source's code, weighting function,
 // magnitude (with its unit as the ISCWSA tables give it) and propagation mode. The tables
-// themselves are in src/survey_error/mwd_models.cpp, one row per source; docs/
-// survey-error-model.md lists them for readers.
+// themselves are in src/survey_error/mwd_models.cpp (and the OWSG gyro tool model's in
+// gyro_models.cpp), one row per source; docs/survey-error-model.md lists them for readers.
 //
 // Propagation modes (ISCWSA MWD Rev5 document, after Williamson, SPE 67616): an error source is
 //   random (R)      independent from station to station: the covariances of the stations add;
@@ -124,7 +124,8 @@ struct SurveyErrorModel {
 /// The model called `name` ("mwd_rev5" = ISCWSA MWD Rev5.11, 35 sources; "mwd_rev4", 27
 /// sources). Throws ConfigError "--model 'NAME': unknown survey error model; use ..." (with a
 /// "did you mean" for a likely typo; tool_models.hpp), or "not an ISCWSA MWD model" for
-/// gyro_ns_ct, which is not a table of ISCWSA sources.
+/// gyro_ns_ct, which is a table (tool_models.hpp, gyro_ns_ct_table_model) plus terms no
+/// propagation mode describes (continuous_gyro.hpp).
 const SurveyErrorModel& survey_error_model(std::string_view name);
 
 /// The names survey_error_model() knows, in a stable order.

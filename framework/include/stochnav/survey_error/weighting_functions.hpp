@@ -1,7 +1,8 @@
 #pragma once
 // The ISCWSA weighting functions: for one error source at one survey station, the change of the
 // station's measured depth, inclination and azimuth per unit of the source (the derivatives
-// dMD/de, dI/de, dA/de of the ISCWSA MWD Rev5 document, SPE 67616 appendix).
+// dMD/de, dI/de, dA/de of the ISCWSA MWD Rev5 document, SPE 67616 appendix; the accelerometer
+// and gyrocompass functions of the OWSG gyro tool model GYRO-NS-CT, after SPE 90408).
 //
 // The azimuth derivative is returned multiplied by sin(I) (`lateral_rad`): the angle by which the
 // error turns the hole direction horizontally, since dt/dA = sin(I) h for the unit hole
