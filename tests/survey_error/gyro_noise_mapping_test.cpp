@@ -134,7 +134,7 @@ TEST(GyroNoiseMapping, RunTimeIsTheContinuousPartOverTheSpeed) {
   EXPECT_EQ(continuous_run_time_s(vertical, terms), 0.0);
 }
 
-TEST(ToolModels, GyroModelTotalIsTheSumOfItsThreeSources) {
+TEST(ToolModels, GyroModelTotalIsTheSumOfItsSources) {
   WellParameters well;
   well.latitude_rad = 60.0 * kRadPerDeg;
   const std::vector<ListingStation> stations = {{0, 0, 0},
@@ -143,11 +143,11 @@ TEST(ToolModels, GyroModelTotalIsTheSumOfItsThreeSources) {
                                                 {900, 30 * kRadPerDeg, 1.0}};
   const SurveyCovariance covariance =
       tool_model_covariance(kGyroNsCtModelName, stations, well, owsg_gyro_ns_ct_terms());
-  ASSERT_EQ(covariance.sources.size(), 3u);
-  EXPECT_EQ(covariance.sources[0].code, "GXY-RN");
+  ASSERT_EQ(covariance.sources.size(), 19u);
+  EXPECT_EQ(covariance.sources[15].code, "GXY-RN");
   for (std::size_t k = 0; k < stations.size(); ++k) {
-    const Eigen::Matrix3d sum = covariance.sources[0].nev_m2[k] + covariance.sources[1].nev_m2[k] +
-                                covariance.sources[2].nev_m2[k];
+    Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+    for (const SourceCovariance& source : covariance.sources) sum += source.nev_m2[k];
     EXPECT_TRUE(sum.isApprox(covariance.total_nev_m2[k]) || sum.isZero());
   }
   EXPECT_GT(covariance.total_nev_m2.back().trace(), 0.0);

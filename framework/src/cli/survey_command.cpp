@@ -2,9 +2,10 @@
 //                 [--noise-model FIT.json] [--gyrocompass-time-s T] [--running-speed-m-h V]
 //                 --out DIR
 // The position covariance of a survey listing under a survey tool model, per station and error
-// source (survey_error/tool_models.hpp), written to DIR/iscwsa_covariance.csv. gyro_ns_ct's
-// magnitudes are OWSG's, or mapped from a fitted gyro noise model
-// (survey_error/gyro_noise_mapping.hpp).
+// source (survey_error/tool_models.hpp), written to DIR/iscwsa_covariance.csv. gyro_ns_ct is the
+// whole OWSG GYRO-NS-CT tool model (19 sources); its continuous-gyro magnitudes (GXY-RN, GXY-GD,
+// GXY-GRW) are OWSG's or mapped from a fitted gyro noise model
+// (survey_error/gyro_noise_mapping.hpp), its other magnitudes OWSG's.
 
 #include <fmt/format.h>
 
@@ -70,12 +71,13 @@ void check_gyro_options(const SurveyArguments& arguments) {
 
 /// The continuous-gyro terms: OWSG's, the running speed as given, the magnitudes mapped from
 /// the noise model when there is one. `note` gets what the summary should say about them.
+/// (GYRO-NS-CT's other sources keep the OWSG magnitudes.)
 survey_error::ContinuousGyroTerms gyro_terms(
     const SurveyArguments& arguments, const std::vector<survey_error::ListingStation>& stations,
     std::string& note) {
   survey_error::ContinuousGyroTerms terms = survey_error::owsg_gyro_ns_ct_terms();
   if (arguments.running_speed_m_h) terms.running_speed_m_s = *arguments.running_speed_m_h / 3600.0;
-  note = "OWSG magnitudes";
+  note = "OWSG magnitudes";  // the continuous-gyro terms'; the other terms are always OWSG's
   if (arguments.noise_model.empty()) return terms;
   const NoiseModel model = survey_error::read_gyro_noise_model(arguments.noise_model);
   const double gyrocompass_s =
@@ -92,7 +94,8 @@ survey_error::ContinuousGyroTerms gyro_terms(
 std::string describe_gyro_terms(const survey_error::ContinuousGyroTerms& terms) {
   constexpr double kDegPerHourPerRadPerSecond = kDegPerRad * 3600.0;
   return fmt::format(
-      "GXY-RN {:.4g} deg/h, GXY-GD {:.4g} deg/h, GXY-GRW {:.4g} deg/sqrt(h), {:g} m/h",
+      "continuous-gyro terms GXY-RN {:.4g} deg/h, GXY-GD {:.4g} deg/h, GXY-GRW {:.4g} "
+      "deg/sqrt(h), {:g} m/h (the other terms at the OWSG magnitudes)",
       terms.noise_rad_s * kDegPerHourPerRadPerSecond,
       terms.drift_rad_s * kDegPerHourPerRadPerSecond,
       terms.random_walk_rad_per_sqrt_s * kDegPerRad * 60.0, terms.running_speed_m_s * 3600.0);
@@ -148,12 +151,13 @@ void add_survey_command(CLI::App& app) {
       ->required();
   command
       ->add_option("--model", arguments->model,
-                   "mwd_rev5 (ISCWSA MWD Rev5.11), mwd_rev4, or gyro_ns_ct (OWSG continuous-gyro "
-                   "terms GXY-RN, GXY-GD, GXY-GRW)")
+                   "mwd_rev5 (ISCWSA MWD Rev5.11), mwd_rev4, or gyro_ns_ct (the OWSG gyro tool "
+                   "model GYRO-NS-CT: depth, misalignment, accelerometer, gyrocompass, "
+                   "continuous-gyro and sag terms)")
       ->required();
   command->add_option("--noise-model", arguments->noise_model,
                       "gyro_ns_ct: the x-y gyros' fitted noise model (stochnav fit JSON) giving "
-                      "the magnitudes (default: OWSG's)");
+                      "the continuous-gyro magnitudes GXY-RN, GXY-GD, GXY-GRW (default: OWSG's)");
   command
       ->add_option("--gyrocompass-time-s", arguments->gyrocompass_time_s,
                    fmt::format("gyro_ns_ct with --noise-model: averaging time of one "

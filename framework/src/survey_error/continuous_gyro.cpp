@@ -68,11 +68,16 @@ ContinuousGyroTerms owsg_gyro_ns_ct_terms() {
 }
 
 std::size_t continuous_initialisation_station(std::span<const ListingStation> stations,
-                                              const ContinuousGyroTerms& terms) {
+                                              double start_inclination_rad) {
   for (std::size_t k = 1; k < stations.size(); ++k) {
-    if (stations[k].inclination_rad >= terms.continuous_start_inclination_rad) return k;
+    if (stations[k].inclination_rad >= start_inclination_rad) return k;
   }
   return stations.size();
+}
+
+std::size_t continuous_initialisation_station(std::span<const ListingStation> stations,
+                                              const ContinuousGyroTerms& terms) {
+  return continuous_initialisation_station(stations, terms.continuous_start_inclination_rad);
 }
 
 std::vector<SourceCovariance> continuous_gyro_covariance(const ContinuousGyroTerms& terms,

@@ -39,11 +39,14 @@ std::string_view magnitude_unit_name(MagnitudeUnit unit) {
       return "deg";
     case MagnitudeUnit::kDegreeNanotesla:
       return "deg.nT";
+    case MagnitudeUnit::kDegreePerHour:
+      return "deg/h";
   }
   return "?";
 }
 
 double ErrorSource::magnitude_si() const {
+  if (unit == MagnitudeUnit::kDegreePerHour) return magnitude * kRadPerDeg / 3600.0;
   const bool in_degrees = unit == MagnitudeUnit::kDegree || unit == MagnitudeUnit::kDegreeNanotesla;
   return in_degrees ? magnitude * kRadPerDeg : magnitude;
 }

@@ -1,8 +1,13 @@
 #include "stochnav/survey_error/error_propagation.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "leg_effects.hpp"
+#include "stochnav/survey_error/continuous_gyro.hpp"
 #include "stochnav/survey_error/weighting_functions.hpp"
 
 namespace stochnav::survey_error {
@@ -10,11 +15,19 @@ namespace {
 
 using Eigen::Matrix3d;
 
-/// The source's effect at every station; zero at the tie-on (station 0).
+/// The gyrocompass station whose azimuth error a gyrocompass term has at station k: k itself,
+/// or in a continuous survey the initialising station.
+std::size_t gyrocompass_station(std::size_t k, std::size_t initialising) {
+  return k > initialising ? initialising : k;
+}
+
+/// The source's effect at every station; zero at the tie-on (station 0). `initialising`: the
+/// station that initialises a continuous survey (the number of stations when there is none).
 std::vector<StationEffect> source_effects(const SurveyErrorModel& model, const ErrorSource& source,
                                           const std::vector<StationGeometry>& geometry,
-                                          const WellParameters& well) {
+                                          const WellParameters& well, std::size_t initialising) {
   const bool singular = has_near_vertical_form(source.weighting);
+  const bool gyrocompass = is_gyrocompass_weighting(source.weighting);
   std::vector<StationEffect> effects(geometry.size());
   for (std::size_t k = 1; k < geometry.size(); ++k) {
     StationGeometry station = geometry[k];
@@ -23,13 +36,43 @@ std::vector<StationEffect> source_effects(const SurveyErrorModel& model, const E
     if (singular && station.inclination_rad < well.vertical_inc_limit_rad) {
       station.inclination_rad = 0.0;
     }
-    const ErrorWeights w =
+    ErrorWeights w =
         error_weights(source.weighting, station, well, model.default_tortuosity_rad_per_m);
+    if (gyrocompass) {
+      // A continuous survey keeps the azimuth error of its initialising gyrocompass; it turns
+      // this station's hole by sin(I) of this station.
+      const StationGeometry& compass = geometry[gyrocompass_station(k, initialising)];
+      w = {0.0, 0.0,
+           std::sin(station.inclination_rad) *
+               gyrocompass_azimuth_weight_s(source.weighting, compass, well)};
+    }
     effects[k] =
         station_effect(geometry, k, w.depth_m, direction_change_nev(station, w),
                        leg_reach(source.weighting), model.first_station_turns_whole_first_leg);
   }
   return effects;
+}
+
+/// A model with gyrocompass terms needs a latitude and Earth rate a gyrocompass can work with,
+/// and every gyrocompass station below 90 deg inclination (the weights divide by cos I).
+void check_gyrocompass_geometry(const SurveyErrorModel& model,
+                                const std::vector<StationGeometry>& geometry,
+                                const WellParameters& well, std::size_t initialising) {
+  const bool any = std::any_of(model.sources.begin(), model.sources.end(),
+                               [](const auto& s) { return is_gyrocompass_weighting(s.weighting); });
+  if (!any) return;
+  const auto reject = [](const std::string& reason) {
+    throw std::invalid_argument("survey_error::propagate_survey_errors: " + reason);
+  };
+  if (!(well.earth_rate_rad_s > 0.0)) reject("the Earth rate must be > 0");
+  if (!(std::abs(well.latitude_rad) < std::numbers::pi / 2.0)) {
+    reject("a gyrocompass needs a latitude below 90 deg");
+  }
+  for (std::size_t k = 1; k < geometry.size() && k <= initialising; ++k) {
+    if (!(geometry[k].inclination_rad < std::numbers::pi / 2.0)) {
+      reject("the gyrocompass station " + std::to_string(k) + " is at 90 deg inclination or above");
+    }
+  }
 }
 
 }  // namespace
@@ -39,14 +82,20 @@ SurveyCovariance propagate_survey_errors(const SurveyErrorModel& model,
                                          const WellParameters& well) {
   check_listing(stations, well, "survey_error::propagate_survey_errors");
   const std::vector<StationGeometry> geometry = station_geometries(stations, well);
+  const std::size_t initialising =
+      model.continuous_start_inclination_rad
+          ? continuous_initialisation_station(stations, *model.continuous_start_inclination_rad)
+          : stations.size();
+  check_gyrocompass_geometry(model, geometry, well, initialising);
   SurveyCovariance result;
   for (const ListingStation& station : stations) result.md_m.push_back(station.md_m);
   result.total_nev_m2.assign(stations.size(), Matrix3d::Zero());
   const bool grid = well.azimuth_reference == AzimuthReference::kGrid;
   for (const ErrorSource& source : model.sources) {
-    SourceCovariance covariance{source.code, source.mode,
-                                propagate_effects(source_effects(model, source, geometry, well),
-                                                  source.magnitude_si(), source.mode)};
+    SourceCovariance covariance{
+        source.code, source.mode,
+        propagate_effects(source_effects(model, source, geometry, well, initialising),
+                          source.magnitude_si(), source.mode)};
     for (std::size_t k = 0; k < stations.size(); ++k) {
       if (grid) covariance.nev_m2[k] = true_to_grid(covariance.nev_m2[k], well.convergence_rad);
       result.total_nev_m2[k] += covariance.nev_m2[k];

@@ -27,11 +27,9 @@ using MagnitudeUnit::kMetrePerSecond2;
 using MagnitudeUnit::kNanotesla;
 using MagnitudeUnit::kPerMetre;
 
-/// 1 deg / 100 ft: the ISCWSA default tortuosity between stations (XCLA, XCLH).
-constexpr double kIscwsaDefaultTortuosityRadPerM = std::numbers::pi / 180.0 / 30.48;
+}  // namespace
 
-/// The depth terms, the same in Rev4 and Rev5.
-std::vector<ErrorSource> depth_sources() {
+std::vector<ErrorSource> iscwsa_depth_sources() {
   // clang-format off
   return {
       // code        weighting   magnitude  unit               mode
@@ -41,6 +39,22 @@ std::vector<ErrorSource> depth_sources() {
   };
   // clang-format on
 }
+
+std::vector<ErrorSource> rev5_misalignment_sources() {
+  // clang-format off
+  return {
+      // code        weighting   magnitude  unit               mode
+      {"XYM1",       kXym1,      0.1,       kDegree,           kSystematic},
+      {"XYM2",       kXym2,      0.1,       kDegree,           kSystematic},
+      {"XYM3E",      kXym3e,     0.3,       kDegree,           kRandom},
+      {"XYM4E",      kXym4e,     0.3,       kDegree,           kRandom},
+      {"XCLA",       kXcla,      0.167,     kDimensionless,    kRandom},
+      {"XCLH",       kXclh,      0.167,     kDimensionless,    kRandom},
+  };
+  // clang-format on
+}
+
+namespace {
 
 /// The accelerometer and magnetometer biases and scale factors, the same in Rev4 and Rev5.
 std::vector<ErrorSource> sensor_sources() {
@@ -65,14 +79,13 @@ std::vector<ErrorSource> sensor_sources() {
   // clang-format on
 }
 
-/// The lists one after the other.
+}  // namespace
+
 std::vector<ErrorSource> joined_sources(std::initializer_list<std::vector<ErrorSource>> lists) {
   std::vector<ErrorSource> sources;
   for (const auto& list : lists) sources.insert(sources.end(), list.begin(), list.end());
   return sources;
 }
-
-}  // namespace
 
 SurveyErrorModel make_mwd_rev5_model() {
   SurveyErrorModel model;
@@ -81,7 +94,7 @@ SurveyErrorModel make_mwd_rev5_model() {
   model.default_tortuosity_rad_per_m = kIscwsaDefaultTortuosityRadPerM;
   model.first_station_turns_whole_first_leg = true;
   // clang-format off
-  model.sources = joined_sources({depth_sources(), sensor_sources(), {
+  model.sources = joined_sources({iscwsa_depth_sources(), sensor_sources(), {
       // code        weighting   magnitude  unit               mode
       {"DEC-U",      kAzimuth,   0.16,      kDegree,           kPerWell},
       {"DEC-OS",     kAzimuth,   0.24,      kDegree,           kGlobal},
@@ -95,13 +108,7 @@ SurveyErrorModel make_mwd_rev5_model() {
       {"DBHR",       kDbh,       3000.0,    kDegreeNanotesla,  kRandom},
       {"AMIL",       kAmil,      220.0,     kNanotesla,        kSystematic},
       {"SAGE",       kSage,      0.2,       kDegree,           kSystematic},
-      {"XYM1",       kXym1,      0.1,       kDegree,           kSystematic},
-      {"XYM2",       kXym2,      0.1,       kDegree,           kSystematic},
-      {"XYM3E",      kXym3e,     0.3,       kDegree,           kRandom},
-      {"XYM4E",      kXym4e,     0.3,       kDegree,           kRandom},
-      {"XCLA",       kXcla,      0.167,     kDimensionless,    kRandom},
-      {"XCLH",       kXclh,      0.167,     kDimensionless,    kRandom},
-  }});
+  }, rev5_misalignment_sources()});
   // clang-format on
   return model;
 }
@@ -124,7 +131,7 @@ SurveyErrorModel make_mwd_rev4_model() {
       {"XYM2",       kXym2,      0.1,       kDegree,           kSystematic},
       {"XYM3",       kXym3,      0.1,       kDegree,           kSystematic},
       {"XYM4",       kXym4,      0.1,       kDegree,           kSystematic},
-  }, depth_sources(), {
+  }, iscwsa_depth_sources(), {
       {"SAG",        kSag,       0.2,       kDegree,           kSystematic},
   }});
   // clang-format on

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/nearest_name.hpp"
@@ -25,13 +26,13 @@ void check_tool_model_name(std::string_view name, std::string_view where) {
   } else {
     message +=
         "use mwd_rev5 (ISCWSA MWD Rev5.11), mwd_rev4 (ISCWSA MWD Rev4) or gyro_ns_ct (the OWSG "
-        "continuous-gyro terms)";
+        "gyro tool model GYRO-NS-CT)";
   }
   throw ConfigError(message);
 }
 
 std::string tool_model_title(std::string_view name) {
-  if (name == kGyroNsCtModelName) return "OWSG GYRO-NS-CT continuous-gyro terms";
+  if (name == kGyroNsCtModelName) return "OWSG GYRO-NS-CT (rev 5)";
   return survey_error_model(name).title;
 }
 
@@ -43,13 +44,17 @@ SurveyCovariance tool_model_covariance(std::string_view name,
   if (name != kGyroNsCtModelName) {
     return propagate_survey_errors(survey_error_model(name), stations, well);
   }
-  SurveyCovariance result;
-  for (const ListingStation& station : stations) result.md_m.push_back(station.md_m);
-  result.sources = continuous_gyro_covariance(gyro, stations, well);
-  result.total_nev_m2.assign(stations.size(), Eigen::Matrix3d::Zero());
-  for (const SourceCovariance& source : result.sources) {
+  SurveyCovariance result = propagate_survey_errors(gyro_ns_ct_table_model(gyro), stations, well);
+  std::vector<SourceCovariance> continuous = continuous_gyro_covariance(gyro, stations, well);
+  for (const SourceCovariance& source : continuous) {
     for (std::size_t k = 0; k < stations.size(); ++k) result.total_nev_m2[k] += source.nev_m2[k];
   }
+  // The OWSG order: the continuous-gyro terms after the gyrocompass terms, before SAGE.
+  const auto after_g4 = std::find_if(result.sources.begin(), result.sources.end(),
+                                     [](const SourceCovariance& s) { return s.code == "GXY-G4"; });
+  result.sources.insert(after_g4 == result.sources.end() ? after_g4 : after_g4 + 1,
+                        std::make_move_iterator(continuous.begin()),
+                        std::make_move_iterator(continuous.end()));
   return result;
 }
 

@@ -1,6 +1,9 @@
 // The weighting functions as the ISCWSA MWD Rev5 document writes them (azimuth weights
-// multiplied by sin I, weighting_functions.hpp). Notation: I inclination, AzT true and AzM
-// magnetic azimuth, dip the magnetic dip, G gravity, B the total field, Bh = B cos(dip).
+// multiplied by sin I, weighting_functions.hpp), and those of the OWSG gyro tool model
+// GYRO-NS-CT (rev 5, 2020; its accelerometer terms and stationary gyrocompass terms after
+// Torkildsen et al., SPE 90408). Notation: I inclination, AzT true and AzM magnetic azimuth,
+// dip the magnetic dip, G gravity, B the total field, Bh = B cos(dip), Omega the Earth rate,
+// lat the latitude.
 
 #include "stochnav/survey_error/weighting_functions.hpp"
 
@@ -33,7 +36,48 @@ double unseen_azimuthal_turn(const StationGeometry& station, const WellParameter
   return std::max(seen, tortuosity_rad_per_m * interval_m);
 }
 
+/// The horizontal Earth rate a gyrocompass measures north against (rad/s).
+double horizontal_earth_rate_rad_s(const WellParameters& well) {
+  return well.earth_rate_rad_s * std::cos(well.latitude_rad);
+}
+
+/// GXY-B1: an x-y gyro bias along the high side, seen through cos I.
+double gxy_b1_azimuth_s(const StationGeometry& station, const WellParameters& well) {
+  return std::sin(station.true_azimuth_rad) /
+         (horizontal_earth_rate_rad_s(well) * std::cos(station.inclination_rad));
+}
+
+/// GXY-B2: an x-y gyro bias along the lateral axis.
+double gxy_b2_azimuth_s(const StationGeometry& station, const WellParameters& well) {
+  return std::cos(station.true_azimuth_rad) / horizontal_earth_rate_rad_s(well);
+}
+
+/// GXY-G4: a g-dependent (mass-unbalance) x-y gyro error, growing with tan I.
+double gxy_g4_azimuth_s(const StationGeometry& station, const WellParameters& well) {
+  return std::sin(station.true_azimuth_rad) * std::tan(station.inclination_rad) /
+         horizontal_earth_rate_rad_s(well);
+}
+
 }  // namespace
+
+bool is_gyrocompass_weighting(WeightingFunction function) {
+  return function == WeightingFunction::kGxyB1 || function == WeightingFunction::kGxyB2 ||
+         function == WeightingFunction::kGxyG4;
+}
+
+double gyrocompass_azimuth_weight_s(WeightingFunction function, const StationGeometry& station,
+                                    const WellParameters& well) {
+  switch (function) {
+    case WeightingFunction::kGxyB1:
+      return gxy_b1_azimuth_s(station, well);
+    case WeightingFunction::kGxyB2:
+      return gxy_b2_azimuth_s(station, well);
+    case WeightingFunction::kGxyG4:
+      return gxy_g4_azimuth_s(station, well);
+    default:
+      return 0.0;
+  }
+}
 
 LegReach leg_reach(WeightingFunction function) {
   return function == WeightingFunction::kXcla || function == WeightingFunction::kXclh
@@ -146,6 +190,16 @@ ErrorWeights error_weights(WeightingFunction function, const StationGeometry& st
                        tortuosity_rad_per_m * interval_m),
               0.0};
     }
+    case WeightingFunction::kAxyzMis:
+      return {0.0, 1.0, 0.0};
+    case WeightingFunction::kAxyzSf:
+      return {0.0, 1.3 * sin_i * cos_i, 0.0};
+    case WeightingFunction::kAxyzZb:
+      return {0.0, sin_i / g, 0.0};
+    case WeightingFunction::kGxyB1:
+    case WeightingFunction::kGxyB2:
+    case WeightingFunction::kGxyG4:
+      return {0.0, 0.0, sin_i * gyrocompass_azimuth_weight_s(function, station, well)};
   }
   return {};
 }

@@ -69,4 +69,8 @@ std::vector<SourceCovariance> continuous_gyro_covariance(const ContinuousGyroTer
 std::size_t continuous_initialisation_station(std::span<const ListingStation> stations,
                                               const ContinuousGyroTerms& terms);
 
+/// The same for a continuous start inclination `start_inclination_rad`.
+std::size_t continuous_initialisation_station(std::span<const ListingStation> stations,
+                                              double start_inclination_rad);
+
 }  // namespace stochnav::survey_error

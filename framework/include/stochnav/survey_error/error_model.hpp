@@ -1,8 +1,8 @@
 #pragma once
 // The ISCWSA MWD survey error models as data: each error source's code, weighting function,
 // magnitude (with its unit as the ISCWSA tables give it) and propagation mode. The tables
-// themselves are in src/survey_error/mwd_models.cpp, one row per source; docs/
-// survey-error-model.md lists them for readers.
+// themselves are in src/survey_error/mwd_models.cpp (and the OWSG gyro tool model's in
+// gyro_models.cpp), one row per source; docs/survey-error-model.md lists them for readers.
 //
 // Propagation modes (ISCWSA MWD Rev5 document, after Williamson, SPE 67616): an error source is
 //   random (R)      independent from station to station: the covariances of the stations add;
@@ -13,6 +13,7 @@
 // covariance of a single well treats them alike; they differ only between wells (clearance).
 // A listing here is one survey leg, as in the ISCWSA example wells.
 
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -59,6 +60,15 @@ enum class WeightingFunction {
   kXym4e,
   kXcla,  ///< tortuosity between stations, azimuthal (whole leg before the station)
   kXclh,  ///< tortuosity between stations, high-side (whole leg before the station)
+  // The OWSG gyro tool models (GYRO-NS-CT; after Torkildsen et al., SPE 90408):
+  kAxyzMis,  ///< xyz accelerometer misalignment: I + 1
+  kAxyzSf,   ///< xyz accelerometer scale factor: I + 1.3 sin I cos I
+  kAxyzZb,   ///< z accelerometer bias: I + sin I / G
+  /// x-y gyro biases and g-dependent error of a stationary gyrocompass (is_gyrocompass_weighting:
+  /// carried from the initialising station into a continuous survey)
+  kGxyB1,  ///< A + sin AzT / (Omega cos(lat) cos I)
+  kGxyB2,  ///< A + cos AzT / (Omega cos(lat))
+  kGxyG4,  ///< A + sin AzT tan I / (Omega cos(lat))
 };
 
 /// The unit an ISCWSA table gives a magnitude in.
@@ -70,9 +80,10 @@ enum class MagnitudeUnit {
   kDimensionless,    ///< -
   kDegree,           ///< deg (rad internally)
   kDegreeNanotesla,  ///< deg.nT (rad.nT internally)
+  kDegreePerHour,    ///< deg/h (rad/s internally): gyro rate errors
 };
 
-/// "m", "1/m", "m/s2", "nT", "-", "deg", "deg.nT".
+/// "m", "1/m", "m/s2", "nT", "-", "deg", "deg.nT", "deg/h".
 std::string_view magnitude_unit_name(MagnitudeUnit unit);
 
 /// One error source of a model.
@@ -83,7 +94,8 @@ struct ErrorSource {
   MagnitudeUnit unit = MagnitudeUnit::kDimensionless;
   PropagationMode mode = PropagationMode::kSystematic;
 
-  /// The magnitude in the units the weighting functions take: m, 1/m, m/s^2, nT, rad, rad.nT.
+  /// The magnitude in the units the weighting functions take: m, 1/m, m/s^2, nT, rad, rad.nT,
+  /// rad/s.
   double magnitude_si() const;
 };
 
@@ -100,12 +112,20 @@ struct SurveyErrorModel {
   /// direction is the first station's, so the first station's inclination and azimuth errors
   /// turn the whole first leg, not half of it. Rev4: false (half, as at every station).
   bool first_station_turns_whole_first_leg = false;
+  /// Gyro tool models with a continuous survey (GYRO-NS-CT): below this inclination (rad) every
+  /// station is a stationary gyrocompass; the first station at or above it (after the tie-on)
+  /// initialises the continuous survey (continuous_gyro.hpp, continuous_initialisation_station),
+  /// and the gyrocompass terms (is_gyrocompass_weighting) keep that station's azimuth error at
+  /// every later station: the continuous survey carries its initial azimuth forward. Absent:
+  /// every station is evaluated with its own weights.
+  std::optional<double> continuous_start_inclination_rad;
 };
 
 /// The model called `name` ("mwd_rev5" = ISCWSA MWD Rev5.11, 35 sources; "mwd_rev4", 27
 /// sources). Throws ConfigError "--model 'NAME': unknown survey error model; use ..." (with a
 /// "did you mean" for a likely typo; tool_models.hpp), or "not an ISCWSA MWD model" for
-/// gyro_ns_ct, which is not a table of ISCWSA sources.
+/// gyro_ns_ct, which is a table (tool_models.hpp, gyro_ns_ct_table_model) plus terms no
+/// propagation mode describes (continuous_gyro.hpp).
 const SurveyErrorModel& survey_error_model(std::string_view name);
 
 /// The names survey_error_model() knows, in a stable order.

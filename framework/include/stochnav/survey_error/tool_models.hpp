@@ -1,7 +1,8 @@
 #pragma once
 // The survey tool models `stochnav survey --model` and a run's "survey/error_model" name: the
-// ISCWSA MWD models of error_model.hpp and the OWSG continuous-gyro terms of GYRO-NS-CT
-// (continuous_gyro.hpp), each giving a SurveyCovariance (error_propagation.hpp).
+// ISCWSA MWD models of error_model.hpp and the OWSG gyro tool model GYRO-NS-CT (its table of
+// ISCWSA-propagated sources, gyro_ns_ct_table_model, and its continuous-gyro terms,
+// continuous_gyro.hpp), each giving a SurveyCovariance (error_propagation.hpp).
 
 #include <span>
 #include <string>
@@ -12,9 +13,17 @@
 
 namespace stochnav::survey_error {
 
-/// The GYRO-NS-CT continuous-gyro terms GXY-RN, GXY-GD, GXY-GRW (and nothing else of that tool
-/// model).
+/// The OWSG gyro tool model GYRO-NS-CT (rev 5), all 19 sources in the OWSG order:
+///   DRFR, DSFS, DSTG, XYM1, XYM2, XYM3E, XYM4E, XCLA, XCLH, AXYZ-MIS, AXYZ-SF, AXYZ-ZB,
+///   GXY-B1S, GXY-B2S, GXY-G4, GXY-RN, GXY-GD, GXY-GRW, SAGE.
 inline constexpr std::string_view kGyroNsCtModelName = "gyro_ns_ct";
+
+/// GYRO-NS-CT's sources other than GXY-RN, GXY-GD and GXY-GRW as a table (16 sources, the
+/// OWSG magnitudes and modes), with the continuous start inclination of `terms`: the gyrocompass
+/// terms GXY-B1S, GXY-B2S and GXY-G4 keep the initialising station's azimuth error through the
+/// continuous survey. The first station's error turns half the first leg (not the Rev5 workbook
+/// convention).
+SurveyErrorModel gyro_ns_ct_table_model(const ContinuousGyroTerms& terms);
 
 /// "mwd_rev5", "mwd_rev4", "gyro_ns_ct".
 std::span<const std::string> tool_model_names();
@@ -24,11 +33,12 @@ std::span<const std::string> tool_model_names();
 /// JSON pointer ("--model", "/survey/error_model").
 void check_tool_model_name(std::string_view name, std::string_view where);
 
-/// A title for messages: the MWD model's, or "OWSG GYRO-NS-CT continuous-gyro terms".
+/// A title for messages: the MWD model's, or "OWSG GYRO-NS-CT (rev 5)".
 std::string tool_model_title(std::string_view name);
 
 /// The covariance of `stations` under the model `name` (checked as check_tool_model_name with
-/// "--model"). `gyro` gives the continuous-gyro terms (used by gyro_ns_ct only). Throws as
+/// "--model"). `gyro` gives the continuous-gyro terms and the continuous start inclination
+/// (used by gyro_ns_ct only; its other magnitudes are OWSG's). Throws as
 /// propagate_survey_errors and continuous_gyro_covariance.
 SurveyCovariance tool_model_covariance(std::string_view name,
                                        std::span<const ListingStation> stations,
