@@ -186,7 +186,14 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   const Eigen::Vector3d coupling_delta_v_n =
       reference_.active ? reference_specific_force_increment(dt, c_mid * compensated.delta_v_b)
                         : Eigen::Vector3d(c_mid * compensated.delta_v_b);
-  fast_.f_n_dt += coupling_delta_v_n;
+  // The tool's vibration, which the reference lacks: the velocity error inherits phi x its
+  // change as well (filter/velocity_oscillation.hpp). The interval aids' mean-error maps keep
+  // the reference's coupling alone: they measure the velocity less the oscillation, whose
+  // counted part carries the attitude error's share of it.
+  const Eigen::Vector3d oscillation_change = reference_.active
+                                                 ? oscillation_.update(ins_.state().v_n, dt)
+                                                 : Eigen::Vector3d::Zero();
+  fast_.f_n_dt += coupling_delta_v_n + oscillation_change;
   // The accelerometer scale factors multiply the true specific force: a smoothed one from the
   // epochs before this one, not this epoch's measurement, whose noise also drives the velocity
   // error and would correlate the gains with the residuals (over a day of 1-s aids that biased
@@ -257,11 +264,9 @@ Eigen::Vector3d MwdNavigator::reference_specific_force_increment(
   const Eigen::Vector3d acceleration_dt =
       reference_.pending_change_n + rotation.cross(reference_.v_n) * dt_s;
   reference_.pending_change_n.setZero();
-  Eigen::Vector3d increment =
+  const Eigen::Vector3d increment =
       acceleration_dt +
       (reference_.smoothed_specific_force_n - reference_.smoothed_acceleration_n) * dt_s;
-  // The vibration the reference lacks: the velocity error inherits phi x its change too.
-  increment += oscillation_.update(state.v_n, dt_s);
   if (dt_s > 0.0) {
     const double weight = std::min(dt_s, kReferenceSmoothing_s) / kReferenceSmoothing_s;
     reference_.smoothed_acceleration_n +=
@@ -500,7 +505,10 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
     }
   }
   plugin::ImuSample imu{.t_s = t_s, .omega_ib_b = omega_ib_b, .f_ib_b = f_ib_b};
-  imu.reference_v_n = reference_.active ? reference_.v_n : ins_.state().v_n;
+  // The velocity the attitude error rotates at the epoch: the reference plus the vibration.
+  imu.reference_v_n = reference_.active
+                          ? Eigen::Vector3d(reference_.v_n + oscillation_.velocity_n())
+                          : ins_.state().v_n;
   // The statement of the epoch: the most precise of the accepted aids' (ties: the smaller
   // speed, so that a tool at rest by ZUPT and by a zero ROP stays at rest).
   bool stated = false;
