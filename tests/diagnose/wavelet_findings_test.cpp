@@ -149,9 +149,10 @@ WaveletStudyCounts count_wavelet_study(const WaveletStudyCase& study, int seeds,
     }
   }
   std::printf("[evidence] %-34s outliers flagged %d/%d (listed samples at spikes %d/%d; mean "
-              "finest excess %+.1f %%), short-tau GM named %d/%d\n",
+              "finest excess %+.1f %%), short-tau GM named %d/%d (true tau_c within 2 sigma: %d)\n",
               study.name, counts.contaminated, counts.runs, counts.worst_at_spikes, counts.runs,
-              100.0 * counts.excess_sum / counts.runs, counts.named, counts.runs);
+              100.0 * counts.excess_sum / counts.runs, counts.named, counts.runs,
+              counts.tau_inside_2_sigma);
   return counts;
 }
 
@@ -188,6 +189,8 @@ TEST(WaveletFindings, ShortTauGaussMarkovIsNamed) {
       0.015);
   EXPECT_EQ(one_and_a_half.contaminated, 0);
   EXPECT_GE(one_and_a_half.named, seeds - seeds / 10);
+  EXPECT_GE(one_and_a_half.tau_inside_2_sigma,
+            one_and_a_half.named - one_and_a_half.named / 5 - 1);
 }
 
 TEST(WaveletFindings, OutliersAreFlaggedAndLocatedWithoutNamingAGaussMarkov) {
@@ -199,9 +202,9 @@ TEST(WaveletFindings, OutliersAreFlaggedAndLocatedWithoutNamingAGaussMarkov) {
   EXPECT_LE(strong.named, seeds / 10);  // the robust WV keeps the spikes out of the fit
   const auto weak =
       count_wavelet_study({"10 spikes of 12 sd", wavelet_study_base(), 10, 12.0}, seeds, 0.0);
+  // Under the rule's reach (an excess of about 1 % against intervals of +/-1.1 %): the count is
+  // printed and quoted in docs/diagnose.md, not held; the short-tau test must not mistake them.
   EXPECT_LE(weak.named, seeds / 10);
-  // Under the rule's reach (an excess of about 1 % against intervals of +/-1.1 %): reported.
-  EXPECT_LE(weak.contaminated, seeds);
 }
 
 TEST(WaveletFindings, OutliersOnAShortTauGaussMarkovRecordLeaveItNamed) {
