@@ -129,9 +129,12 @@ void print_wavelet_findings(const DiagnoseResult& result, Unit unit) {
   if (const auto& check = result.short_tau_gauss_markov; check && check->named) {
     const auto& gm = std::get<GaussMarkovTerm>(check->term);
     const Quantity quantity = quantity_of(unit);
-    fmt::print("  short-tau gauss_markov (wavelet variance): sigma = {:.4g} {}, tau_c = {:.3g} s\n",
-               to_reported(quantity, ParameterDimension::kRate, gm.sigma),
-               reported_unit_name(quantity, ParameterDimension::kRate), gm.tau_c);
+    fmt::print(
+        "  short-tau gauss_markov (wavelet variance): sigma = {:.4g} {}, tau_c = {:.3g} s{}\n",
+        to_reported(quantity, ParameterDimension::kRate, gm.sigma),
+        reported_unit_name(quantity, ParameterDimension::kRate), gm.tau_c,
+        check->at_lower_end ? " (on the lower end of the range searched: this order or shorter)"
+                            : "");
   }
 }
 

@@ -1,5 +1,7 @@
 #include "stochnav/diagnose/report_json.hpp"
 
+#include <fmt/format.h>
+
 #include "stochnav/model/noise_model_json.hpp"
 #include "stochnav/model/reporting_units.hpp"
 
@@ -37,7 +39,7 @@ nlohmann::json outliers_json(const WaveletOutlierCheck& check, Unit unit) {
                                                : nlohmann::json(nullptr)},
           {"largest_excess", excess},
           {"largest_excess_scale_s", check.contaminated ? nlohmann::json(at) : nullptr},
-          {"wv_unit", unit_name(unit) + "^2"},
+          {"wv_unit", fmt::format("({})^2", unit_name(unit))},
           {"levels", std::move(levels)},
           {"z_threshold", check.z_threshold},
           {"differences_beyond", check.differences_beyond},

@@ -93,7 +93,7 @@ std::string wavelet_section(const DiagnoseResult& result) {
   if (const auto& check = result.wavelet_outliers) {
     md += check->summary() + "\n\n";
     md += fmt::format(
-        "| scale (s) | classical [95 %] ({0}^2) | robust [95 %] ({0}^2) | excess | flagged |\n"
+        "| scale (s) | classical [95 %] (({0})^2) | robust [95 %] (({0})^2) | excess | flagged |\n"
         "|---|---|---|---|---|\n",
         unit_name(unit));
     for (const WaveletLevelSplit& level : check->levels) {

@@ -180,8 +180,8 @@ std::string WaveletOutlierCheck::summary() const {
   return fmt::format(
       "Outliers or contamination: the classical Haar wavelet variance exceeds the robust one "
       "beyond their 95 % intervals at {} of {} levels tested (scales {:.3g} .. {:.3g} s), by up "
-      "to {:.0f} % (at {:.3g} s); the Allan variance at those taus is inflated the same way, so "
-      "the model above describes the outliers as noise.{} What to do: look at the record around "
+      "to {:.0f} % (at {:.3g} s); the Allan variance at half those scales is inflated the same "
+      "way, so the model above describes the outliers as noise.{} What to do: look at the record around "
       "those times; fit with `stochnav fit --method gmwm --robust` (the robust wavelet "
       "variance), or remove the outliers and diagnose again.",
       flagged, tested, low, high, 100.0 * excess, at, samples);

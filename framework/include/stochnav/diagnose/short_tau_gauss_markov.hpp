@@ -28,7 +28,7 @@
 //          flagged: the significant drop says the finest scales are not white, the bound says
 //          the correlation time is of that order or shorter (not an estimate).
 // The false-alarm rate and the detection rate on simulated records are measured by
-// tests/diagnose/short_tau_gauss_markov_test.cpp (docs/diagnose.md has the numbers).
+// tests/diagnose/wavelet_findings_test.cpp (docs/diagnose.md has the numbers).
 
 #include <cstddef>
 #include <string>

@@ -18,7 +18,7 @@
 // 1.96 x 2.29 / sqrt(0.667) = 5.5 standard deviations of the difference: about 2e-8 a level.
 // The rule is conservative on purpose: a record of 1e6 samples resolves a 1 % split, and real
 // MEMS noise is seldom exactly Gaussian (the ADIS16405 gyro X splits by 0.55 % at the finest
-// level, 3.4 sd, and is not flagged). The tests (tests/diagnose/wavelet_outliers_test.cpp)
+// level, 3.4 sd, and is not flagged). The tests (tests/diagnose/wavelet_findings_test.cpp)
 // measure detection and false alarms on simulated records.
 //
 // Locating the worst samples: the robust z-score of the first differences,
