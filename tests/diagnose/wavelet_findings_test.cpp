@@ -45,7 +45,8 @@ NoiseModel wavelet_study_base() {
 }
 
 NoiseModel with_gauss_markov(NoiseModel model, double sigma_deg_h, double tau_c_s) {
-  const nlohmann::json term = {{"type", "gauss_markov"}, {"sigma", sigma_deg_h}, {"tau_c", tau_c_s}};
+  const nlohmann::json term = {
+      {"type", "gauss_markov"}, {"sigma", sigma_deg_h}, {"tau_c", tau_c_s}};
   model.terms.push_back(noise_term_from_json(term, model.unit, "/"));
   return model;
 }
@@ -81,8 +82,8 @@ struct WaveletStudyRun {
   ShortTauGaussMarkovCheck short_tau;
 };
 
-WaveletStudyRun run_wavelet_study(const NoiseModel& truth, std::uint64_t seed,
-                                  std::size_t spikes, double spike_sd) {
+WaveletStudyRun run_wavelet_study(const NoiseModel& truth, std::uint64_t seed, std::size_t spikes,
+                                  double spike_sd) {
   Record record = simulated_record(truth, kWaveletStudySamples, kWaveletStudyRateHz, seed);
   std::vector<std::size_t> injected;
   if (spikes > 0) injected = inject_spikes(record, spikes, spike_sd, seed + 1000);
@@ -122,9 +123,8 @@ WaveletStudyCounts count_wavelet_study(const WaveletStudyCase& study, int seeds,
                                        double true_tau_c) {
   WaveletStudyCounts counts;
   for (int s = 1; s <= seeds; ++s) {
-    const WaveletStudyRun run =
-        run_wavelet_study(study.truth, static_cast<std::uint64_t>(100 + s), study.spikes,
-                          study.spike_sd);
+    const WaveletStudyRun run = run_wavelet_study(study.truth, static_cast<std::uint64_t>(100 + s),
+                                                  study.spikes, study.spike_sd);
     ++counts.runs;
     counts.contaminated += run.contaminated ? 1 : 0;
     counts.worst_at_spikes += run.worst_at_spikes ? 1 : 0;
@@ -132,7 +132,8 @@ WaveletStudyCounts count_wavelet_study(const WaveletStudyCase& study, int seeds,
     counts.excess_sum += run.excess_finest;
     if (run.short_tau.named && true_tau_c > 0.0) {
       const double tau = std::get<GaussMarkovTerm>(run.short_tau.term).tau_c;
-      if (std::abs(tau - true_tau_c) <= 2.0 * run.short_tau.tau_c_sigma) ++counts.tau_inside_2_sigma;
+      if (std::abs(tau - true_tau_c) <= 2.0 * run.short_tau.tau_c_sigma)
+        ++counts.tau_inside_2_sigma;
     }
     if (!run.short_tau.named && true_tau_c > 0.0) {
       std::printf("  [%s seed %d] not named: %s\n", study.name, s,
@@ -140,19 +141,20 @@ WaveletStudyCounts count_wavelet_study(const WaveletStudyCase& study, int seeds,
     }
     if (run.short_tau.named) {
       const auto& gm = std::get<GaussMarkovTerm>(run.short_tau.term);
-      std::printf("  [%s seed %d] named: sigma %.1f deg/h tau_c %.4f +/- %.4f s, objective %.1f -> "
-                  "%.1f\n",
-                  study.name, s, to_reported(Quantity::kAngularRate, ParameterDimension::kRate,
-                                             gm.sigma),
-                  gm.tau_c, run.short_tau.tau_c_sigma, run.short_tau.objective_without,
-                  run.short_tau.objective_with);
+      std::printf(
+          "  [%s seed %d] named: sigma %.1f deg/h tau_c %.4f +/- %.4f s, objective %.1f -> "
+          "%.1f\n",
+          study.name, s, to_reported(Quantity::kAngularRate, ParameterDimension::kRate, gm.sigma),
+          gm.tau_c, run.short_tau.tau_c_sigma, run.short_tau.objective_without,
+          run.short_tau.objective_with);
     }
   }
-  std::printf("[evidence] %-34s outliers flagged %d/%d (listed samples at spikes %d/%d; mean "
-              "finest excess %+.1f %%), short-tau GM named %d/%d (true tau_c within 2 sigma: %d)\n",
-              study.name, counts.contaminated, counts.runs, counts.worst_at_spikes, counts.runs,
-              100.0 * counts.excess_sum / counts.runs, counts.named, counts.runs,
-              counts.tau_inside_2_sigma);
+  std::printf(
+      "[evidence] %-34s outliers flagged %d/%d (listed samples at spikes %d/%d; mean "
+      "finest excess %+.1f %%), short-tau GM named %d/%d (true tau_c within 2 sigma: %d)\n",
+      study.name, counts.contaminated, counts.runs, counts.worst_at_spikes, counts.runs,
+      100.0 * counts.excess_sum / counts.runs, counts.named, counts.runs,
+      counts.tau_inside_2_sigma);
   return counts;
 }
 
@@ -160,8 +162,8 @@ int wavelet_study_seeds() { return testing::study_size(10, 3); }
 
 TEST(WaveletFindings, CleanRecordsRaiseNoAlarm) {
   const int seeds = wavelet_study_seeds();
-  const auto counts = count_wavelet_study({"white + random walk", wavelet_study_base(), 0, 0.0},
-                                          seeds, 0.0);
+  const auto counts =
+      count_wavelet_study({"white + random walk", wavelet_study_base(), 0, 0.0}, seeds, 0.0);
   EXPECT_EQ(counts.contaminated, 0);
   EXPECT_LE(counts.named, seeds / 10);
 }
@@ -189,14 +191,13 @@ TEST(WaveletFindings, ShortTauGaussMarkovIsNamed) {
       0.015);
   EXPECT_EQ(one_and_a_half.contaminated, 0);
   EXPECT_GE(one_and_a_half.named, seeds - seeds / 10);
-  EXPECT_GE(one_and_a_half.tau_inside_2_sigma,
-            one_and_a_half.named - one_and_a_half.named / 5 - 1);
+  EXPECT_GE(one_and_a_half.tau_inside_2_sigma, one_and_a_half.named - one_and_a_half.named / 5 - 1);
 }
 
 TEST(WaveletFindings, OutliersAreFlaggedAndLocatedWithoutNamingAGaussMarkov) {
   const int seeds = wavelet_study_seeds();
-  const auto strong = count_wavelet_study(
-      {"20 spikes of 30 sd", wavelet_study_base(), 20, 30.0}, seeds, 0.0);
+  const auto strong =
+      count_wavelet_study({"20 spikes of 30 sd", wavelet_study_base(), 20, 30.0}, seeds, 0.0);
   EXPECT_EQ(strong.contaminated, seeds);
   EXPECT_EQ(strong.worst_at_spikes, seeds);
   EXPECT_LE(strong.named, seeds / 10);  // the robust WV keeps the spikes out of the fit
@@ -209,10 +210,10 @@ TEST(WaveletFindings, OutliersAreFlaggedAndLocatedWithoutNamingAGaussMarkov) {
 
 TEST(WaveletFindings, OutliersOnAShortTauGaussMarkovRecordLeaveItNamed) {
   const int seeds = wavelet_study_seeds();
-  const auto counts = count_wavelet_study(
-      {"+ GM tau_c 3 ms + 20 spikes of 30 sd",
-       with_gauss_markov(wavelet_study_base(), 600.0, 0.003), 20, 30.0},
-      seeds, 0.003);
+  const auto counts =
+      count_wavelet_study({"+ GM tau_c 3 ms + 20 spikes of 30 sd",
+                           with_gauss_markov(wavelet_study_base(), 600.0, 0.003), 20, 30.0},
+                          seeds, 0.003);
   EXPECT_EQ(counts.contaminated, seeds);
   EXPECT_GE(counts.named, seeds - seeds / 10);
 }

@@ -98,10 +98,10 @@ std::string wavelet_section(const DiagnoseResult& result) {
         unit_name(unit));
     for (const WaveletLevelSplit& level : check->levels) {
       if (!level.tested) continue;
-      md += fmt::format("| {:.4g} | {:.4g} [{:.4g}, {:.4g}] | {:.4g} [{:.4g}, {:.4g}] | {:+.1f} % | {} |\n",
-                        level.scale_s, level.classical, level.classical_lo, level.classical_hi,
-                        level.robust, level.robust_lo, level.robust_hi, 100.0 * level.excess(),
-                        level.flagged ? "yes" : "");
+      md += fmt::format(
+          "| {:.4g} | {:.4g} [{:.4g}, {:.4g}] | {:.4g} [{:.4g}, {:.4g}] | {:+.1f} % | {} |\n",
+          level.scale_s, level.classical, level.classical_lo, level.classical_hi, level.robust,
+          level.robust_lo, level.robust_hi, 100.0 * level.excess(), level.flagged ? "yes" : "");
     }
     md += "\n";
   }

@@ -125,14 +125,15 @@ ShortTauGaussMarkovCheck check_short_tau_gauss_markov(const GmwmData& data, bool
     extended.controls.push_back(range);
     with = fit_gmwm(fitted_data, extended);
   } catch (const std::exception& error) {
-    check.not_applicable = std::string("the wavelet-variance fit could not be made: ") + error.what();
+    check.not_applicable =
+        std::string("the wavelet-variance fit could not be made: ") + error.what();
     return check;
   }
   check.applicable = true;
   check.objective_without = without.diagnostics.chi_square;
   check.objective_with = with.diagnostics.chi_square;
-  check.threshold =
-      boost::math::quantile(boost::math::chi_squared_distribution<double>(2.0), 1.0 - options.alpha);
+  check.threshold = boost::math::quantile(boost::math::chi_squared_distribution<double>(2.0),
+                                          1.0 - options.alpha);
   check.significant = check.objective_without - check.objective_with > check.threshold;
   check.fitted = with.model;
   check.lag1_model = lag1_of_model(with.model);
@@ -165,12 +166,13 @@ ShortTauGaussMarkovCheck check_short_tau_gauss_markov(const GmwmData& data, bool
 }
 
 std::string ShortTauGaussMarkovCheck::summary(Unit unit) const {
-  if (!applicable) return "Short-tau Gauss-Markov check (wavelet variance) not made: " + not_applicable + ".";
+  if (!applicable)
+    return "Short-tau Gauss-Markov check (wavelet variance) not made: " + not_applicable + ".";
   const Quantity quantity = quantity_of(unit);
   const auto& gm = std::get<GaussMarkovTerm>(term);
   const double tau0 = fitted.rate_hz > 0.0 ? 1.0 / fitted.rate_hz : 0.0;
-  const std::string wv = robust ? "robust Haar wavelet variance (outliers flagged)"
-                                : "Haar wavelet variance";
+  const std::string wv =
+      robust ? "robust Haar wavelet variance (outliers flagged)" : "Haar wavelet variance";
   const std::string drop = fmt::format(
       "GMWM objective {:.4g} -> {:.4g} over {} scales with a Gauss-Markov term of tau_c <= {:g} "
       "samples (threshold {:.3g}, chi2_2)",
@@ -186,8 +188,9 @@ std::string ShortTauGaussMarkovCheck::summary(Unit unit) const {
           "its tau_c ends on the upper end of the range searched ({:.3g} s): not a short-tau term",
           gm.tau_c);
     } else {
-      why = fmt::format("it makes up at most {:.0f} % of the model's wavelet variance (at {:.3g} s)",
-                        100.0 * largest_share, largest_share_scale_s);
+      why =
+          fmt::format("it makes up at most {:.0f} % of the model's wavelet variance (at {:.3g} s)",
+                      100.0 * largest_share, largest_share_scale_s);
     }
     return fmt::format("No short-tau Gauss-Markov term in the {}: {}; {}.", wv, drop, why);
   }

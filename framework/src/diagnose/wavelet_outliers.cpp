@@ -45,14 +45,13 @@ void locate_outlier_samples(std::span<const double> rate, double rate_hz, double
     candidates.push_back(kept.top());
     kept.pop();
   }
-  std::sort(candidates.begin(), candidates.end(),
-            [](const OutlierSample& a, const OutlierSample& b) {
-              return std::abs(a.z) > std::abs(b.z);
-            });
+  std::sort(
+      candidates.begin(), candidates.end(),
+      [](const OutlierSample& a, const OutlierSample& b) { return std::abs(a.z) > std::abs(b.z); });
   for (const OutlierSample& candidate : candidates) {
     if (check.worst.size() == kOutlierSamplesListed) break;
-    const bool neighbour = std::any_of(
-        check.worst.begin(), check.worst.end(), [&](const OutlierSample& listed) {
+    const bool neighbour =
+        std::any_of(check.worst.begin(), check.worst.end(), [&](const OutlierSample& listed) {
           const std::size_t gap = listed.index > candidate.index ? listed.index - candidate.index
                                                                  : candidate.index - listed.index;
           return gap <= kOutlierNeighbourSamples;
@@ -69,7 +68,8 @@ void locate_outlier_samples(std::span<const double> rate, double rate_hz, double
 std::vector<WaveletLevelSplit> compare_wavelet_variances(
     std::span<const WaveletVariancePoint> classical, std::span<const WaveletVariancePoint> robust) {
   if (classical.size() != robust.size()) {
-    throw ConfigError("compare_wavelet_variances: the classical and robust levels differ in number");
+    throw ConfigError(
+        "compare_wavelet_variances: the classical and robust levels differ in number");
   }
   std::vector<WaveletLevelSplit> levels;
   levels.reserve(classical.size());
@@ -113,8 +113,8 @@ WaveletOutlierCheck check_wavelet_outliers(std::span<const double> rate, double 
   check.z_threshold = boost::math::quantile(boost::math::complement(
       boost::math::normal_distribution<double>(), alpha / (2.0 * differences)));
   if (!check.levels.empty()) {
-    locate_outlier_samples(rate, rate_hz, start_time_s, check.levels.front().robust,
-                           unit_per_rate, check);
+    locate_outlier_samples(rate, rate_hz, start_time_s, check.levels.front().robust, unit_per_rate,
+                           check);
   }
   return check;
 }
@@ -161,13 +161,13 @@ std::string WaveletOutlierCheck::summary() const {
         "record); the worst at t =",
         differences_beyond, z_threshold);
     for (std::size_t i = 0; i < worst.size(); ++i) {
-      samples += fmt::format("{} {:.2f} s (z = {:.1f})", i == 0 ? "" : ",", worst[i].time_s,
-                             worst[i].z);
+      samples +=
+          fmt::format("{} {:.2f} s (z = {:.1f})", i == 0 ? "" : ",", worst[i].time_s, worst[i].z);
     }
     samples += ".";
   } else {
-    samples = fmt::format(" No first difference lies beyond the robust z-score {:.1f}.",
-                          z_threshold);
+    samples =
+        fmt::format(" No first difference lies beyond the robust z-score {:.1f}.", z_threshold);
   }
   if (!contaminated) {
     return fmt::format(
@@ -181,7 +181,8 @@ std::string WaveletOutlierCheck::summary() const {
       "Outliers or contamination: the classical Haar wavelet variance exceeds the robust one "
       "beyond their 95 % intervals at {} of {} levels tested (scales {:.3g} .. {:.3g} s), by up "
       "to {:.0f} % (at {:.3g} s); the Allan variance at half those scales is inflated the same "
-      "way, so the model above describes the outliers as noise.{} What to do: look at the record around "
+      "way, so the model above describes the outliers as noise.{} What to do: look at the record "
+      "around "
       "those times; fit with `stochnav fit --method gmwm --robust` (the robust wavelet "
       "variance), or remove the outliers and diagnose again.",
       flagged, tested, low, high, 100.0 * excess, at, samples);

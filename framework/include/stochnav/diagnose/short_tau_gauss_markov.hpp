@@ -24,9 +24,10 @@
 //          more than chi2_2(1 - alpha) (two more parameters), the new term's tau_c is not on the
 //          upper end of the searched range (within 1 %: a longer correlation, the Allan loop's
 //          business), and the new term makes up at least min_term_share of B's wavelet variance
-//          at some scale (material; as DiagnoseOptions::min_term_share for the Allan loop). A tau_c on the lower end (tau0 / 4) is named and
-//          flagged: the significant drop says the finest scales are not white, the bound says
-//          the correlation time is of that order or shorter (not an estimate).
+//          at some scale (material; as DiagnoseOptions::min_term_share for the Allan loop). A tau_c
+//          on the lower end (tau0 / 4) is named and flagged: the significant drop says the finest
+//          scales are not white, the bound says the correlation time is of that order or shorter
+//          (not an estimate).
 // The false-alarm rate and the detection rate on simulated records are measured by
 // tests/diagnose/wavelet_findings_test.cpp (docs/diagnose.md has the numbers).
 
@@ -53,16 +54,16 @@ struct ShortTauGaussMarkovCheck {
   std::string not_applicable;  ///< why not, when !applicable
   bool robust = false;         ///< fitted to the robust wavelet variance (outliers flagged)
   std::vector<TermType> base_terms;
-  std::size_t scales = 0;          ///< wavelet-variance levels fitted
-  double objective_without = 0.0;  ///< fit A (chi-square)
-  double objective_with = 0.0;     ///< fit B
-  double threshold = 0.0;          ///< chi2_2(1 - alpha)
-  bool significant = false;        ///< objective_without - objective_with > threshold
-  bool at_lower_end = false;       ///< tau_c within 1 % of the searched range's lower end
-  bool at_upper_end = false;       ///< within 1 % of its upper end (not short: not named)
-  double largest_share = 0.0;      ///< the new term's largest share of B's wavelet variance
+  std::size_t scales = 0;              ///< wavelet-variance levels fitted
+  double objective_without = 0.0;      ///< fit A (chi-square)
+  double objective_with = 0.0;         ///< fit B
+  double threshold = 0.0;              ///< chi2_2(1 - alpha)
+  bool significant = false;            ///< objective_without - objective_with > threshold
+  bool at_lower_end = false;           ///< tau_c within 1 % of the searched range's lower end
+  bool at_upper_end = false;           ///< within 1 % of its upper end (not short: not named)
+  double largest_share = 0.0;          ///< the new term's largest share of B's wavelet variance
   double largest_share_scale_s = 0.0;  ///< the scale where it is largest (s)
-  bool named = false;              ///< significant, material, not at_upper_end
+  bool named = false;                  ///< significant, material, not at_upper_end
   /// The model already had a Gauss-Markov term with tau_c <= kShortTauMaxSamples tau0 (the
   /// Allan loop may add one on its tau_c bound): the fit here places it.
   bool in_model = false;
@@ -70,8 +71,8 @@ struct ShortTauGaussMarkovCheck {
   double sigma_sigma = 0.0;            ///< 1-sigma uncertainty of sigma (natural units)
   double tau_c_sigma = 0.0;            ///< of tau_c (s)
   NoiseModel fitted;                   ///< fit B's model (natural units)
-  double lag1_model = 0.0;   ///< lag-1 autocorrelation of fit B's stationary short terms
-  double lag1_record = 0.0;  ///< the record's lag-1 autocorrelation (as given)
+  double lag1_model = 0.0;             ///< lag-1 autocorrelation of fit B's stationary short terms
+  double lag1_record = 0.0;            ///< the record's lag-1 autocorrelation (as given)
 
   /// One paragraph: the finding (or why not) with numbers, in the reporting units of `unit`.
   std::string summary(Unit unit) const;
