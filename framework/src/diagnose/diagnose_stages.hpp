@@ -112,6 +112,9 @@ class TimeDomainWalkTest {
   /// The test of `model`; RandomWalkTest{} (not significant, statistic 0) when the test is off
   /// or the record is too short for blocks.
   RandomWalkTest operator()(const NoiseModel& model) const;
+  /// The natural rate with every deterministic term removed (natural units); empty when the
+  /// test is not enabled.
+  const std::vector<double>& stochastic_rate() const { return stochastic_rate_; }
 
  private:
   bool enabled_;
@@ -228,9 +231,11 @@ void apply_final_variant(const FinalVariant& chosen, const StochasticContext& co
 // ---- After the loop: the wavelet-variance findings (wavelet_stage.cpp) ------------------------
 
 /// Sets result.wavelet_outliers and result.short_tau_gauss_markov from the record without
-/// result.deterministic (against result.final_assessment().model). Does nothing when
-/// options.try_wavelet is false or the record is too short for 3 scales.
-void check_wavelet_variance(const RecordResiduals& residuals, const DiagnoseOptions& options,
-                            DiagnoseResult& result);
+/// result.deterministic (against result.final_assessment().model): the walk test's copy of it
+/// when it holds one (no further copy of the record), otherwise the residuals' rate, or a
+/// copy without the deterministic terms. Does nothing when options.try_wavelet is false or the
+/// record is too short for 3 scales.
+void check_wavelet_variance(const RecordResiduals& residuals, const TimeDomainWalkTest& walk_test,
+                            const DiagnoseOptions& options, DiagnoseResult& result);
 
 }  // namespace stochnav::diagnose_stages

@@ -45,14 +45,16 @@ void check_stochastic_rate(std::span<const double> rate, const Record& record,
 
 }  // namespace
 
-void check_wavelet_variance(const RecordResiduals& residuals, const DiagnoseOptions& options,
-                            DiagnoseResult& result) {
+void check_wavelet_variance(const RecordResiduals& residuals, const TimeDomainWalkTest& walk_test,
+                            const DiagnoseOptions& options, DiagnoseResult& result) {
   if (!options.try_wavelet) return;
   const Record& record = residuals.record();
   // 3 scales need 16 samples (wavelet_variance_levels).
   if (residuals.rate().size() < 16) return;
   try {
-    if (result.deterministic.empty()) {
+    if (!walk_test.stochastic_rate().empty()) {
+      check_stochastic_rate(walk_test.stochastic_rate(), record, options, result);
+    } else if (result.deterministic.empty()) {
       check_stochastic_rate(residuals.rate(), record, options, result);
     } else {
       const std::vector<double> stochastic = residuals.rate_without(result.deterministic);
