@@ -242,5 +242,31 @@ TEST(WaveletFindings, DiagnoseCarriesBothFindings) {
   EXPECT_FALSE(without.short_tau_gauss_markov.has_value());
 }
 
+TEST(WaveletFindings, ReadTheRecordWithoutItsDeterministicTerms) {
+  // A strong ramp in the record and in the model: the findings read the remainder (the ramp
+  // off), so the spikes are flagged and located and no short-tau term is named.
+  NoiseModel model = wavelet_study_base();
+  model.terms.push_back(noise_term_from_json(
+      nlohmann::json::parse(R"({"type": "rate_ramp", "R": 2000})"), model.unit, "/"));
+  Record record = simulated_record(model, kWaveletStudySamples, kWaveletStudyRateHz, 11);
+  const std::vector<std::size_t> spikes = inject_spikes(record, 20, 30.0, 12);
+  DiagnoseOptions options;
+  options.seeds = 0;
+  options.max_iterations = 1;
+  const DiagnoseResult result = diagnose(record, model, options);
+  ASSERT_FALSE(result.deterministic.empty());
+  ASSERT_TRUE(result.wavelet_outliers.has_value());
+  EXPECT_TRUE(result.wavelet_outliers->contaminated);
+  ASSERT_FALSE(result.wavelet_outliers->worst.empty());
+  for (const OutlierSample& sample : result.wavelet_outliers->worst) {
+    EXPECT_TRUE(std::any_of(spikes.begin(), spikes.end(), [&](std::size_t k) {
+      return sample.index == k || sample.index == k + 1;
+    })) << sample.index;
+  }
+  ASSERT_TRUE(result.short_tau_gauss_markov.has_value());
+  EXPECT_FALSE(result.short_tau_gauss_markov->named)
+      << result.short_tau_gauss_markov->summary(record.unit);
+}
+
 }  // namespace
 }  // namespace stochnav
