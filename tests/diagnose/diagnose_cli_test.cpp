@@ -71,7 +71,8 @@ std::string adis_input_for_this_build(const std::string& path, const TempDir& di
 void expect_wavelet_keys(const nlohmann::json& report) {
   const nlohmann::json& outliers = report["wavelet_outliers"];
   EXPECT_EQ(key_set(outliers),
-            (std::set<std::string>{"contaminated", "scale_range_s", "largest_excess",
+            (std::set<std::string>{"contaminated", "explained_by_nonstationary",
+                                   "scale_range_s", "largest_excess",
                                    "largest_excess_scale_s", "wv_unit", "levels", "z_threshold",
                                    "differences_beyond", "worst_samples", "summary"}));
   EXPECT_TRUE(outliers["contaminated"].is_boolean());
@@ -308,6 +309,7 @@ TEST(DiagnoseCliRealData, MtigGyroWithOutliers) {
   expect_wavelet_keys(report);
   const nlohmann::json& outliers = report["wavelet_outliers"];
   EXPECT_TRUE(outliers["contaminated"].get<bool>());
+  EXPECT_FALSE(outliers["explained_by_nonstationary"].get<bool>());
   EXPECT_NEAR(outliers["scale_range_s"][0].get<double>(), 0.02, 1e-9);  // the finest scale
   EXPECT_GT(outliers["largest_excess"].get<double>(), 0.3);  // 64 % at 0.02 s (docs/diagnose.md)
   EXPECT_EQ(outliers["worst_samples"].size(), 5U);

@@ -123,8 +123,10 @@ void print_wavelet_findings(const DiagnoseResult& result, Unit unit) {
     }
     fmt::print(
         "  outliers: classical WV exceeds the robust one at scales {:.3g} .. {:.3g} s (by up to "
-        "{:.0f} % at {:.3g} s){}; use `fit --method gmwm --robust`\n",
-        low, high, 100.0 * excess, at, where.empty() ? "" : "; worst samples at t = " + where + " s");
+        "{:.0f} % at {:.3g} s){}; {}\n",
+        low, high, 100.0 * excess, at, where.empty() ? "" : "; worst samples at t = " + where + " s",
+        check->explained_by_nonstationary ? "the nonstationary stretch found above"
+                                          : "use `fit --method gmwm --robust`");
   }
   if (const auto& check = result.short_tau_gauss_markov; check && check->named) {
     const auto& gm = std::get<GaussMarkovTerm>(check->term);

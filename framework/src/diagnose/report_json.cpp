@@ -35,6 +35,7 @@ nlohmann::json outliers_json(const WaveletOutlierCheck& check, Unit unit) {
   const auto [low, high] = check.flagged_scale_range_s();
   const auto [excess, at] = check.largest_excess();
   return {{"contaminated", check.contaminated},
+          {"explained_by_nonstationary", check.explained_by_nonstationary},
           {"scale_range_s", check.contaminated ? range_json(std::array<double, 2>{low, high})
                                                : nlohmann::json(nullptr)},
           {"largest_excess", excess},

@@ -177,6 +177,15 @@ std::string WaveletOutlierCheck::summary() const {
   }
   const auto [low, high] = flagged_scale_range_s();
   const auto [excess, at] = largest_excess();
+  if (explained_by_nonstationary) {
+    return fmt::format(
+        "The classical Haar wavelet variance exceeds the robust one beyond their 95 % intervals "
+        "at {} of {} levels tested (scales {:.3g} .. {:.3g} s), by up to {:.0f} % (at {:.3g} s): "
+        "the nonstationary term of the model, a stretch of louder noise, which the robust "
+        "estimator down-weights as it does outliers.{} Nothing more to do for it; if the "
+        "listed samples are not in that stretch, look at the record around them.",
+        flagged, tested, low, high, 100.0 * excess, at, samples);
+  }
   return fmt::format(
       "Outliers or contamination: the classical Haar wavelet variance exceeds the robust one "
       "beyond their 95 % intervals at {} of {} levels tested (scales {:.3g} .. {:.3g} s), by up "

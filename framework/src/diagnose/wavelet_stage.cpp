@@ -5,6 +5,7 @@
 #include "diagnose_stages.hpp"
 #include "stochnav/core/errors.hpp"
 #include "stochnav/core/units.hpp"
+#include "stochnav/diagnose/effective_model.hpp"
 #include "stochnav/fit/gmwm_data.hpp"
 #include "stochnav/stats/robust_wavelet_variance.hpp"
 
@@ -35,6 +36,8 @@ void check_stochastic_rate(std::span<const double> rate, const Record& record,
   const double si = si_per_unit(record.unit);
   result.wavelet_outliers = check_wavelet_outliers(rate, record.rate_hz, record.start_time_s,
                                                    options.alpha, classical, robust, 1.0 / si);
+  result.wavelet_outliers->explained_by_nonstationary =
+      find_nonstationary(result.final_assessment().model) != nullptr;
   const bool contaminated = result.wavelet_outliers->contaminated;
   const GmwmData data = gmwm_data_from_levels(contaminated ? robust : classical, record.unit,
                                               record.rate_hz, record.source);

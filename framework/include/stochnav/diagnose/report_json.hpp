@@ -7,7 +7,8 @@
 //    "final_model": {...}}
 // plus, when diagnose read the wavelet variance (DiagnoseOptions::try_wavelet), two keys beside
 // the contract's (new keys only; the contract's are unchanged):
-//   "wavelet_outliers": {"contaminated": bool, "scale_range_s": [a, b] | null,
+//   "wavelet_outliers": {"contaminated": bool, "explained_by_nonstationary": bool,
+//     "scale_range_s": [a, b] | null,
 //     "largest_excess": x, "largest_excess_scale_s": s | null, "wv_unit": "(deg/s)^2",
 //     "levels": [{"scale_s", "edf", "classical", "classical_lo", "classical_hi", "robust",
 //                 "robust_lo", "robust_hi", "excess", "tested", "flagged"}],

@@ -75,6 +75,10 @@ struct WaveletOutlierCheck {
   std::size_t differences_beyond = 0;
   /// The worst events, largest |z| first, at most kOutlierSamplesListed, neighbours merged.
   std::vector<OutlierSample> worst;
+  /// Set by diagnose when its final model has a nonstationary term: a stretch of louder noise
+  /// is contamination for the robust estimator too (a scale mixture; the split then shows at
+  /// every scale, not only the short ones), and the loop has already named it.
+  bool explained_by_nonstationary = false;
 
   /// The flagged levels' scale range (s), {0, 0} when none.
   std::pair<double, double> flagged_scale_range_s() const;
