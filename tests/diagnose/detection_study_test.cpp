@@ -186,6 +186,11 @@ struct Tally {
   int consistent = 0;     // the final model is consistent
   int any_iteration = 0;  // for controls: false alarms
   int extra = 0;          // the final model has a term type neither hidden nor in the base
+  // The wavelet-variance findings (no record here has outliers or a Gauss-Markov term of
+  // correlation time under 4 samples): each one is a false alarm; a split the final model's
+  // nonstationary term explains (a stretch of louder noise) is not counted.
+  int wavelet_outliers = 0;
+  int short_tau_named = 0;
 };
 
 Tally run(const Scenario& scenario, int seeds, std::uint64_t first_seed) {
@@ -237,6 +242,17 @@ Tally run(const Scenario& scenario, int seeds, std::uint64_t first_seed) {
       ++tally.named_first;
     }
     if (result.consistent) ++tally.consistent;
+    if (result.wavelet_outliers && result.wavelet_outliers->contaminated &&
+        !result.wavelet_outliers->explained_by_nonstationary) {
+      ++tally.wavelet_outliers;
+      std::printf("[ study ] %s: outliers flagged: %s\n", scenario.name.c_str(),
+                  result.wavelet_outliers->summary().c_str());
+    }
+    if (result.short_tau_gauss_markov && result.short_tau_gauss_markov->named) {
+      ++tally.short_tau_named;
+      std::printf("[ study ] %s: short-tau Gauss-Markov named: %s\n", scenario.name.c_str(),
+                  result.short_tau_gauss_markov->summary(record.unit).c_str());
+    }
     if (!found.empty()) ++tally.any_iteration;
     std::string steps;
     for (const auto& step : result.iterations) {
@@ -354,12 +370,25 @@ TEST(DiagnoseDetectionStudy, RatesOverHiddenEffectsPairsAndControls) {
       singles_weak.extra, singles_strong.extra, pairs.extra);
   std::printf("[ study ] controls: false alarms %d/%d (%.0f %%)\n", controls.any_iteration,
               controls.runs, rate(controls.any_iteration, controls.runs));
+  int runs = 0, outlier_alarms = 0, short_tau_alarms = 0;
+  for (const auto& [scenario, t] : rows) {
+    runs += t.runs;
+    outlier_alarms += t.wavelet_outliers;
+    short_tau_alarms += t.short_tau_named;
+  }
+  std::printf(
+      "[ study ] wavelet-variance findings on these records (none has outliers or a short-tau "
+      "Gauss-Markov term): outliers flagged (not explained by a nonstationary term) %d/%d, "
+      "short-tau Gauss-Markov named %d/%d\n",
+      outlier_alarms, runs, short_tau_alarms, runs);
 
   // Loose floors: the study reports; these only catch a broken workflow.
   if (std::getenv("STOCHNAV_DIAGNOSE_STUDY_ONLY") != nullptr) return;  // a partial study
   if (!testing::study_at_full_size()) return;  // 30-min records, one seed: no rate to check
   EXPECT_GE(rate(singles_strong.detected, singles_strong.runs), 75.0);
   EXPECT_LE(rate(controls.any_iteration, controls.runs), 15.0);
+  EXPECT_LE(rate(outlier_alarms, runs), 3.0);
+  EXPECT_LE(rate(short_tau_alarms, runs), 3.0);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -49,6 +50,55 @@ std::string write_hidden_gauss_markov(const TempDir& dir) {
 
 using testing::read_json;
 
+std::set<std::string> key_set(const nlohmann::json& object) {
+  std::set<std::string> keys;
+  for (const auto& [key, value] : object.items()) keys.insert(key);
+  return keys;
+}
+
+// The ADIS16405 record, or in sanitized builds its first 300,000 samples (50 min) in `dir`.
+std::string adis_input_for_this_build(const std::string& path, const TempDir& dir) {
+  if (testing::study_at_full_size()) return path;
+  const std::string input = dir.file("head.csv");
+  std::ifstream in(path);
+  std::ofstream head(input);
+  std::string line;
+  for (int row = 0; row <= 300000 && std::getline(in, line); ++row) head << line << '\n';
+  return input;
+}
+
+// The keys of report.json's wavelet-variance findings (diagnose/report_json.hpp).
+void expect_wavelet_keys(const nlohmann::json& report) {
+  const nlohmann::json& outliers = report["wavelet_outliers"];
+  EXPECT_EQ(key_set(outliers),
+            (std::set<std::string>{"contaminated", "explained_by_nonstationary",
+                                   "scale_range_s", "largest_excess",
+                                   "largest_excess_scale_s", "wv_unit", "levels", "z_threshold",
+                                   "differences_beyond", "worst_samples", "summary"}));
+  EXPECT_TRUE(outliers["contaminated"].is_boolean());
+  ASSERT_TRUE(outliers["levels"].is_array());
+  ASSERT_FALSE(outliers["levels"].empty());
+  EXPECT_EQ(key_set(outliers["levels"][0]),
+            (std::set<std::string>{"scale_s", "edf", "classical", "classical_lo", "classical_hi",
+                                   "robust", "robust_lo", "robust_hi", "excess", "tested",
+                                   "flagged"}));
+  EXPECT_EQ(outliers["scale_range_s"].is_null(), !outliers["contaminated"].get<bool>());
+  const nlohmann::json& short_tau = report["short_tau_gauss_markov"];
+  EXPECT_EQ(key_set(short_tau),
+            (std::set<std::string>{"applicable", "named", "effect", "added_term",
+                                   "tau_c_on_range_end", "in_model",
+                                   "robust_wv", "scales", "objective_without", "objective_with",
+                                   "threshold", "largest_share", "largest_share_scale_s",
+                                   "lag1_model", "lag1_record",
+                                   "summary"}));
+  EXPECT_EQ(short_tau["added_term"].is_null(), !short_tau["named"].get<bool>());
+  if (short_tau["named"].get<bool>()) {
+    EXPECT_EQ(short_tau["effect"], "gauss_markov");
+    EXPECT_EQ(short_tau["added_term"]["type"], "gauss_markov");
+    EXPECT_TRUE(short_tau["added_term"].contains("tau_c_sigma"));
+  }
+}
+
 TEST(DiagnoseCli, WritesTheReportJsonContractReportMdAndPlots) {
   TempDir dir;
   const std::string record = write_hidden_gauss_markov(dir);
@@ -61,8 +111,11 @@ TEST(DiagnoseCli, WritesTheReportJsonContractReportMdAndPlots) {
   const nlohmann::json report = read_json(fs::path(out) / "report.json");
   std::set<std::string> keys;
   for (const auto& [key, value] : report.items()) keys.insert(key);
+  // The DESIGN.md contract's keys, plus the wavelet-variance findings (new keys only).
   EXPECT_EQ(keys, (std::set<std::string>{"consistent", "gap_initial", "gap_final", "iterations",
-                                         "final_model"}));
+                                         "final_model", "wavelet_outliers",
+                                         "short_tau_gauss_markov"}));
+  expect_wavelet_keys(report);
   EXPECT_TRUE(report["consistent"].is_boolean());
   EXPECT_TRUE(report["gap_initial"].is_number());
   EXPECT_TRUE(report["gap_final"].is_number());
@@ -215,14 +268,7 @@ TEST(DiagnoseCliRealData, AdisGyroZHasALineNearTwentyHertz) {
     "terms": [{"type": "quantization", "Q": 6.65e-06}, {"type": "angle_random_walk", "N": 2.3118},
               {"type": "bias_instability", "B": 23.716}, {"type": "rate_random_walk", "K": 202.62}]})");
   const std::string out = dir.file("out");
-  std::string input = path;
-  if (!testing::study_at_full_size()) {  // sanitized builds: the first 300,000 samples (50 min)
-    input = dir.file("head.csv");
-    std::ifstream in(path);
-    std::ofstream head(input);
-    std::string line;
-    for (int row = 0; row <= 300000 && std::getline(in, line); ++row) head << line << '\n';
-  }
+  const std::string input = adis_input_for_this_build(path, dir);
   const auto result = run_cli("diagnose --input '" + input + "' --column gyro_z_dps --model '" +
                                   model + "' --out '" + out + "' --plots none --seeds 2",
                               dir.path().string());
@@ -258,6 +304,53 @@ TEST(DiagnoseCliRealData, MtigGyroWithOutliers) {
   ASSERT_FALSE(report["iterations"].empty());
   EXPECT_EQ(report["iterations"][0]["effect"], "gauss_markov");
   EXPECT_LT(report["gap_final"].get<double>(), 0.5 * report["gap_initial"].get<double>());
+  // Issue #30 item 6: the robust/classical split flags the outliers (the published robust-GMWM
+  // example), at the short scales, with the samples to look at and what to do.
+  expect_wavelet_keys(report);
+  const nlohmann::json& outliers = report["wavelet_outliers"];
+  EXPECT_TRUE(outliers["contaminated"].get<bool>());
+  EXPECT_FALSE(outliers["explained_by_nonstationary"].get<bool>());
+  EXPECT_NEAR(outliers["scale_range_s"][0].get<double>(), 0.02, 1e-9);  // the finest scale
+  EXPECT_GT(outliers["largest_excess"].get<double>(), 0.3);  // 64 % at 0.02 s (docs/diagnose.md)
+  EXPECT_EQ(outliers["worst_samples"].size(), 5U);
+  EXPECT_GT(std::abs(outliers["worst_samples"][0]["z"].get<double>()), 20.0);
+  EXPECT_NE(outliers["summary"].get<std::string>().find("fit --method gmwm --robust"),
+            std::string::npos);
+  EXPECT_NE(result.out.find("outliers: classical WV exceeds the robust one"), std::string::npos);
+  std::ifstream md_file(fs::path(out) / "report.md");
+  const std::string md((std::istreambuf_iterator<char>(md_file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("## Wavelet variance: outliers and short-tau correlation"), std::string::npos);
+  EXPECT_TRUE(report["short_tau_gauss_markov"]["robust_wv"].get<bool>());
+}
+
+// Issue #30 item 6: the ADIS16405 gyro X's lag-1 correlation of 0.17 is a Gauss-Markov term of
+// correlation time below one sample; the Allan loop leaves its Gauss-Markov term on the tau_c
+// bound (0.01 s), the wavelet variance names it with tau_c and sigma. No outliers are flagged.
+TEST(DiagnoseCliRealData, AdisGyroXShortTauGaussMarkovIsNamed) {
+  STOCHNAV_REQUIRE_SHARED_DATA(path, "imu-static/adis16405_imu1_static_100hz.csv");
+  TempDir dir;
+  // A white-noise model (N from ADEV(1 s) = 0.04 deg/s).
+  const std::string model = dir.write(
+      "model.json",
+      R"({"units": "deg/s", "rate_hz": 100, "terms": [{"type": "angle_random_walk", "N": 2.4}]})");
+  const std::string out = dir.file("out");
+  const std::string input = adis_input_for_this_build(path, dir);
+  const auto result = run_cli("diagnose --input '" + input + "' --column gyro_x_dps --model '" +
+                                  model + "' --out '" + out + "' --plots none --seeds 2",
+                              dir.path().string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  std::printf("%s", result.out.c_str());
+  const nlohmann::json report = read_json(fs::path(out) / "report.json");
+  expect_wavelet_keys(report);
+  EXPECT_FALSE(report["wavelet_outliers"]["contaminated"].get<bool>());
+  const nlohmann::json& short_tau = report["short_tau_gauss_markov"];
+  std::printf("%s\n", short_tau["summary"].get<std::string>().c_str());
+  ASSERT_TRUE(short_tau["named"].get<bool>()) << short_tau.dump(2);
+  const double tau_c = short_tau["added_term"]["tau_c"].get<double>();
+  EXPECT_GT(tau_c, 0.002);  // below one sample (0.01 s): what the Allan fits cannot reach
+  EXPECT_LT(tau_c, 0.005);
+  EXPECT_NEAR(short_tau["lag1_record"].get<double>(), 0.17, 0.01);
+  EXPECT_NE(result.out.find("short-tau gauss_markov (wavelet variance)"), std::string::npos);
 }
 
 }  // namespace

@@ -31,6 +31,7 @@
 #include "stochnav/core/work_limits.hpp"
 #include "stochnav/io/atomic_file.hpp"
 #include "stochnav/model/noise_model_json.hpp"
+#include "stochnav/model/reporting_units.hpp"
 #include "stochnav/report/gnuplot.hpp"
 #include "stochnav/io/json_document.hpp"
 
@@ -109,6 +110,34 @@ DiagnoseResult diagnose_with_progress(const Record& record, const NoiseModel& mo
   DiagnoseResult result = diagnose(record, model, options, aux);
   progress.finish();
   return result;
+}
+
+// The wavelet-variance findings on the terminal, one line each, when there is something to say.
+void print_wavelet_findings(const DiagnoseResult& result, Unit unit) {
+  if (const auto& check = result.wavelet_outliers; check && check->contaminated) {
+    const auto [low, high] = check->flagged_scale_range_s();
+    const auto [excess, at] = check->largest_excess();
+    std::string where;
+    for (const OutlierSample& sample : check->worst) {
+      where += fmt::format("{}{:.2f}", where.empty() ? "" : ", ", sample.time_s);
+    }
+    fmt::print(
+        "  outliers: classical WV exceeds the robust one at scales {:.3g} .. {:.3g} s (by up to "
+        "{:.0f} % at {:.3g} s){}; {}\n",
+        low, high, 100.0 * excess, at, where.empty() ? "" : "; worst samples at t = " + where + " s",
+        check->explained_by_nonstationary ? "the nonstationary stretch found above"
+                                          : "use `fit --method gmwm --robust`");
+  }
+  if (const auto& check = result.short_tau_gauss_markov; check && check->named) {
+    const auto& gm = std::get<GaussMarkovTerm>(check->term);
+    const Quantity quantity = quantity_of(unit);
+    fmt::print(
+        "  short-tau gauss_markov (wavelet variance): sigma = {:.4g} {}, tau_c = {:.3g} s{}\n",
+        to_reported(quantity, ParameterDimension::kRate, gm.sigma),
+        reported_unit_name(quantity, ParameterDimension::kRate), gm.tau_c,
+        check->at_lower_end ? " (on the lower end of the range searched: this order or shorter)"
+                            : "");
+  }
 }
 
 void run_diagnose(const DiagnoseArguments& arguments) {
@@ -211,7 +240,7 @@ void run_diagnose(const DiagnoseArguments& arguments) {
     if (!flag.empty()) flag = "; on its search bound: " + flag;
     fmt::print("  step {}: {} (gap {:.3g} -> {:.3g}{})\n", i + 1, term_type_name(step.effect),
                step.gap_before, step.gap_after, flag);
-  }
+  }  print_wavelet_findings(result, record.unit);
 }
 
 }  // namespace

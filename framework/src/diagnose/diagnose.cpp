@@ -160,6 +160,7 @@ DiagnoseResult diagnose(const Record& record, const NoiseModel& model,
     }
   }
   result.final_walk_test = walk;
+  stages::check_wavelet_variance(residuals, walk_test, options, result);
   count_diagnose_stage(options);
   const ModelAssessment& last = result.final_assessment();
   result.final_signature = stages::signature_of(last.gap, last.model, result.measured);

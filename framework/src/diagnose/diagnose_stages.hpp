@@ -13,6 +13,8 @@
 //                              the time-domain fallback, the iteration kept (steps 4-6)
 //   step_evidence.cpp          the texts of a step: evidence, time range, why none was kept
 //   final_selection.cpp        joint refit, replace and drop variants after the loop (step 8)
+//   wavelet_stage.cpp          the wavelet-variance findings after the loop: outliers from the
+//                              classical/robust split, a short-tau Gauss-Markov term by GMWM
 //   diagnose_common.cpp        helpers the stages share
 //
 // Units: rates and terms in natural units (SI) unless a name says otherwise; times in seconds.
@@ -89,6 +91,8 @@ class RecordResiduals {
   Record record_without(const std::vector<NoiseTerm>& terms) const;
 
   const Record& record() const { return record_; }
+  /// The natural rate of the record, one value per rate sample (natural units).
+  const std::vector<double>& rate() const { return rate_; }
   const std::vector<AuxChannel>& aux_rate() const { return aux_rate_; }
 
  private:
@@ -108,6 +112,9 @@ class TimeDomainWalkTest {
   /// The test of `model`; RandomWalkTest{} (not significant, statistic 0) when the test is off
   /// or the record is too short for blocks.
   RandomWalkTest operator()(const NoiseModel& model) const;
+  /// The natural rate with every deterministic term removed (natural units); empty when the
+  /// test is not enabled.
+  const std::vector<double>& stochastic_rate() const { return stochastic_rate_; }
 
  private:
   bool enabled_;
@@ -220,5 +227,15 @@ std::optional<FinalVariant> choose_final_variant(const DiagnoseResult& result,
 /// selection changed).
 void apply_final_variant(const FinalVariant& chosen, const StochasticContext& context,
                          DiagnoseResult& result);
+
+// ---- After the loop: the wavelet-variance findings (wavelet_stage.cpp) ------------------------
+
+/// Sets result.wavelet_outliers and result.short_tau_gauss_markov from the record without
+/// result.deterministic (against result.final_assessment().model): the walk test's copy of it
+/// when it holds one (no further copy of the record), otherwise the residuals' rate, or a
+/// copy without the deterministic terms. Does nothing when options.try_wavelet is false or the
+/// record is too short for 3 scales.
+void check_wavelet_variance(const RecordResiduals& residuals, const TimeDomainWalkTest& walk_test,
+                            const DiagnoseOptions& options, DiagnoseResult& result);
 
 }  // namespace stochnav::diagnose_stages

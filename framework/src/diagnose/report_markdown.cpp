@@ -83,6 +83,34 @@ std::string point_table(const MeasuredStatistics& measured, const ModelAssessmen
 
 }  // namespace
 
+namespace {
+
+// The wavelet-variance findings (DiagnoseResult::wavelet_outliers, short_tau_gauss_markov).
+std::string wavelet_section(const DiagnoseResult& result) {
+  if (!result.wavelet_outliers && !result.short_tau_gauss_markov) return {};
+  std::string md = "\n## Wavelet variance: outliers and short-tau correlation\n\n";
+  const Unit unit = result.initial.model.unit;
+  if (const auto& check = result.wavelet_outliers) {
+    md += check->summary() + "\n\n";
+    md += fmt::format(
+        "| scale (s) | classical [95 %] (({0})^2) | robust [95 %] (({0})^2) | excess | flagged |\n"
+        "|---|---|---|---|---|\n",
+        unit_name(unit));
+    for (const WaveletLevelSplit& level : check->levels) {
+      if (!level.tested) continue;
+      md += fmt::format(
+          "| {:.4g} | {:.4g} [{:.4g}, {:.4g}] | {:.4g} [{:.4g}, {:.4g}] | {:+.1f} % | {} |\n",
+          level.scale_s, level.classical, level.classical_lo, level.classical_hi, level.robust,
+          level.robust_lo, level.robust_hi, 100.0 * level.excess(), level.flagged ? "yes" : "");
+    }
+    md += "\n";
+  }
+  if (const auto& check = result.short_tau_gauss_markov) md += check->summary(unit) + "\n";
+  return md;
+}
+
+}  // namespace
+
 std::string diagnose_report_markdown(const DiagnoseResult& result, const std::string& source,
                                      const std::string& model_source,
                                      const DiagnosePlotFiles& plots) {
@@ -167,6 +195,7 @@ std::string diagnose_report_markdown(const DiagnoseResult& result, const std::st
         left.above ? "above" : "below", (*left.tau_range_s)[0], (*left.tau_range_s)[1],
         left.max_abs_z, left.tau_at_max_s, left.shape);
   }
+  md += wavelet_section(result);
   return md;
 }
 

@@ -68,8 +68,10 @@
 #include "stochnav/diagnose/deterministic_effects.hpp"
 #include "stochnav/diagnose/gap.hpp"
 #include "stochnav/diagnose/measured_statistics.hpp"
+#include "stochnav/diagnose/short_tau_gauss_markov.hpp"
 #include "stochnav/diagnose/signature.hpp"
 #include "stochnav/diagnose/simulated_band.hpp"
+#include "stochnav/diagnose/wavelet_outliers.hpp"
 #include "stochnav/io/record.hpp"
 #include "stochnav/model/noise_model.hpp"
 
@@ -103,6 +105,11 @@ struct DiagnoseOptions {
   /// Refit all stationary terms together after the loop (kept when the pooled chi-square drops
   /// and the gap does not widen).
   bool joint_refit = true;
+  /// After the loop, read the record's classical and robust Haar wavelet variance: flag
+  /// outliers by their split (diagnose/wavelet_outliers.hpp) and test the final model for a
+  /// missing short-tau Gauss-Markov term by GMWM (diagnose/short_tau_gauss_markov.hpp). Both
+  /// are findings reported beside the loop's; they change neither the iterations nor the model.
+  bool try_wavelet = true;
   /// When set, one is added per stage done (the measured statistics, the model's assessment,
   /// each iteration, the final choice): diagnose_stage_count(max_iterations) in all, fewer
   /// when the loop stops early. A progress display's counter (core/progress_bar.hpp,
@@ -182,6 +189,13 @@ struct DiagnoseResult {
   std::string final_selection;
   /// The time-domain rate-random-walk test of the final model (statistic 0 when not run).
   RandomWalkTest final_walk_test;
+
+  /// The classical/robust wavelet-variance split of the record (without the deterministic
+  /// terms); empty when DiagnoseOptions::try_wavelet is false.
+  std::optional<WaveletOutlierCheck> wavelet_outliers;
+  /// The short-tau Gauss-Markov test of the final stochastic model on the record's wavelet
+  /// variance (the robust one when outliers were flagged); empty when try_wavelet is false.
+  std::optional<ShortTauGaussMarkovCheck> short_tau_gauss_markov;
 
   const ModelAssessment& final_assessment() const {
     if (joint_refit) return *joint_refit;
