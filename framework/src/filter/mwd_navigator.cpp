@@ -588,6 +588,7 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
 void MwdNavigator::feed_back(const Eigen::VectorXd& correction) {
   CoreEstimate estimate{ins_.state(), accel_bias_b_, gyro_bias_b_};
   apply_core_correction(correction, estimate);
+  oscillation_.shift(estimate.state.v_n - ins_.state().v_n);
   ins_.set_state(estimate.state);
   c_nb_ = estimate.state.q_nb.toRotationMatrix();
   accel_bias_b_ = estimate.accel_bias_b;

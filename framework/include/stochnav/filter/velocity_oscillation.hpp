@@ -46,6 +46,11 @@ class VelocityOscillation {
   /// the counted oscillation over the epoch (m/s, ENU): what the coupling's velocity change adds.
   Eigen::Vector3d update(const Eigen::Vector3d& v_n, double dt_s);
 
+  /// The filter corrected the INS velocity by `correction_n` (m/s, ENU): a correction is not an
+  /// oscillation, so the low-pass moves with it (otherwise the step would pass the high-pass and
+  /// the aids would see a corrected velocity return over kLowPassTime_s).
+  void shift(const Eigen::Vector3d& correction_n) { low_pass_n_ += correction_n; }
+
   /// The counted oscillation at the last epoch (m/s, ENU): zero below the threshold.
   const Eigen::Vector3d& velocity_n() const { return counted_n_; }
 
