@@ -52,6 +52,25 @@ TEST(VelocityOscillation, LeavesNoiseAndSlowChangesOut) {
   EXPECT_EQ(oscillation.velocity_n(), Eigen::Vector3d::Zero());
 }
 
+// A correction of the INS velocity (the filter's feedback) is not an oscillation: shifted with
+// it, the counted oscillation is that of the uncorrected velocity (unshifted, the 5-mm/s step
+// would pass the high-pass).
+TEST(VelocityOscillation, AFedBackCorrectionIsNotCounted) {
+  VelocityOscillation corrected(0.02, vibrating_velocity(0.0));
+  VelocityOscillation reference(0.02, vibrating_velocity(0.0));
+  const Eigen::Vector3d correction(0.005, -0.003, 0.001);
+  double worst = 0.0;
+  for (int k = 1; k <= 1000; ++k) {
+    const double t = k * kStep_s;
+    if (k == 600) corrected.shift(correction);
+    const Eigen::Vector3d offset = k >= 600 ? correction : Eigen::Vector3d::Zero();
+    corrected.update(vibrating_velocity(t) + offset, kStep_s);
+    reference.update(vibrating_velocity(t), kStep_s);
+    worst = std::max(worst, (corrected.velocity_n() - reference.velocity_n()).norm());
+  }
+  EXPECT_LT(worst, 1e-12);
+}
+
 TEST(VelocityOscillation, AThresholdOfZeroCountsNothing) {
   VelocityOscillation oscillation(0.0, vibrating_velocity(0.0));
   for (int k = 1; k <= 500; ++k) {

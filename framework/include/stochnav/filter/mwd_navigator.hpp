@@ -26,7 +26,9 @@
 // then agree to first order: the error the INS velocity inherits from phi when the tool speeds
 // up (phi x its velocity change) and the attitude term of a lateral constraint cancel in both
 // (docs/drilling-envelope.md). Without such an aid the measured specific force is used (a
-// vehicle's manoeuvres are what make its heading observable).
+// vehicle's manoeuvres are what make its heading observable). The tool's vibration, which no aid
+// states, is added to the reference (filter/velocity_oscillation.hpp): in the dynamics' coupling
+// and the aids' attitude columns, while the interval aids take the INS velocity less it.
 //
 // Lifetime: the navigator keeps references to the plugins; they must outlive it.
 
