@@ -210,12 +210,13 @@ TEST(ShippedExperiments, EstimatorsOnTheDrillString) {
                                    {{"/drilling/duration_s", 2700}, {"/drilling/start_md_m", 495}},
                                    /*always_shortened=*/true));
   ASSERT_EQ(named.size(), 4u);
-  // The same verdict by both estimators; positions and attitude inside 3 sigma throughout. (The
-  // vertical velocity is 94 % inside here since fix 7: in the 12-Hz episode the counted
-  // oscillation takes the INS velocity noise's fast part out of the ROP's comparison, which the
-  // model does not say; docs/drilling-envelope.md, fix 7.)
-  EXPECT_EQ(optimistic(named["augmented_avar"]), optimistic(named["augmented_gmwm"]));
+  // Consistent by both estimators, positions and attitude inside 3 sigma throughout. (The
+  // vertical velocity is the margin: 95 % inside, the 12-Hz episode's accelerometer noise above
+  // the config's model; without the interval aids' high-passed noise term of fix 7 it was 94 %
+  // and the run optimistic: docs/drilling-envelope.md, fix 7.)
   for (const char* name : {"augmented_avar", "augmented_gmwm"}) {
+    EXPECT_FALSE(optimistic(named[name]))
+        << name << ": " << named[name]["consistency"]["optimistic_reason"];
     const nlohmann::json& inside = named[name]["consistency"]["inside_3sigma"];
     for (const char* quantity : {"lat_err_m", "lon_err_m", "height_err_m", "inclination_err_deg",
                                  "azimuth_err_deg", "toolface_err_deg"}) {

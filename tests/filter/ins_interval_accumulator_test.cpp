@@ -10,6 +10,7 @@
 #include <numbers>
 #include <random>
 
+#include "stochnav/filter/velocity_oscillation.hpp"
 #include "stochnav/ins/strapdown.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 
@@ -206,6 +207,39 @@ TEST(InsIntervalMap, InIntervalWhiteNoiseCovariance) {
     SCOPED_TRACE(axis);
     EXPECT_NEAR(sample(axis, axis) / predicted(axis, axis), 1.0, 0.22);
   }
+}
+
+// Under vibration (filter/velocity_oscillation.hpp) the velocities given are the INS's less the
+// counted share of its high-pass, which takes that share of the velocity noise's high-pass out
+// of the mean: the mean's noise covariance adds share^2 q high_passed_noise_variance(T), q the
+// accelerometer noise's rate over the interval; without a share nothing changes.
+TEST(InsIntervalMap, VibrationAddsTheHighPassedNoiseItTakesOut) {
+  const double rate = 1e-6;  // (m/s)^2 per s
+  const double dt = 0.01;
+  InsIntervalAccumulator still, vibrating, half;
+  for (int k = 0; k < 100; ++k) {
+    InsIntervalAccumulator::Epoch epoch{.v_start_n = Eigen::Vector3d::Zero(),
+                                        .v_end_n = Eigen::Vector3d::Zero(),
+                                        .c_nb_mid = Eigen::Matrix3d::Identity(),
+                                        .delta_v_b = Eigen::Vector3d(0.0, 0.0, 9.8 * dt),
+                                        .scale_factor_delta_v_b = Eigen::Vector3d::Zero(),
+                                        .delta_theta_b = Eigen::Vector3d::Zero(),
+                                        .velocity_noise = rate * dt * Eigen::Matrix3d::Identity(),
+                                        .attitude_noise = Eigen::Matrix3d::Zero(),
+                                        .dt_s = dt};
+    still.add_epoch(epoch);
+    epoch.oscillation_share = 1.0;
+    vibrating.add_epoch(epoch);
+    epoch.oscillation_share = 0.5;
+    half.add_epoch(epoch);
+  }
+  const Eigen::Matrix3d base = still.interval().mean_velocity_noise_covariance;
+  const double added = rate * VelocityOscillation::high_passed_noise_variance(1.0);
+  EXPECT_TRUE((vibrating.interval().mean_velocity_noise_covariance - base)
+                  .isApprox(added * Eigen::Matrix3d::Identity(), 1e-9));
+  EXPECT_TRUE((half.interval().mean_velocity_noise_covariance - base)
+                  .isApprox(0.25 * added * Eigen::Matrix3d::Identity(), 1e-9));
+  EXPECT_GT(added, 0.3 * base(0, 0)) << "comparable to the in-interval noise (0.43 of it)";
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "stochnav/filter/ins_interval_accumulator.hpp"
 
+#include "stochnav/filter/velocity_oscillation.hpp"
 #include "stochnav/ins/cross_product_matrix.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 
@@ -31,6 +32,7 @@ void InsIntervalAccumulator::add_epoch(const Epoch& epoch) {
   weighted_f_n_dt_ += weight * f_n_dt;
   weighted_c_nb_dt_ += weight * c_dt;
   weighted_noise_ += (weight * weight) * epoch.velocity_noise;
+  removed_noise_ += (epoch.oscillation_share * epoch.oscillation_share) * epoch.velocity_noise;
 }
 
 Eigen::Matrix3d InsIntervalAccumulator::gyro_map(const Eigen::Matrix3d& a,
@@ -54,7 +56,9 @@ plugin::InsInterval InsIntervalAccumulator::interval() const {
   interval.duration_s = t;
   interval.mean_v_n = v_n_dt_ / t;
   core_map(interval.mean_velocity_error_map);
-  interval.mean_velocity_noise_covariance = (weighted_noise_ + attitude_noise_image_) / (t * t);
+  interval.mean_velocity_noise_covariance =
+      (weighted_noise_ + attitude_noise_image_) / (t * t) +
+      (removed_noise_ / t) * VelocityOscillation::high_passed_noise_variance(t);
   return interval;
 }
 

@@ -226,7 +226,8 @@ void MwdNavigator::step(const ImuIncrement& raw) {
         .delta_theta_b = compensated.delta_theta_b,
         .velocity_noise = velocity_noise_ - velocity_noise_before,
         .attitude_noise = attitude_noise_ - attitude_noise_before,
-        .dt_s = dt};
+        .dt_s = dt,
+        .oscillation_share = oscillation_.share()};
     for (const std::size_t index : interval_aids_) aid_intervals_[index].add_epoch(interval_epoch);
   }
 

@@ -54,11 +54,24 @@ class VelocityOscillation {
   /// The counted oscillation at the last epoch (m/s, ENU): zero below the threshold.
   const Eigen::Vector3d& velocity_n() const { return counted_n_; }
 
+  /// The share of the high-passed INS velocity counted at the last epoch, in [0, 1]. The
+  /// high-pass takes the INS's own velocity noise with the vibration: an aid comparing the
+  /// velocity less the counted oscillation misses that share of its high-passed noise
+  /// (high_passed_noise_variance).
+  double share() const { return share_; }
+
+  /// The variance of the mean over an interval of duration_s of a random walk's high-passed
+  /// part, per unit of its rate (m^2/s^3 -> m^2/s^2): the high-pass of a random walk of rate q
+  /// is an Ornstein-Uhlenbeck process of time constant tau = kLowPassTime_s and variance
+  /// q tau / 2, whose mean over T has (q tau / 2) (2 tau / T) (1 - (tau / T) (1 - exp(-T / tau))).
+  static double high_passed_noise_variance(double duration_s);
+
  private:
   double threshold_squared_;
   Eigen::Vector3d low_pass_n_;
   double mean_square_ = 0.0;
   Eigen::Vector3d counted_n_ = Eigen::Vector3d::Zero();
+  double share_ = 0.0;
 };
 
 }  // namespace stochnav
