@@ -110,6 +110,21 @@ TEST(SurveyListing, FirstStationRatesFromAKnownTieOn) {
   EXPECT_NEAR(from_a_hold[0].turn_deg_30m, 6.0, 1e-9);
 }
 
+// A station at the tie-on's depth (the alignment's, 0.1 m past it) differs from the tie-on's
+// attitude by the two surveys' errors, not by a dogleg: no rates under kMinimumCourseLengthM,
+// the rates from that course on.
+TEST(SurveyListing, NoRatesOverACourseShorterThanAMetre) {
+  const SurveyTieOn tie_on = tie_on_at(1000.0, SurveyDirection{30.0, 45.0});
+  const auto at_tie_on = survey_listing({station_at(1000.1, 30.1, 45.2)}, tie_on, {});
+  EXPECT_TRUE(std::isnan(at_tie_on[0].dls_deg_30m)) << at_tie_on[0].dls_deg_30m;
+  EXPECT_TRUE(std::isnan(at_tie_on[0].build_deg_30m));
+  EXPECT_TRUE(std::isnan(at_tie_on[0].turn_deg_30m));
+  const auto one_metre =
+      survey_listing({station_at(1000.0 + kMinimumCourseLengthM, 30.1, 45.0)}, tie_on, {});
+  EXPECT_NEAR(one_metre[0].build_deg_30m, 3.0, 1e-9);
+  EXPECT_NEAR(one_metre[0].dls_deg_30m, 3.0, 1e-6);
+}
+
 TEST(SurveyListing, TurnWrapsThroughNorthAndBackwardsDepthHasNoRates) {
   const std::vector<SurveyStation> stations = {
       station_at(1030.0, 60.0, 359.0), station_at(1060.0, 60.0, 1.0), station_at(1059.9, 60.0, 2.0),

@@ -22,12 +22,12 @@ namespace {
 
 // The order of WITSML 1.4.1.1's cs_trajectoryStation sequence, restricted to the elements a run
 // writes (target, dTimStn, typeSurveyTool, mtf, the magnetic and raw-data elements, location
-// and sourceStation are not written).
+// and sourceStation are not written; location only with a map reference).
 const std::vector<std::string> kStationOrder = {
     "typeTrajStation", "md",      "tvd",       "incl",           "azi",
     "gtf",             "dispNs",  "dispEw",    "vertSect",       "dls",
     "rateTurn",        "rateBuild", "mdDelta", "tvdDelta",       "modelToolError",
-    "statusTrajStation", "matrixCov"};
+    "statusTrajStation", "matrixCov", "location"};
 // The order of obj_trajectory's elements the run writes.
 const std::vector<std::string> kTrajectoryOrder = {
     "nameWell",   "nameWellbore",       "name",       "mdMn",       "mdMx",
@@ -140,6 +140,43 @@ Listing with_projection_to_bit() {
   return listing;
 }
 
+// With a map reference (the well's grid coordinates and convergence), every station carries
+// survey.csv's map_easting_m and map_northing_m as a location in that grid, the tie-in point the
+// reference itself; without one, no location.
+TEST(WitsmlTrajectory, MapCoordinatesAsEachStationsLocation) {
+  Listing listing = with_projection_to_bit();
+  listing.options.grid_convergence_deg = 1.5;
+  listing.options.map_reference = MapReference{430000.0, 6700000.0, 0.9996};
+  listing.rows = survey_listing(listing.stations, listing.tie_on, listing.options);
+  const std::string xml =
+      witsml_trajectory_xml(listing.stations, listing.rows, listing.tie_on, listing.options);
+  pugi::xml_document document;
+  ASSERT_TRUE(document.load_string(xml.c_str()));
+  std::vector<pugi::xml_node> stations;
+  for (pugi::xml_node station :
+       document.child("trajectorys").child("trajectory").children("trajectoryStation")) {
+    EXPECT_TRUE(in_order(station, kStationOrder)) << station.attribute("uid").value();
+    stations.push_back(station);
+  }
+  ASSERT_EQ(stations.size(), 4u);
+  const pugi::xml_node tie_in = stations[0].child("location");
+  EXPECT_DOUBLE_EQ(number(tie_in, "easting"), 430000.0);
+  EXPECT_DOUBLE_EQ(number(tie_in, "northing"), 6700000.0);
+  for (std::size_t i = 1; i < stations.size(); ++i) {
+    const pugi::xml_node location = stations[i].child("location");
+    ASSERT_FALSE(location.empty()) << i;
+    EXPECT_STREQ(location.child("easting").attribute("uom").value(), "m");
+    // 12 significant digits: 1e-5 m at millions of metres.
+    EXPECT_NEAR(number(location, "easting"), listing.rows[i - 1].map_easting_m, 1e-4) << i;
+    EXPECT_NEAR(number(location, "northing"), listing.rows[i - 1].map_northing_m, 1e-4) << i;
+    EXPECT_NE(number(location, "easting"), 430000.0) << "the station's, not the reference's";
+  }
+  const Listing plain = with_projection_to_bit();
+  EXPECT_EQ(witsml_trajectory_xml(plain.stations, plain.rows, plain.tie_on, plain.options)
+                .find("<location"),
+            std::string::npos);
+}
+
 // The projection to the bit, the listing's last row, is the trajectory's last station:
 // "hold to delta-MD" (WITSML 1.4.1.1's TrajStationType has no "projected" value; this one
 // "holds angle, azimuth to a specified delta measured depth"), no status (not a measurement).
@@ -182,6 +219,9 @@ TEST(WitsmlTrajectory, ValidatesAgainstTheWitsml1411Schema) {
   const testing::TempDir dir;
   Listing listing = with_projection_to_bit();
   listing.stations[0].qc.flagged = true;  // one "open" station
+  listing.options.grid_convergence_deg = 1.5;  // with map coordinates (locations)
+  listing.options.map_reference = MapReference{430000.0, 6700000.0, 0.9996};
+  listing.rows = survey_listing(listing.stations, listing.tie_on, listing.options);
   const std::string document = dir.write(
       "trajectory.xml",
       witsml_trajectory_xml(listing.stations, listing.rows, listing.tie_on, listing.options));

@@ -12,7 +12,10 @@
 //                        attitude is not known (SurveyTieOn::direction: a run sets it from the
 //                        configured initial attitude, the aligned one after an alignment, or
 //                        the truth's at a start from truth), and on any station
-//                        whose MD does not exceed the previous one (dMD <= 0); the turn rate
+//                        less than kMinimumCourseLengthM (1 m) of MD past the previous one:
+//                        over a shorter course the angles' own errors are the rate (a station
+//                        at the tie-on's depth, 0.1 deg apart over 0.1 m, would list 30 deg /
+//                        30 m); the turn rate
 //                        also where either station is within 1 deg of vertical (the azimuth
 //                        undefined there).
 //   closure_m            horizontal distance from the well reference (the tie-on's north/east,
@@ -89,6 +92,9 @@
 #include "stochnav/experiment/survey.hpp"
 
 namespace stochnav {
+
+/// The shortest MD course (m) over which the listing gives DLS, build and turn rates.
+inline constexpr double kMinimumCourseLengthM = 1.0;
 
 /// The derived columns of one station (see above for each).
 struct StationListing {

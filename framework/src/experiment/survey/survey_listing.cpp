@@ -31,10 +31,10 @@ double azimuth_deg_of(double north, double east) {
 }
 
 /// DLS, build and turn (deg / 30 m) from (inclination, azimuth) at the previous station to
-/// the current one over md_step_m; NaN when the step is not positive.
+/// the current one over md_step_m; NaN over a course shorter than kMinimumCourseLengthM.
 void set_rates(StationListing& listing, double previous_inclination_deg,
                double previous_azimuth_deg, const SurveyStation& station, double md_step_m) {
-  if (!(md_step_m > 0.0)) {
+  if (!(md_step_m >= kMinimumCourseLengthM)) {
     listing.dls_deg_30m = listing.build_deg_30m = listing.turn_deg_30m = kUndefined;
     return;
   }

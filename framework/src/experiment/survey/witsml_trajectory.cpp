@@ -13,12 +13,13 @@ namespace {
 
 constexpr double kMetresPer30m = 30.0;
 
-// A measure element <name uom="...">value</name>; left out when the value is NaN.
+// A measure element <name uom="...">value</name> (12 significant digits: 0.01 mm at a map
+// coordinate of millions of metres); left out when the value is NaN.
 void add_measure(pugi::xml_node parent, const char* name, double value, const char* uom) {
   if (std::isnan(value)) return;
   pugi::xml_node node = parent.append_child(name);
   node.append_attribute("uom") = uom;
-  node.text().set(fmt::format("{:.9g}", value).c_str());
+  node.text().set(fmt::format("{:.12g}", value).c_str());
 }
 
 void add_text(pugi::xml_node parent, const char* name, const std::string& text) {
@@ -29,8 +30,44 @@ struct StationValues {
   std::string type;
   double md_m, tvd_m, incl_deg, azi_deg, gtf_deg, north_m, east_m, vertical_section_m;
   double dls_deg_30m, turn_deg_30m, build_deg_30m, md_delta_m, tvd_delta_m;
+  double map_easting_m, map_northing_m;    // NaN without a map reference
   const SurveyStation* station = nullptr;  // null for the tie-in point
 };
+
+// The station's tool error model, status and NEV covariance (a measured station or the
+// projection to the bit).
+void add_station_quality(pugi::xml_node node, const SurveyStation& station) {
+  if (station.type == SurveyStationType::kProjectionToBit) {
+    // Not a measurement: no status; its covariance is the last station's.
+    add_text(node, "modelToolError",
+             "stochnav INS filter covariance of the last survey station (1 sigma); the "
+             "projection's own error is not included");
+  } else {
+    add_text(node, "modelToolError", "stochnav INS filter covariance (1 sigma)");
+    add_text(node, "statusTrajStation", station.qc.flagged ? "open" : "position");
+  }
+  const Eigen::Matrix3d& p = station.position_covariance_nev_m2;
+  pugi::xml_node cov = node.append_child("matrixCov");
+  add_measure(cov, "varianceNN", p(0, 0), "m2");
+  add_measure(cov, "varianceNE", p(0, 1), "m2");
+  add_measure(cov, "varianceNVert", p(0, 2), "m2");
+  add_measure(cov, "varianceEE", p(1, 1), "m2");
+  add_measure(cov, "varianceEVert", p(1, 2), "m2");
+  add_measure(cov, "varianceVertVert", p(2, 2), "m2");
+}
+
+// The station's map coordinates (survey.csv's map_easting_m, map_northing_m) as a location in
+// the well reference's projected grid; nothing without a map reference.
+void add_map_location(pugi::xml_node node, double easting_m, double northing_m) {
+  if (std::isnan(easting_m) || std::isnan(northing_m)) return;
+  pugi::xml_node location = node.append_child("location");
+  location.append_attribute("uid") = "map";
+  add_text(location, "wellCRS", "map grid of the run config's well_reference");
+  add_measure(location, "easting", easting_m, "m");
+  add_measure(location, "northing", northing_m, "m");
+  add_text(location, "description",
+           "from dispNs and dispEw by the grid convergence and scale factor (survey.csv)");
+}
 
 void add_station(pugi::xml_node trajectory, const std::string& uid, const StationValues& v) {
   pugi::xml_node node = trajectory.append_child("trajectoryStation");
@@ -49,24 +86,8 @@ void add_station(pugi::xml_node trajectory, const std::string& uid, const Statio
   add_measure(node, "rateBuild", v.build_deg_30m / kMetresPer30m, "dega/m");
   add_measure(node, "mdDelta", v.md_delta_m, "m");
   add_measure(node, "tvdDelta", v.tvd_delta_m, "m");
-  if (v.station == nullptr) return;
-  if (v.station->type == SurveyStationType::kProjectionToBit) {
-    // Not a measurement: no status; its covariance is the last station's.
-    add_text(node, "modelToolError",
-             "stochnav INS filter covariance of the last survey station (1 sigma); the "
-             "projection's own error is not included");
-  } else {
-    add_text(node, "modelToolError", "stochnav INS filter covariance (1 sigma)");
-    add_text(node, "statusTrajStation", v.station->qc.flagged ? "open" : "position");
-  }
-  const Eigen::Matrix3d& p = v.station->position_covariance_nev_m2;
-  pugi::xml_node cov = node.append_child("matrixCov");
-  add_measure(cov, "varianceNN", p(0, 0), "m2");
-  add_measure(cov, "varianceNE", p(0, 1), "m2");
-  add_measure(cov, "varianceNVert", p(0, 2), "m2");
-  add_measure(cov, "varianceEE", p(1, 1), "m2");
-  add_measure(cov, "varianceEVert", p(1, 2), "m2");
-  add_measure(cov, "varianceVertVert", p(2, 2), "m2");
+  if (v.station != nullptr) add_station_quality(node, *v.station);
+  add_map_location(node, v.map_easting_m, v.map_northing_m);
 }
 
 }  // namespace
@@ -77,6 +98,10 @@ std::string witsml_trajectory_xml(const std::vector<SurveyStation>& stations,
                                   const WitsmlTrajectoryNames& names) {
   const double tvd_origin_m = tie_on_tvd_below_datum_m(tie_on, options).value_or(0.0);
   const double nan = std::nan("");
+  const MapCoordinates tie_on_map =
+      options.map_reference ? map_coordinates(*options.map_reference,
+                                              options.grid_convergence_deg.value_or(0.0), 0.0, 0.0)
+                            : MapCoordinates{nan, nan};
   pugi::xml_document document;
   pugi::xml_node declaration = document.append_child(pugi::node_declaration);
   declaration.append_attribute("version") = "1.0";
@@ -117,7 +142,9 @@ std::string witsml_trajectory_xml(const std::vector<SurveyStation>& stations,
                .turn_deg_30m = nan,
                .build_deg_30m = nan,
                .md_delta_m = nan,
-               .tvd_delta_m = nan});
+               .tvd_delta_m = nan,
+               .map_easting_m = tie_on_map.easting_m,
+               .map_northing_m = tie_on_map.northing_m});
   double previous_md = tie_on.measured_depth_m;
   double previous_tvd = 0.0;
   for (std::size_t i = 0; i < stations.size(); ++i) {
@@ -140,6 +167,8 @@ std::string witsml_trajectory_xml(const std::vector<SurveyStation>& stations,
                  .build_deg_30m = row.build_deg_30m,
                  .md_delta_m = s.md_m - previous_md,
                  .tvd_delta_m = s.tvd_m - previous_tvd,
+                 .map_easting_m = row.map_easting_m,
+                 .map_northing_m = row.map_northing_m,
                  .station = &s});
     previous_md = s.md_m;
     previous_tvd = s.tvd_m;
