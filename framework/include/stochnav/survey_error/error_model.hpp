@@ -132,9 +132,9 @@ struct SurveyErrorModel {
 
 /// The model called `name` ("mwd_rev5" = ISCWSA MWD Rev5.11, 35 sources; "mwd_rev4", 27
 /// sources). Throws ConfigError "--model 'NAME': unknown survey error model; use ..." (with a
-/// "did you mean" for a likely typo; tool_models.hpp), or "not an ISCWSA MWD model" for
-/// gyro_ns_ct, which is a table (tool_models.hpp, gyro_ns_ct_table_model) plus terms no
-/// propagation mode describes (continuous_gyro.hpp).
+/// "did you mean" for a likely typo; tool_models.hpp), or "not an ISCWSA MWD model" for the
+/// OWSG gyro tool models (tool_models.hpp: gyro_ns_ct, a table plus terms no propagation mode
+/// describes, continuous_gyro.hpp; gyro_ns and gyro_mwd, gyro_ns_model and gyro_mwd_model).
 const SurveyErrorModel& survey_error_model(std::string_view name);
 
 /// The names survey_error_model() knows, in a stable order.
