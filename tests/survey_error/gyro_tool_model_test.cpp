@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <functional>
 #include <numbers>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -581,6 +582,8 @@ std::vector<SimulatedSource> simulated_stationary_gyro_sources(
        }},
   };
 }
+
+void PrintTo(const StationaryGyroMagnitudesDegH& m, std::ostream* os) { *os << m.model; }
 
 class StationaryGyroMonteCarlo : public ::testing::TestWithParam<StationaryGyroMagnitudesDegH> {};
 
