@@ -553,14 +553,15 @@ std::vector<double> covariance_values(const fs::path& path) {
 // "survey/error_model": the run writes iscwsa_covariance.csv for its own survey stations (one
 // row per station and source, the first survey station the model's tie-on) and the plot beside
 // the filter's sigmas. MWD Rev5's TOTAL is positive definite past the tie-on; the gyro model
-// takes its magnitudes from the run's white gyro model.
+// GYRO-NS-CT takes its magnitudes from the run's white gyro model, GYRO-MWD has OWSG's.
 TEST_F(RunCli, SurveyErrorModelBesideTheFiltersCovariance) {
   const std::string well = dir_->write(
       "run_well.json", R"({"latitude_deg": 46.58, "b_total_nT": 55000, "dip_deg": 65,
         "declination_deg": -9, "convergence_deg": 0, "gravity_m_s2": 9.806,
         "earth_rate_deg_h": 15.041, "vertical_section_azimuth_deg": 0,
         "vertical_inc_limit_deg": 0.0001, "azimuth_reference": "true"})");
-  for (const auto& [model, sources] : {std::pair{"mwd_rev5", 36u}, std::pair{"gyro_ns_ct", 20u}}) {
+  for (const auto& [model, sources] : {std::pair{"mwd_rev5", 36u}, std::pair{"gyro_ns_ct", 20u},
+                                       std::pair{"gyro_mwd", 19u}}) {
     nlohmann::json config = recording_config();
     config["survey"] = {{"error_model", model}, {"well", well}};
     const fs::path out = dir_->path() / (std::string("out_error_model_") + model);
@@ -728,6 +729,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadRunCase{"survey_gyrocompass_time_zero",
                    R"({"survey": {"error_model": "gyro_ns_ct", "gyrocompass_time_s": 0}})", "",
                    "/survey/gyrocompass_time_s"},
+        BadRunCase{"survey_noise_model_with_gyro_ns",
+                   R"({"survey": {"error_model": "gyro_ns", "noise_model": "fit.json"}})", "",
+                   "/survey/noise_model: given with \"error_model\": \"gyro_ns\"; it applies "
+                   "to \"gyro_ns_ct\" only"},
         BadRunCase{"open_loop", R"({"filter": {"feedback": "open_loop"}})", "",
                    "/filter/feedback: found \"open_loop\"; the navigator has one mode"}),
     [](const ::testing::TestParamInfo<BadRunCase>& case_info) { return case_info.param.name; });

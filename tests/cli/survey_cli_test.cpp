@@ -378,6 +378,66 @@ TEST(SurveyCliGyro, NoiseModelMappedToTheMagnitudes) {
               1e-9 * expected.rows.at({1200.0, "GXY-GD"})[0]);
 }
 
+// --model gyro_ns and gyro_mwd: the OWSG stationary gyro tool models GYRO-NS and GYRO-MWD.
+
+const std::vector<std::string> kStationaryGyroSources = {
+    "DRFR",     "DSFS",    "DSTG",    "SAGE",    "XYM1",    "XYM2",   "XYM3E",
+    "XYM4E",    "XCLA",    "XCLH",    "AXYZ-MIS", "AXYZ-SF", "AXYZ-ZB", "GXY-B1R",
+    "GXY-B2R",  "GXY-G1",  "GXY-G4",  "GXY-RN",  "TOTAL"};
+
+TEST(SurveyCliStationaryGyro, GyroNsAndGyroMwdFromAListing) {
+  TempDir dir;
+  const std::string listing = dir.write("listing.csv", gyro_listing_csv());
+  const std::string well = dir.write("well.json", example_well_json().dump());
+  std::map<std::string, SurveyCovarianceFile> files;
+  for (const auto& [model, title] : {std::pair{"gyro_ns", "OWSG GYRO-NS (rev 5): 41 stations x 18 "
+                                                          "sources"},
+                                     std::pair{"gyro_mwd", "OWSG GYRO-MWD (rev 5): 41 stations "
+                                                           "x 18 sources"}}) {
+    const auto out = dir.path() / model;
+    const auto result = run_survey(dir, listing, well, model, out.string());
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.out.find(title), std::string::npos) << result.out;
+    const auto file = read_survey_covariance_file(out / "iscwsa_covariance.csv");
+    ASSERT_EQ(file.row_count, kGyroListingStations * kStationaryGyroSources.size()) << model;
+    for (int md = 0; md <= 1200; md += 30) {
+      std::vector<double> sum(6, 0.0);
+      for (std::size_t s = 0; s + 1 < kStationaryGyroSources.size(); ++s) {
+        const auto& row = file.rows.at({md, kStationaryGyroSources[s]});
+        for (std::size_t i = 0; i < 6; ++i) sum[i] += row[i];
+      }
+      const auto& total = file.rows.at({md, "TOTAL"});
+      for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(total[i], sum[i], 1e-12 * (1 + total[0]));
+      if (md > 0) {
+        EXPECT_GT(total[2], 0.0) << model << " VV at MD " << md;
+      }
+      EXPECT_EQ(file.rows.at({md, "GXY-RN"})[2], 0.0) << "an azimuth error: horizontal only";
+    }
+    files.emplace(model, file);
+  }
+  // GYRO-MWD's rate noise is 0.6 deg/h against GYRO-NS's 0.4; their biases are the same.
+  const double ns_noise = files.at("gyro_ns").rows.at({1200.0, "GXY-RN"})[0];
+  EXPECT_GT(ns_noise, 0.0);
+  EXPECT_NEAR(files.at("gyro_mwd").rows.at({1200.0, "GXY-RN"})[0], 2.25 * ns_noise,
+              1e-12 * ns_noise);
+  EXPECT_EQ(files.at("gyro_mwd").rows.at({1200.0, "GXY-B1R"}),
+            files.at("gyro_ns").rows.at({1200.0, "GXY-B1R"}));
+}
+
+TEST(SurveyCliStationaryGyro, AStationAtNinetyDegreesExitsTwo) {
+  TempDir dir;
+  const std::string listing = dir.write(
+      "listing.csv", "md_m,inclination_deg,azimuth_deg\n0,0,0\n30,45,10\n60,90,10\n");
+  const std::string well = dir.write("well.json", example_well_json().dump());
+  const auto out = dir.path() / "out";
+  const auto result = run_survey(dir, listing, well, "gyro_ns", out.string());
+  EXPECT_EQ(result.exit_code, 2) << result.err;
+  EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << "one line: " << result.err;
+  EXPECT_NE(result.err.find("listing.csv: "), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("at 90 deg inclination"), std::string::npos) << result.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 struct SurveyGyroBadInputCase {
   std::string name;
   std::string model_and_options;  ///< after --model; FIT stands for the noise model file's path
@@ -449,7 +509,27 @@ INSTANTIATE_TEST_SUITE_P(
                                "well.json: /latitude_deg: 90; a gyrocompass cannot"},
         SurveyGyroBadInputCase{"typo_model", "gyro_ns_tc", kGoodGyroFit, example_well_json(),
                                "--model 'gyro_ns_tc': unknown survey error model; did you mean "
-                               "'gyro_ns_ct'?"}),
+                               "'gyro_ns_ct'?"},
+        SurveyGyroBadInputCase{"typo_stationary_model", "gyro_mdw", kGoodGyroFit,
+                               example_well_json(),
+                               "--model 'gyro_mdw': unknown survey error model; did you mean "
+                               "'gyro_mwd'?"},
+        SurveyGyroBadInputCase{"unknown_model_lists_the_models", "sperry_xyz", kGoodGyroFit,
+                               example_well_json(),
+                               "use mwd_rev5 (ISCWSA MWD Rev5.11), mwd_rev4 (ISCWSA MWD Rev4), "
+                               "gyro_ns_ct, gyro_ns or gyro_mwd"},
+        SurveyGyroBadInputCase{"noise_model_with_gyro_ns", "gyro_ns --noise-model FIT",
+                               kGoodGyroFit, example_well_json(),
+                               "--noise-model applies to --model gyro_ns_ct only"},
+        SurveyGyroBadInputCase{"speed_with_gyro_mwd", "gyro_mwd --running-speed-m-h 1000",
+                               kGoodGyroFit, example_well_json(),
+                               "--running-speed-m-h applies to --model gyro_ns_ct only"},
+        SurveyGyroBadInputCase{"gyro_ns_no_earth_rate", "gyro_ns", kGoodGyroFit,
+                               well_with("earth_rate_deg_h", 0.0),
+                               "well.json: /earth_rate_deg_h: 0; the gyro model gyrocompasses"},
+        SurveyGyroBadInputCase{"gyro_mwd_at_the_pole", "gyro_mwd", kGoodGyroFit,
+                               well_with("latitude_deg", -90.0),
+                               "well.json: /latitude_deg: -90; a gyrocompass cannot"}),
     [](const ::testing::TestParamInfo<SurveyGyroBadInputCase>& case_info) {
       return case_info.param.name;
     });

@@ -151,8 +151,10 @@ TEST(ToolModels, GyroModelTotalIsTheSumOfItsSources) {
     EXPECT_TRUE(sum.isApprox(covariance.total_nev_m2[k]) || sum.isZero());
   }
   EXPECT_GT(covariance.total_nev_m2.back().trace(), 0.0);
-  EXPECT_THROW(check_tool_model_name("gyro_ns", "--model"), ConfigError);
+  EXPECT_THROW(check_tool_model_name("gyro_free", "--model"), ConfigError);
   EXPECT_NO_THROW(check_tool_model_name("mwd_rev4", "--model"));
+  EXPECT_NO_THROW(check_tool_model_name("gyro_ns", "--model"));
+  EXPECT_NO_THROW(check_tool_model_name("gyro_mwd", "--model"));
 }
 
 }  // namespace

@@ -7,7 +7,10 @@
 //  - Monte Carlo: each group's sensor errors simulated as the model defines them, the perturbed
 //    survey turned into positions by exact minimum curvature, the scatter compared with the
 //    propagated covariance in 3-D (chi-square along its principal axes); the same check rejects
-//    the gyrocompass terms evaluated at every station instead of carried.
+//    the gyrocompass terms evaluated at every station instead of carried;
+//  - the same Monte Carlo for the gyro terms of the stationary gyro tool models GYRO-NS and
+//    GYRO-MWD (every station its own gyrocompass: random biases and noise, systematic
+//    g-dependent terms).
 
 #include <gtest/gtest.h>
 
@@ -18,6 +21,7 @@
 #include <cstdio>
 #include <functional>
 #include <numbers>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -532,6 +536,76 @@ TEST(GyroToolMonteCarloWhole, GyrocompassTermsEvaluatedAtEveryStationFailTheSame
   EXPECT_FALSE(
       tool_monte_carlo_agrees(simulated, nullptr, summed_sources(not_carried, {"GXY-B1S"}), false));
 }
+
+// ---------------------------------------------------------------------------------------------
+// The stationary gyro tool models GYRO-NS and GYRO-MWD (stationary_gyro_tool_model_test.cpp
+// checks them against the OWSG formula strings): their gyro terms simulated as the OWSG tables
+// define them, with every station its own gyrocompass: GXY-B1R, GXY-B2R and GXY-RN redrawn at
+// every station, GXY-G1 and GXY-G4 drawn once per survey.
+
+struct StationaryGyroMagnitudesDegH {
+  std::string model;
+  double g1, g4, rn;
+};
+
+std::vector<SimulatedSource> simulated_stationary_gyro_sources(
+    const std::vector<ListingStation>& s, const WellParameters& well,
+    const StationaryGyroMagnitudesDegH& magnitudes, double scale) {
+  const auto inc = [&s](std::size_t k) { return s[k].inclination_rad; };
+  const auto azi = [&s](std::size_t k) { return s[k].azimuth_rad; };
+  const double horizontal_rate = well.earth_rate_rad_s * std::cos(well.latitude_rad);
+  const double deg_h = kRadPerDeg / 3600.0;
+  using Weights = std::array<double, 3>;
+  return {
+      {"GXY-B1R", true, scale * 0.15 * deg_h,
+       [inc, azi, horizontal_rate](std::size_t k) {
+         return Weights{0, 0, std::tan(inc(k)) * std::sin(azi(k)) / horizontal_rate};
+       }},
+      {"GXY-B2R", true, scale * 0.15 * deg_h,
+       [inc, azi, horizontal_rate](std::size_t k) {
+         return Weights{0, 0, std::sin(inc(k)) * std::cos(azi(k)) / horizontal_rate};
+       }},
+      {"GXY-G1", false, scale * magnitudes.g1 * deg_h,
+       [inc, azi, horizontal_rate](std::size_t k) {
+         return Weights{0, 0, std::pow(std::sin(inc(k)), 2) * std::cos(azi(k)) / horizontal_rate};
+       }},
+      {"GXY-G4", false, scale * magnitudes.g4 * deg_h,
+       [inc, azi, horizontal_rate](std::size_t k) {
+         return Weights{0, 0,
+                        std::sin(inc(k)) * std::sin(azi(k)) * std::tan(inc(k)) / horizontal_rate};
+       }},
+      {"GXY-RN", true, scale * magnitudes.rn * deg_h,
+       [inc, azi, horizontal_rate](std::size_t k) {
+         // noise reduction factor 1
+         const double across = std::sqrt(1.0 - std::pow(std::cos(azi(k)) * std::sin(inc(k)), 2));
+         return Weights{0, 0, std::tan(inc(k)) * across / horizontal_rate};
+       }},
+  };
+}
+
+void PrintTo(const StationaryGyroMagnitudesDegH& m, std::ostream* os) { *os << m.model; }
+
+class StationaryGyroMonteCarlo : public ::testing::TestWithParam<StationaryGyroMagnitudesDegH> {};
+
+TEST_P(StationaryGyroMonteCarlo, GyroTermsMatchThePropagatedCovariance) {
+  const auto stations = tool_test_well();
+  const WellParameters well = tool_test_site();
+  SurveyErrorModel model =
+      GetParam().model == kGyroNsModelName ? gyro_ns_model() : gyro_mwd_model();
+  for (ErrorSource& source : model.sources) source.magnitude *= kMonteCarloScale;
+  const SurveyCovariance propagated = propagate_survey_errors(model, stations, well);
+  const std::vector<SimulatedSource> simulated =
+      simulated_stationary_gyro_sources(stations, well, GetParam(), kMonteCarloScale);
+  std::vector<std::string> codes;
+  for (const SimulatedSource& source : simulated) codes.push_back(source.code);
+  EXPECT_TRUE(tool_monte_carlo_agrees(simulated, nullptr, summed_sources(propagated, codes), true));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Models, StationaryGyroMonteCarlo,
+    ::testing::Values(StationaryGyroMagnitudesDegH{std::string(kGyroNsModelName), 0.2, 0.6, 0.4},
+                      StationaryGyroMagnitudesDegH{std::string(kGyroMwdModelName), 0.4, 1.0, 0.6}),
+    [](const ::testing::TestParamInfo<StationaryGyroMagnitudesDegH>& p) { return p.param.model; });
 
 }  // namespace
 }  // namespace stochnav::survey_error

@@ -1,18 +1,30 @@
 #!/usr/bin/env python3
-"""Independent reference values for gyro_tool_model_test.cpp (OwsgGyroReference.*).
+"""Independent reference values for gyro_tool_model_test.cpp (OwsgGyroReference.*) and
+stationary_gyro_tool_model_test.cpp (OwsgStationaryGyroReference.*).
 
-Evaluates the OWSG GYRO-NS-CT weighting formulas *as the OWSG tool-model JSON writes them*
-(welleng/errors/iscwsa_json/owsg_a/GYRO-NS-CT.json, welleng @ 6e673c7c, Apache-2.0: the
-formula strings, read from the file given, not retyped), and propagates them with the ISCWSA
-balanced-tangential derivatives written out here from the ISCWSA MWD document (not from
-stochnav's code), on the test well of gyro_tool_model_test.cpp. Standard library only.
+Evaluates the OWSG gyro tool models' weighting formulas *as the OWSG tool-model JSON writes
+them* (welleng/errors/iscwsa_json/owsg_a/GYRO-NS-CT.json, GYRO-NS.json, GYRO-MWD.json, welleng
+@ 6e673c7c, Apache-2.0: the formula strings, magnitudes, units and propagation modes, read from
+the file given, not retyped), and propagates them with the ISCWSA balanced-tangential
+derivatives written out here from the ISCWSA MWD document (not from stochnav's code), on the
+test well of gyro_tool_model_test.cpp. Standard library only.
 
     python3 tests/survey_error/owsg_gyro_reference.py path/to/GYRO-NS-CT.json
+    python3 tests/survey_error/owsg_gyro_reference.py path/to/GYRO-NS.json
+    python3 tests/survey_error/owsg_gyro_reference.py path/to/GYRO-MWD.json
 
-The gyrocompass terms (GXY-B1S, GXY-B2S, GXY-G4) are evaluated at the gyrocompass stations and
-held at the initialising station's value through the continuous survey (as welleng's withdrawn
-`_get_ref_init_error` did), the initialising station being the first at or above the continuous
-start inclination (15 deg).
+The tool model is recognised by the JSON's metadata/short_name.
+
+GYRO-NS-CT: the gyrocompass terms (GXY-B1S, GXY-B2S, GXY-G4) are evaluated at the gyrocompass
+stations and held at the initialising station's value through the continuous survey (as
+welleng's withdrawn `_get_ref_init_error` did), the initialising station being the first at or
+above the continuous start inclination (15 deg); every printed term is systematic.
+
+GYRO-NS and GYRO-MWD: every station is a gyrocompass station (OWSG "XY Static Gyro" from 0 to
+180 deg, no continuous survey); each term is propagated by the JSON's mode (Random: the
+stations' covariances add; Systematic: the error vectors add). NoiseReductionFactor, which the
+formula strings name but the JSON does not give, is 1: the OWSG tool tables of these two tools
+(A020Gb, A019Gb) list no noise reduction factor (GYRO-NS-CT's, A021Gc, lists 0.4082).
 """
 
 import json
@@ -22,6 +34,11 @@ import sys
 
 TERMS = ["AXYZ-MIS", "AXYZ-SF", "AXYZ-ZB", "GXY-B1S", "GXY-B2S", "GXY-G4", "SAGE", "XYM1", "XYM2"]
 GYROCOMPASS = {"GXY-B1S", "GXY-B2S", "GXY-G4"}
+# GYRO-NS and GYRO-MWD: every term whose formulas need no previous station (XYM3E, XYM4E, XCLA,
+# XCLH are the Rev5 rows validated against the ISCWSA workbook) and no TVD (DSTG, likewise).
+STATIONARY_TERMS = ["DRFR", "DSFS", "SAGE", "XYM1", "XYM2", "AXYZ-MIS", "AXYZ-SF", "AXYZ-ZB",
+                    "GXY-B1R", "GXY-B2R", "GXY-G1", "GXY-G4", "GXY-RN"]
+NOISE_REDUCTION_FACTOR = {"GYRO-NS": 1.0, "GYRO-MWD": 1.0}
 CHECKED = [12, 18, 40, 80]
 START_INC = math.radians(15.0)
 LATITUDE = math.radians(60.0)
@@ -61,22 +78,40 @@ def d_direction(inc, azi):
             (-math.sin(inc) * math.sin(azi), math.sin(inc) * math.cos(azi), 0.0))
 
 
+def outer_sum(vectors, r, c):
+    """Element (r, c) of the sum of e e^T over `vectors`."""
+    total = vectors[0][r] * vectors[0][c]
+    for e in vectors[1:]:
+        total += e[r] * e[c]
+    return total
+
+
 def main(path):
-    terms = {t["name"]: t for t in json.load(open(path))["terms"]}
+    model = json.load(open(path))
+    short_name = model["metadata"]["short_name"]
+    terms = {t["name"]: t for t in model["terms"]}
     well = test_well()
     n = len(well)
-    init = next(k for k in range(1, n) if well[k][1] >= START_INC)
-    for name in TERMS:
+    if short_name == "GYRO-NS-CT":
+        init = next(k for k in range(1, n) if well[k][1] >= START_INC)
+        names, carried, nrf = TERMS, GYROCOMPASS, None
+    else:
+        init = n  # no continuous survey: every station keeps its own weights
+        names, carried, nrf = STATIONARY_TERMS, set(), NOISE_REDUCTION_FACTOR[short_name]
+    for name in names:
         term = terms[name]
         magnitude = term["value"] * UNIT_TO_SI[term["units"]]
+        random = term["propagation_mode"] == "Random" and short_name != "GYRO-NS-CT"
         weights = [formula(term[axis + "_formula"])
                    for axis in ("depth", "inclination", "azimuth")]
         dpde = [(0.0, 0.0, 0.0)]
         for k in range(1, n):
-            at = min(k, init) if name in GYROCOMPASS else k
+            at = min(k, init) if name in carried else k
             md, inc, azi = well[at]
             env = {"MD": md, "Inc": inc, "AzT": azi, "Gfield": GRAVITY,
                    "EarthRate": EARTH_RATE_RAD_H, "Latitude": LATITUDE}
+            if nrf is not None:
+                env["NoiseReductionFactor"] = nrf
             dpde.append(tuple(w(env) for w in weights))
         # e_k: the station's error moving the legs before and after it (ISCWSA document).
         before, both = [(0.0, 0.0, 0.0)] * n, [(0.0, 0.0, 0.0)] * n
@@ -96,10 +131,14 @@ def main(path):
                      for i in range(3)]
             before[k] = b
             both[k] = [b[i] + a[i] for i in range(3)]
-        for station in CHECKED:  # systematic: E_K = sum_(k<K) e_k + e*_K
-            e = [sum(both[k][i] for k in range(1, station)) + before[station][i]
-                 for i in range(3)]
-            nev = [e[0] * e[0], e[1] * e[1], e[2] * e[2], e[0] * e[1], e[0] * e[2], e[1] * e[2]]
+        for station in CHECKED:
+            if random:  # sum_(k<K) e_k e_k^T + e*_K e*_K^T
+                vectors = [both[k] for k in range(1, station)] + [before[station]]
+            else:  # systematic: E_K = sum_(k<K) e_k + e*_K
+                vectors = [[sum(both[k][i] for k in range(1, station)) + before[station][i]
+                            for i in range(3)]]
+            nev = [outer_sum(vectors, r, c)
+                   for r, c in ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))]
             print('{"%s", %d, {%s}},' % (name, station, ", ".join("%.17g" % v for v in nev)))
 
 

@@ -1,11 +1,13 @@
-// stochnav survey --listing L.csv --well W.json --model mwd_rev5|mwd_rev4|gyro_ns_ct
+// stochnav survey --listing L.csv --well W.json
+//                 --model mwd_rev5|mwd_rev4|gyro_ns_ct|gyro_ns|gyro_mwd
 //                 [--noise-model FIT.json] [--gyrocompass-time-s T] [--running-speed-m-h V]
 //                 --out DIR
 // The position covariance of a survey listing under a survey tool model, per station and error
 // source (survey_error/tool_models.hpp), written to DIR/iscwsa_covariance.csv. gyro_ns_ct is the
 // whole OWSG GYRO-NS-CT tool model (19 sources); its continuous-gyro magnitudes (GXY-RN, GXY-GD,
 // GXY-GRW) are OWSG's or mapped from a fitted gyro noise model
-// (survey_error/gyro_noise_mapping.hpp), its other magnitudes OWSG's.
+// (survey_error/gyro_noise_mapping.hpp), its other magnitudes OWSG's. gyro_ns and gyro_mwd are
+// the OWSG stationary gyrocompass tool models GYRO-NS and GYRO-MWD (18 sources, OWSG magnitudes).
 
 #include <fmt/format.h>
 
@@ -106,7 +108,9 @@ void run_survey(const SurveyArguments& arguments) {
   check_gyro_options(arguments);
   const bool gyro = arguments.model == survey_error::kGyroNsCtModelName;
   const survey_error::WellParameters well = survey_error::read_well_parameters(arguments.well);
-  if (gyro) survey_error::check_well_for_gyro(well, arguments.well);
+  if (survey_error::is_gyro_tool_model(arguments.model)) {
+    survey_error::check_well_for_gyro(well, arguments.well);
+  }
   const auto stations = survey_error::read_survey_listing(arguments.listing);
   survey_error::check_listing_against_well(stations, well, arguments.well, arguments.listing);
   std::string gyro_note;
@@ -116,8 +120,8 @@ void run_survey(const SurveyArguments& arguments) {
   try {
     covariance = survey_error::tool_model_covariance(arguments.model, stations, well, terms);
   } catch (const std::invalid_argument& error) {
-    // The listing passed its own checks; what is left is the gyro model's geometry (an
-    // initialising gyrocompass station at 90 deg).
+    // The listing passed its own checks; what is left is the gyro models' geometry (a
+    // gyrocompass station at 90 deg).
     throw InputError(arguments.listing + ": " + error.what());
   }
   const std::string text = survey_error::covariance_csv(covariance);
@@ -151,9 +155,10 @@ void add_survey_command(CLI::App& app) {
       ->required();
   command
       ->add_option("--model", arguments->model,
-                   "mwd_rev5 (ISCWSA MWD Rev5.11), mwd_rev4, or gyro_ns_ct (the OWSG gyro tool "
-                   "model GYRO-NS-CT: depth, misalignment, accelerometer, gyrocompass, "
-                   "continuous-gyro and sag terms)")
+                   "mwd_rev5 (ISCWSA MWD Rev5.11), mwd_rev4, or an OWSG gyro tool model: "
+                   "gyro_ns_ct (GYRO-NS-CT: gyrocompass, then continuous survey), gyro_ns "
+                   "(GYRO-NS: gyrocompass at every station), gyro_mwd (GYRO-MWD: gyro while "
+                   "drilling)")
       ->required();
   command->add_option("--noise-model", arguments->noise_model,
                       "gyro_ns_ct: the x-y gyros' fitted noise model (stochnav fit JSON) giving "

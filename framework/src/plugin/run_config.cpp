@@ -264,6 +264,7 @@ void parse_survey_error_model(ParamReader& reader, const fs::path& config_dir,
     }
   }
   const bool gyro = survey.error_model == survey_error::kGyroNsCtModelName;
+  const bool gyrocompass = survey_error::is_gyro_tool_model(survey.error_model);
   const auto only_with = [&](std::string_view key, bool allowed, std::string_view models) {
     if (!reader.has(key) || allowed) return;
     throw ConfigError(reader.pointer(key) + ": given with \"error_model\": \"" +
@@ -277,8 +278,8 @@ void parse_survey_error_model(ParamReader& reader, const fs::path& config_dir,
   if (reader.has("well")) {
     const std::string path = existing_file(reader, "well", config_dir).string();
     survey.well = survey_error::read_well_parameters(path);
-    if (gyro) survey_error::check_well_for_gyro(*survey.well, path);
-  } else if (survey.error_model != "none" && !gyro) {
+    if (gyrocompass) survey_error::check_well_for_gyro(*survey.well, path);
+  } else if (survey.error_model != "none" && !gyrocompass) {
     throw ConfigError(reader.pointer("well") + ": missing; \"error_model\": \"" +
                       survey.error_model +
                       "\" needs the well file of `stochnav survey --well` (magnetic field, "

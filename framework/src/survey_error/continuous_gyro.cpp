@@ -6,6 +6,7 @@
 #include <string>
 
 #include "leg_effects.hpp"
+#include "stochnav/survey_error/weighting_functions.hpp"
 
 namespace stochnav::survey_error {
 namespace {
@@ -15,13 +16,11 @@ namespace {
 }
 
 /// The gyrocompass azimuth error per unit rate noise (s): NRF sqrt(1 - cos^2 AzT sin^2 I) /
-/// (Omega cos phi cos I).
+/// (Omega cos phi cos I), the weighting function GXY-RN.
 double gyrocompass_noise_gain_s(const StationGeometry& station, const WellParameters& well,
                                 double noise_reduction_factor) {
-  const double cos_a = std::cos(station.true_azimuth_rad);
-  const double sin_i = std::sin(station.inclination_rad);
-  return noise_reduction_factor * std::sqrt(1.0 - cos_a * cos_a * sin_i * sin_i) /
-         (well.earth_rate_rad_s * std::cos(well.latitude_rad) * std::cos(station.inclination_rad));
+  return noise_reduction_factor *
+         gyrocompass_azimuth_weight_s(WeightingFunction::kGxyRn, station, well);
 }
 
 /// The continuous leg from the previous station to `to`: its running time and the sine of its

@@ -1,5 +1,7 @@
 #include "stochnav/survey_error/error_propagation.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -19,6 +21,12 @@ using Eigen::Matrix3d;
 /// or in a continuous survey the initialising station.
 std::size_t gyrocompass_station(std::size_t k, std::size_t initialising) {
   return k > initialising ? initialising : k;
+}
+
+/// The tool constant a gyrocompass weight is multiplied by: the model's noise reduction factor
+/// for GXY-RN, 1 for the others.
+double gyrocompass_weight_factor(const SurveyErrorModel& model, WeightingFunction function) {
+  return function == WeightingFunction::kGxyRn ? model.noise_reduction_factor : 1.0;
 }
 
 /// The source's effect at every station; zero at the tie-on (station 0). `initialising`: the
@@ -43,7 +51,7 @@ std::vector<StationEffect> source_effects(const SurveyErrorModel& model, const E
       // this station's hole by sin(I) of this station.
       const StationGeometry& compass = geometry[gyrocompass_station(k, initialising)];
       w = {0.0, 0.0,
-           std::sin(station.inclination_rad) *
+           std::sin(station.inclination_rad) * gyrocompass_weight_factor(model, source.weighting) *
                gyrocompass_azimuth_weight_s(source.weighting, compass, well)};
     }
     effects[k] =
@@ -70,7 +78,10 @@ void check_gyrocompass_geometry(const SurveyErrorModel& model,
   }
   for (std::size_t k = 1; k < geometry.size() && k <= initialising; ++k) {
     if (!(geometry[k].inclination_rad < std::numbers::pi / 2.0)) {
-      reject("the gyrocompass station " + std::to_string(k) + " is at 90 deg inclination or above");
+      reject(fmt::format(
+          "the gyrocompass station at MD {:g} m is at 90 deg inclination or above, where the "
+          "gyrocompass terms diverge (they divide by cos I); survey it with another model",
+          geometry[k].md_m));
     }
   }
 }

@@ -11,9 +11,14 @@
 namespace stochnav::survey_error {
 
 std::span<const std::string> tool_model_names() {
-  static const std::array<std::string, 3> names = {"mwd_rev5", "mwd_rev4",
-                                                   std::string(kGyroNsCtModelName)};
+  static const std::array<std::string, 5> names = {
+      "mwd_rev5", "mwd_rev4", std::string(kGyroNsCtModelName), std::string(kGyroNsModelName),
+      std::string(kGyroMwdModelName)};
   return names;
+}
+
+bool is_gyro_tool_model(std::string_view name) {
+  return name == kGyroNsCtModelName || name == kGyroNsModelName || name == kGyroMwdModelName;
 }
 
 void check_tool_model_name(std::string_view name, std::string_view where) {
@@ -25,14 +30,16 @@ void check_tool_model_name(std::string_view name, std::string_view where) {
     message += "did you mean '" + *nearest + "'?";
   } else {
     message +=
-        "use mwd_rev5 (ISCWSA MWD Rev5.11), mwd_rev4 (ISCWSA MWD Rev4) or gyro_ns_ct (the OWSG "
-        "gyro tool model GYRO-NS-CT)";
+        "use mwd_rev5 (ISCWSA MWD Rev5.11), mwd_rev4 (ISCWSA MWD Rev4), gyro_ns_ct, gyro_ns or "
+        "gyro_mwd (the OWSG gyro tool models GYRO-NS-CT, GYRO-NS, GYRO-MWD)";
   }
   throw ConfigError(message);
 }
 
 std::string tool_model_title(std::string_view name) {
   if (name == kGyroNsCtModelName) return "OWSG GYRO-NS-CT (rev 5)";
+  if (name == kGyroNsModelName) return gyro_ns_model().title;
+  if (name == kGyroMwdModelName) return gyro_mwd_model().title;
   return survey_error_model(name).title;
 }
 
@@ -41,6 +48,8 @@ SurveyCovariance tool_model_covariance(std::string_view name,
                                        const WellParameters& well,
                                        const ContinuousGyroTerms& gyro) {
   check_tool_model_name(name, "--model");
+  if (name == kGyroNsModelName) return propagate_survey_errors(gyro_ns_model(), stations, well);
+  if (name == kGyroMwdModelName) return propagate_survey_errors(gyro_mwd_model(), stations, well);
   if (name != kGyroNsCtModelName) {
     return propagate_survey_errors(survey_error_model(name), stations, well);
   }

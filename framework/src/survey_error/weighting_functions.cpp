@@ -1,9 +1,9 @@
 // The weighting functions as the ISCWSA MWD Rev5 document writes them (azimuth weights
-// multiplied by sin I, weighting_functions.hpp), and those of the OWSG gyro tool model
-// GYRO-NS-CT (rev 5, 2020; its accelerometer terms and stationary gyrocompass terms after
-// Torkildsen et al., SPE 90408). Notation: I inclination, AzT true and AzM magnetic azimuth,
-// dip the magnetic dip, G gravity, B the total field, Bh = B cos(dip), Omega the Earth rate,
-// lat the latitude.
+// multiplied by sin I, weighting_functions.hpp), and those of the OWSG gyro tool models
+// GYRO-NS-CT, GYRO-NS and GYRO-MWD (rev 5, 2020; their accelerometer terms and stationary
+// gyrocompass terms after Torkildsen et al., SPE 90408). Notation: I inclination, AzT true and AzM
+// magnetic azimuth, dip the magnetic dip, G gravity, B the total field, Bh = B cos(dip), Omega the
+// Earth rate, lat the latitude.
 
 #include "stochnav/survey_error/weighting_functions.hpp"
 
@@ -52,17 +52,40 @@ double gxy_b2_azimuth_s(const StationGeometry& station, const WellParameters& we
   return std::cos(station.true_azimuth_rad) / horizontal_earth_rate_rad_s(well);
 }
 
+/// GXY-G1: a g-dependent x-y gyro error along the gravity component across the tool.
+double gxy_g1_azimuth_s(const StationGeometry& station, const WellParameters& well) {
+  return std::cos(station.true_azimuth_rad) * std::sin(station.inclination_rad) /
+         horizontal_earth_rate_rad_s(well);
+}
+
 /// GXY-G4: a g-dependent (mass-unbalance) x-y gyro error, growing with tan I.
 double gxy_g4_azimuth_s(const StationGeometry& station, const WellParameters& well) {
   return std::sin(station.true_azimuth_rad) * std::tan(station.inclination_rad) /
          horizontal_earth_rate_rad_s(well);
 }
 
+/// GXY-RN per unit of reduced rate noise (NRF sigma): white rate noise on both x-y gyros,
+/// seen through the horizontal Earth rate.
+double gxy_rn_azimuth_s(const StationGeometry& station, const WellParameters& well) {
+  const double cos_a = std::cos(station.true_azimuth_rad);
+  const double sin_i = std::sin(station.inclination_rad);
+  return std::sqrt(1.0 - cos_a * cos_a * sin_i * sin_i) /
+         (horizontal_earth_rate_rad_s(well) * std::cos(station.inclination_rad));
+}
+
 }  // namespace
 
 bool is_gyrocompass_weighting(WeightingFunction function) {
-  return function == WeightingFunction::kGxyB1 || function == WeightingFunction::kGxyB2 ||
-         function == WeightingFunction::kGxyG4;
+  switch (function) {
+    case WeightingFunction::kGxyB1:
+    case WeightingFunction::kGxyB2:
+    case WeightingFunction::kGxyG1:
+    case WeightingFunction::kGxyG4:
+    case WeightingFunction::kGxyRn:
+      return true;
+    default:
+      return false;
+  }
 }
 
 double gyrocompass_azimuth_weight_s(WeightingFunction function, const StationGeometry& station,
@@ -72,8 +95,12 @@ double gyrocompass_azimuth_weight_s(WeightingFunction function, const StationGeo
       return gxy_b1_azimuth_s(station, well);
     case WeightingFunction::kGxyB2:
       return gxy_b2_azimuth_s(station, well);
+    case WeightingFunction::kGxyG1:
+      return gxy_g1_azimuth_s(station, well);
     case WeightingFunction::kGxyG4:
       return gxy_g4_azimuth_s(station, well);
+    case WeightingFunction::kGxyRn:
+      return gxy_rn_azimuth_s(station, well);
     default:
       return 0.0;
   }
@@ -198,7 +225,9 @@ ErrorWeights error_weights(WeightingFunction function, const StationGeometry& st
       return {0.0, sin_i / g, 0.0};
     case WeightingFunction::kGxyB1:
     case WeightingFunction::kGxyB2:
+    case WeightingFunction::kGxyG1:
     case WeightingFunction::kGxyG4:
+    case WeightingFunction::kGxyRn:
       return {0.0, 0.0, sin_i * gyrocompass_azimuth_weight_s(function, station, well)};
   }
   return {};

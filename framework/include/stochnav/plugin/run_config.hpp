@@ -49,6 +49,7 @@
 //                                   "scale_factor": 0.9996},  // map coordinates, optional
 //                "length_unit": "ft",                  // m | ft: ft adds survey_ft.csv
 //                "error_model": "gyro_ns_ct",          // none | mwd_rev5 | mwd_rev4 | gyro_ns_ct
+//                                                      // | gyro_ns | gyro_mwd
 //                "well": "well.json",                  // `stochnav survey --well` file
 //                "noise_model": "gyro_fit.json",       // gyro_ns_ct: fitted x-y gyro model
 //                "gyrocompass_time_s": 60,             // gyro_ns_ct with a noise model, > 0
@@ -258,8 +259,9 @@ struct SurveyConfig {
   /// survey_uncertainty.png; experiment/survey.hpp). "none" (default): neither file.
   std::string error_model = "none";
   /// "well": a `stochnav survey --well` file (survey_error/survey_inputs.hpp), read here.
-  /// Required for mwd_rev5/mwd_rev4 (the magnetic field); for gyro_ns_ct absent means the
-  /// tie-on's latitude, 15.041 deg/h, 9.80665 m/s^2, true north.
+  /// Required for mwd_rev5/mwd_rev4 (the magnetic field); for the gyro models (gyro_ns_ct,
+  /// gyro_ns, gyro_mwd) absent means the tie-on's latitude, 15.041 deg/h, 9.80665 m/s^2, true
+  /// north.
   std::optional<survey_error::WellParameters> well;
   /// "noise_model" (gyro_ns_ct): a fitted gyro noise model file (`stochnav fit` JSON) mapped to
   /// GXY-RN/GD/GRW (survey_error/gyro_noise_mapping.hpp). Absent: the run's own gyro model when

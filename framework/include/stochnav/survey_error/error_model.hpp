@@ -60,15 +60,21 @@ enum class WeightingFunction {
   kXym4e,
   kXcla,  ///< tortuosity between stations, azimuthal (whole leg before the station)
   kXclh,  ///< tortuosity between stations, high-side (whole leg before the station)
-  // The OWSG gyro tool models (GYRO-NS-CT; after Torkildsen et al., SPE 90408):
+  // The OWSG gyro tool models (GYRO-NS-CT, GYRO-NS, GYRO-MWD; after Torkildsen et al., SPE
+  // 90408):
   kAxyzMis,  ///< xyz accelerometer misalignment: I + 1
   kAxyzSf,   ///< xyz accelerometer scale factor: I + 1.3 sin I cos I
   kAxyzZb,   ///< z accelerometer bias: I + sin I / G
-  /// x-y gyro biases and g-dependent error of a stationary gyrocompass (is_gyrocompass_weighting:
-  /// carried from the initialising station into a continuous survey)
+  /// x-y gyro biases, g-dependent errors and rate noise of a stationary gyrocompass
+  /// (is_gyrocompass_weighting: carried from the initialising station into a continuous survey)
   kGxyB1,  ///< A + sin AzT / (Omega cos(lat) cos I)
   kGxyB2,  ///< A + cos AzT / (Omega cos(lat))
+  kGxyG1,  ///< A + cos AzT sin I / (Omega cos(lat))
   kGxyG4,  ///< A + sin AzT tan I / (Omega cos(lat))
+  /// A + NRF sqrt(1 - cos^2 AzT sin^2 I) / (Omega cos(lat) cos I), NRF the model's
+  /// SurveyErrorModel::noise_reduction_factor (GXY-RN of GYRO-NS and GYRO-MWD; GYRO-NS-CT's
+  /// GXY-RN is continuous_gyro.hpp's)
+  kGxyRn,
 };
 
 /// The unit an ISCWSA table gives a magnitude in.
@@ -119,13 +125,16 @@ struct SurveyErrorModel {
   /// every later station: the continuous survey carries its initial azimuth forward. Absent:
   /// every station is evaluated with its own weights.
   std::optional<double> continuous_start_inclination_rad;
+  /// kGxyRn: the tool's noise reduction factor (the reduction of the rate noise by combining
+  /// the measurements of one gyrocompass station; OWSG: 1 unless the tool model gives one).
+  double noise_reduction_factor = 1.0;
 };
 
 /// The model called `name` ("mwd_rev5" = ISCWSA MWD Rev5.11, 35 sources; "mwd_rev4", 27
 /// sources). Throws ConfigError "--model 'NAME': unknown survey error model; use ..." (with a
-/// "did you mean" for a likely typo; tool_models.hpp), or "not an ISCWSA MWD model" for
-/// gyro_ns_ct, which is a table (tool_models.hpp, gyro_ns_ct_table_model) plus terms no
-/// propagation mode describes (continuous_gyro.hpp).
+/// "did you mean" for a likely typo; tool_models.hpp), or "not an ISCWSA MWD model" for the
+/// OWSG gyro tool models (tool_models.hpp: gyro_ns_ct, a table plus terms no propagation mode
+/// describes, continuous_gyro.hpp; gyro_ns and gyro_mwd, gyro_ns_model and gyro_mwd_model).
 const SurveyErrorModel& survey_error_model(std::string_view name);
 
 /// The names survey_error_model() knows, in a stable order.

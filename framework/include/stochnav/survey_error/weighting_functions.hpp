@@ -2,7 +2,8 @@
 // The ISCWSA weighting functions: for one error source at one survey station, the change of the
 // station's measured depth, inclination and azimuth per unit of the source (the derivatives
 // dMD/de, dI/de, dA/de of the ISCWSA MWD Rev5 document, SPE 67616 appendix; the accelerometer
-// and gyrocompass functions of the OWSG gyro tool model GYRO-NS-CT, after SPE 90408).
+// and gyrocompass functions of the OWSG gyro tool models GYRO-NS-CT, GYRO-NS and GYRO-MWD, after
+// SPE 90408).
 //
 // The azimuth derivative is returned multiplied by sin(I) (`lateral_rad`): the angle by which the
 // error turns the hole direction horizontally, since dt/dA = sin(I) h for the unit hole
@@ -63,16 +64,20 @@ LegReach leg_reach(WeightingFunction function);
 /// kXym4e, kXcla.
 bool has_near_vertical_form(WeightingFunction function);
 
-/// Whether `function` is a stationary gyrocompass term (kGxyB1, kGxyB2, kGxyG4), whose
-/// azimuth error a continuous survey carries forward from its initialising station
-/// (SurveyErrorModel::continuous_start_inclination_rad).
+/// Whether `function` is a stationary gyrocompass term (kGxyB1, kGxyB2, kGxyG1, kGxyG4,
+/// kGxyRn), whose azimuth error a continuous survey carries forward from its initialising
+/// station (SurveyErrorModel::continuous_start_inclination_rad).
 bool is_gyrocompass_weighting(WeightingFunction function);
 
 /// dA/de of a gyrocompass term at `station` (rad of azimuth per rad/s of gyro error, i.e. s),
 /// with Omega = well.earth_rate_rad_s and lat = well.latitude_rad:
 ///   kGxyB1  sin AzT / (Omega cos(lat) cos I)
 ///   kGxyB2  cos AzT / (Omega cos(lat))
+///   kGxyG1  cos AzT sin I / (Omega cos(lat))
 ///   kGxyG4  sin AzT tan I / (Omega cos(lat))
+///   kGxyRn  sqrt(1 - cos^2 AzT sin^2 I) / (Omega cos(lat) cos I), per unit of the rate noise
+///           after the noise reduction factor (the OWSG weight divided by NRF; the caller
+///           multiplies by NRF: SurveyErrorModel::noise_reduction_factor, continuous_gyro.hpp)
 /// Requires is_gyrocompass_weighting(function) (else 0), I < pi/2, Omega > 0 and
 /// |lat| < pi/2 (the caller checks; the values diverge there).
 double gyrocompass_azimuth_weight_s(WeightingFunction function, const StationGeometry& station,

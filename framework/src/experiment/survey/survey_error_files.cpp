@@ -122,6 +122,9 @@ std::optional<SurveyErrorModelRequest> survey_error_model_request(
   request.gyro = survey_error::owsg_gyro_ns_ct_terms();
   if (config.running_speed_m_h) request.gyro.running_speed_m_s = *config.running_speed_m_h / 3600.0;
   request.gyrocompass_time_s = config.gyrocompass_time_s;
+  // Only GYRO-NS-CT's continuous-gyro magnitudes come from a noise model; the stationary gyro
+  // models (gyro_ns, gyro_mwd) have OWSG's magnitudes.
+  if (request.model != survey_error::kGyroNsCtModelName) return request;
   if (config.gyro_noise_model) {
     request.gyro_noise = config.gyro_noise_model;
   } else if (gyro.augmented_size() == 0 && !gyro.time_varying()) {
