@@ -14,11 +14,16 @@ namespace core = plugin::core_state;
 void apply_core_correction(const Eigen::Ref<const Eigen::VectorXd>& correction,
                            CoreEstimate& estimate) {
   NavState& state = estimate.state;
-  const EarthRadii radii = earth_radii(state.latitude_rad);
   const Eigen::Vector3d dr = correction.segment<3>(core::kPosition);
-  state.latitude_rad -= dr.y() / (radii.meridian_m + state.height_m);
-  state.longitude_rad -=
-      dr.x() / ((radii.transverse_m + state.height_m) * std::cos(state.latitude_rad));
+  // A correction without a horizontal part (the navigator's second-order attitude drift, fed
+  // back at every covariance interval) leaves latitude and longitude as they are: skip the
+  // radii's sin and sqrt and the cos (subtracting 0 / (R + h) changes no finite latitude).
+  if (dr.x() != 0.0 || dr.y() != 0.0) {
+    const EarthRadii radii = earth_radii(state.latitude_rad);
+    state.latitude_rad -= dr.y() / (radii.meridian_m + state.height_m);
+    state.longitude_rad -=
+        dr.x() / ((radii.transverse_m + state.height_m) * std::cos(state.latitude_rad));
+  }
   state.height_m -= dr.z();
   state.v_n -= correction.segment<3>(core::kVelocity);
   // C_est = (I - [phi x]) C_true, so C_true = Rot(phi) C_est to first order.

@@ -4,6 +4,7 @@
 
 #include "stochnav/ins/cross_product_matrix.hpp"
 #include "stochnav/ins/earth.hpp"
+#include "stochnav/ins/latitude_terms.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 
 namespace stochnav {
@@ -14,11 +15,15 @@ namespace cs = plugin::core_state;
 }  // namespace
 
 CoreMatrix integrated_core_dynamics(const NavState& state, const FastInputIntegrals& fast) {
+  return integrated_core_dynamics(state, LatitudeTerms(state.latitude_rad), fast);
+}
+
+CoreMatrix integrated_core_dynamics(const NavState& state, const LatitudeTerms& latitude,
+                                    const FastInputIntegrals& fast) {
   const double t = fast.interval_s;
-  const double lat = state.latitude_rad;
   const double h = state.height_m;
-  const LatitudeTrig trig(lat);  // one sin, cos, tan for every term below
-  const EarthRadii radii = earth_radii(trig);
+  const LatitudeTrig& trig = latitude.trig;  // one sin, cos, tan for every term below
+  const EarthRadii& radii = latitude.radii;
   const double rm = radii.meridian_m + h;
   const double rn = radii.transverse_m + h;
   const double tan_lat = trig.tan;
@@ -28,7 +33,7 @@ CoreMatrix integrated_core_dynamics(const NavState& state, const FastInputIntegr
   const double vn = state.v_n.y();
   const double vu = state.v_n.z();
   const Eigen::Vector3d omega_ie_n = earth_rate_n(trig);
-  const Eigen::Vector3d omega_en_n = transport_rate_n(trig, h, state.v_n);
+  const Eigen::Vector3d omega_en_n = transport_rate_n(trig, radii, h, state.v_n);
 
   // Partial derivatives of the rates with respect to dv and dr (dlat = dr_N / rm, dh = dr_U).
   Eigen::Matrix3d d_omega_en_dv;

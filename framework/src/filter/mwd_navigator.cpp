@@ -259,9 +259,10 @@ void MwdNavigator::step(const ImuIncrement& raw) {
 Eigen::Vector3d MwdNavigator::reference_specific_force_increment(
     double dt_s, const Eigen::Vector3d& measured_delta_v_n) {
   const NavState& state = ins_.state();
-  const LatitudeTrig trig(state.latitude_rad);
+  const LatitudeTerms& latitude = ins_.latitude_terms();
   const Eigen::Vector3d rotation =
-      2.0 * earth_rate_n(trig) + transport_rate_n(trig, state.height_m, reference_.v_n);
+      2.0 * earth_rate_n(latitude.trig) +
+      transport_rate_n(latitude.trig, latitude.radii, state.height_m, reference_.v_n);
   const Eigen::Vector3d acceleration_dt =
       reference_.pending_change_n + rotation.cross(reference_.v_n) * dt_s;
   reference_.pending_change_n.setZero();
@@ -316,7 +317,7 @@ const Eigen::MatrixXd& MwdNavigator::widened_measurement_matrix(
 void MwdNavigator::propagate_covariance() {
   const double interval = fast_.interval_s;
   if (interval <= 0.0) return;
-  const CoreMatrix f_t = integrated_core_dynamics(ins_.state(), fast_);
+  const CoreMatrix f_t = integrated_core_dynamics(ins_.state(), ins_.latitude_terms(), fast_);
   advance_augmented_groups(interval);
   // The core alone always, and with the structured products (the default) any state whose
   // transition has the fixed-size form: the scale-factor blocks and first-order augmented states.
@@ -458,9 +459,10 @@ CoreMatrix MwdNavigator::core_process_noise(double interval,
 MwdNavigator::SecondOrderTerm MwdNavigator::second_order_term(double interval) const {
   if (!(options_.second_order_attitude_correlation_s > 0.0)) return {};
   const NavState& state = ins_.state();
-  const LatitudeTrig trig(state.latitude_rad);
+  const LatitudeTerms& latitude = ins_.latitude_terms();
   const Eigen::Vector3d omega_in_n =
-      earth_rate_n(trig) + transport_rate_n(trig, state.height_m, state.v_n);
+      earth_rate_n(latitude.trig) +
+      transport_rate_n(latitude.trig, latitude.radii, state.height_m, state.v_n);
   const Eigen::Matrix3d p_attitude =
       filter_.covariance().block<3, 3>(cs::kAttitude, cs::kAttitude);
   return {.noise = second_order_attitude_noise(p_attitude, omega_in_n, interval,

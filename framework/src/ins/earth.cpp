@@ -110,4 +110,9 @@ Eigen::Vector3d transport_rate_n(const LatitudeTrig& latitude, double height_m,
   return transport_from(earth_radii(latitude), latitude.tan, height_m, v_n);
 }
 
+Eigen::Vector3d transport_rate_n(const LatitudeTrig& latitude, const EarthRadii& radii,
+                                 double height_m, const Eigen::Vector3d& v_n) {
+  return transport_from(radii, latitude.tan, height_m, v_n);
+}
+
 }  // namespace stochnav

@@ -5,6 +5,12 @@
 #include "stochnav/ins/earth.hpp"
 
 namespace stochnav {
+namespace {
+
+// Below this squared angle (rad^2; 0.1 rad) quaternion_from_rotation_vector sums its series.
+constexpr double kSeriesAngleSquaredLimit = 0.01;
+
+}  // namespace
 
 Eigen::Quaterniond quaternion_from_rotation_vector(const Eigen::Vector3d& rotation_vector) {
   const double angle_squared = rotation_vector.squaredNorm();
@@ -12,6 +18,19 @@ Eigen::Quaterniond quaternion_from_rotation_vector(const Eigen::Vector3d& rotati
     // Taylor series: cos(a/2) = 1 - a^2/8, sin(a/2)/a = 1/2 - a^2/48 (error < 1e-33).
     const double half_sinc = 0.5 - angle_squared / 48.0;
     return Eigen::Quaterniond(1.0 - angle_squared / 8.0, half_sinc * rotation_vector.x(),
+                              half_sinc * rotation_vector.y(), half_sinc * rotation_vector.z());
+  }
+  if (angle_squared < kSeriesAngleSquaredLimit) {
+    // The series in s = a^2 to s^4 (an epoch's rotation: 7e-7 rad of Earth rate, 0.063 rad at
+    // 60 rpm and 100 Hz), no sqrt, sin or cos: cos(a/2) = sum (-s/4)^n / (2n)!, sin(a/2)/a =
+    // sum (-s/4)^n / (2 (2n + 1)!). Truncation below 3e-20 for s < 0.01; Horner's rounding
+    // leaves 1-2 units in the last place, as std::sin and std::cos do.
+    const double s = angle_squared;
+    const double half_cos =
+        1.0 - s * (1.0 / 8 - s * (1.0 / 384 - s * (1.0 / 46080 - s * (1.0 / 10321920))));
+    const double half_sinc =
+        0.5 - s * (1.0 / 48 - s * (1.0 / 3840 - s * (1.0 / 645120 - s * (1.0 / 185794560))));
+    return Eigen::Quaterniond(half_cos, half_sinc * rotation_vector.x(),
                               half_sinc * rotation_vector.y(), half_sinc * rotation_vector.z());
   }
   const double angle = std::sqrt(angle_squared);
@@ -45,7 +64,9 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
   // Mid-interval latitude and height extrapolated from k-1 and k-2 (they change smoothly).
   const double lat_mid = 1.5 * old.latitude_rad - 0.5 * previous_state_.latitude_rad;
   const double h_mid = 1.5 * old.height_m - 0.5 * previous_state_.height_m;
-  const LatitudeTrig trig_mid(lat_mid);  // one sin, cos, tan for the four terms at lat_mid
+  // One sin, cos, tan and one pair of radii for the four terms at lat_mid.
+  const LatitudeTerms mid(lat_mid);
+  const LatitudeTrig& trig_mid = mid.trig;
   const Eigen::Vector3d omega_ie_mid = earth_rate_n(trig_mid);
   const Eigen::Vector3d g_mid = gravity_n(trig_mid, h_mid);
 
@@ -65,7 +86,7 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
   const Eigen::Vector3d dv_corrected =
       dv + first * dtheta_x_dv + second * dtheta.cross(dtheta_x_dv) + sculling;
   const Eigen::Vector3d dv_body_n = old.q_nb * dv_corrected;
-  const Eigen::Vector3d omega_en_old = transport_rate_n(trig_mid, h_mid, old.v_n);
+  const Eigen::Vector3d omega_en_old = transport_rate_n(trig_mid, mid.radii, h_mid, old.v_n);
   const Eigen::Vector3d dv_sf_n =
       dv_body_n - 0.5 * ((omega_ie_mid + omega_en_old) * dt).cross(dv_body_n);
   // Coriolis and gravity with the trapezoid velocity of a predictor step: exact for a velocity
@@ -74,21 +95,23 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
   const Eigen::Vector3d v_predicted =
       old.v_n + dv_sf_n + (g_mid - (2.0 * omega_ie_mid + omega_en_old).cross(old.v_n)) * dt;
   const Eigen::Vector3d v_mid = 0.5 * (old.v_n + v_predicted);
-  const Eigen::Vector3d omega_en_mid = transport_rate_n(trig_mid, h_mid, v_mid);
+  const Eigen::Vector3d omega_en_mid = transport_rate_n(trig_mid, mid.radii, h_mid, v_mid);
   state_.v_n = old.v_n + dv_sf_n + (g_mid - (2.0 * omega_ie_mid + omega_en_mid).cross(v_mid)) * dt;
 
   // Position: trapezoid of the velocity, radii at the mid-interval height and latitude.
   const Eigen::Vector3d v_average = 0.5 * (old.v_n + state_.v_n);
   state_.height_m = old.height_m + v_average.z() * dt;
   const double h_average = 0.5 * (old.height_m + state_.height_m);
-  const EarthRadii radii_old = earth_radii(old.latitude_rad);
-  state_.latitude_rad = old.latitude_rad + v_average.y() / (radii_old.meridian_m + h_average) * dt;
+  // The starting latitude's terms are usually known: the previous update's end (the memo).
+  const double meridian_old_m = state_latitude_.at(old.latitude_rad).radii.meridian_m;
+  state_.latitude_rad = old.latitude_rad + v_average.y() / (meridian_old_m + h_average) * dt;
   const double lat_average = 0.5 * (old.latitude_rad + state_.latitude_rad);
-  const EarthRadii radii = earth_radii(lat_average);
-  state_.latitude_rad = old.latitude_rad + v_average.y() / (radii.meridian_m + h_average) * dt;
+  const LatitudeTerms& average = mid_latitude_.at(lat_average);
+  state_.latitude_rad =
+      old.latitude_rad + v_average.y() / (average.radii.meridian_m + h_average) * dt;
   state_.longitude_rad =
       old.longitude_rad +
-      v_average.x() / ((radii.transverse_m + h_average) * std::cos(lat_average)) * dt;
+      v_average.x() / ((average.radii.transverse_m + h_average) * average.trig.cos) * dt;
 
   // Attitude with the Earth and transport rates at the (now known) mid-interval state.
   Eigen::Vector3d phi;
@@ -102,9 +125,11 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
   } else {
     phi = dtheta + dtheta_prev.cross(dtheta) / 12.0;  // two-sample form
   }
-  const LatitudeTrig trig_new_mid(0.5 * (old.latitude_rad + state_.latitude_rad));
-  const Eigen::Vector3d zeta =
-      (earth_rate_n(trig_new_mid) + transport_rate_n(trig_new_mid, h_average, v_average)) * dt;
+  // Almost always lat_average to the last bit (the memo then computes nothing).
+  const LatitudeTerms& new_mid = mid_latitude_.at(0.5 * (old.latitude_rad + state_.latitude_rad));
+  const Eigen::Vector3d zeta = (earth_rate_n(new_mid.trig) +
+                                transport_rate_n(new_mid.trig, new_mid.radii, h_average, v_average)) *
+                               dt;
   state_.q_nb =
       quaternion_from_rotation_vector(-zeta) * old.q_nb * quaternion_from_rotation_vector(phi);
   state_.q_nb.normalize();

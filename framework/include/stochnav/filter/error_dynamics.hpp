@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 
+#include "stochnav/ins/latitude_terms.hpp"
 #include "stochnav/ins/nav_state.hpp"
 
 namespace stochnav {
@@ -45,5 +46,10 @@ struct FastInputIntegrals {
 /// dimensionless), with the slow terms evaluated at `state` (take the state at the interval's
 /// end: position and velocity hardly change within it).
 CoreMatrix integrated_core_dynamics(const NavState& state, const FastInputIntegrals& fast);
+
+/// The same with the Earth-model terms of the state's latitude already known: `latitude` must
+/// be LatitudeTerms(state.latitude_rad) (ins/latitude_terms.hpp; the strapdown keeps them).
+CoreMatrix integrated_core_dynamics(const NavState& state, const LatitudeTerms& latitude,
+                                    const FastInputIntegrals& fast);
 
 }  // namespace stochnav

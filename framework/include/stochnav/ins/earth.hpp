@@ -65,5 +65,8 @@ Eigen::Vector3d gravity_n(const LatitudeTrig& latitude, double height_m);
 Eigen::Vector3d earth_rate_n(const LatitudeTrig& latitude);
 Eigen::Vector3d transport_rate_n(const LatitudeTrig& latitude, double height_m,
                                  const Eigen::Vector3d& v_n);
+/// The same with the radii already known: `radii` must be earth_radii(latitude) (m).
+Eigen::Vector3d transport_rate_n(const LatitudeTrig& latitude, const EarthRadii& radii,
+                                 double height_m, const Eigen::Vector3d& v_n);
 
 }  // namespace stochnav

@@ -34,12 +34,14 @@
 // amplifies every error by about cosh(t / 570 s), and the horizontal channels turn attitude
 // error into Schuler oscillations (84 min). dt == 0 leaves the state unchanged apart from t_s.
 //
-// Cost: no allocation, a handful of sin/cos/sqrt per update (> 1M updates/s on one core; see
+// Cost: no allocation, a handful of sin/cos/sqrt per update (the terms of a latitude computed
+// once: ins/latitude_terms.hpp) (> 1M updates/s on one core; see
 // bench/scenario_bench.cpp).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "stochnav/ins/latitude_terms.hpp"
 #include "stochnav/ins/nav_state.hpp"
 
 namespace stochnav {
@@ -61,6 +63,10 @@ class StrapdownIntegrator final {
 
   const NavState& state() const { return state_; }
 
+  /// The Earth-model terms of state().latitude_rad (ins/latitude_terms.hpp), bit for bit
+  /// LatitudeTerms(state().latitude_rad), kept for the next update, which starts there.
+  const LatitudeTerms& latitude_terms() const { return state_latitude_.at(state_.latitude_rad); }
+
   /// Replaces the state (e.g. after a filter correction) and forgets the previous increments and
   /// the extrapolation history.
   void set_state(const NavState& state);
@@ -73,6 +79,9 @@ class StrapdownIntegrator final {
   Eigen::Vector3d second_previous_delta_theta_b_ = Eigen::Vector3d::Zero();
   bool has_previous_ = false;
   bool has_second_previous_ = false;
+  // The terms of the state's latitude, and of the mid-interval latitude of position and attitude.
+  mutable LatitudeTermsMemo state_latitude_;
+  LatitudeTermsMemo mid_latitude_;
 };
 
 /// Unit quaternion of a rotation vector (rad), accurate for small angles.
