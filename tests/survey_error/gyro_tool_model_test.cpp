@@ -31,6 +31,7 @@
 #include "stochnav/sim/normal_generator.hpp"
 #include "stochnav/survey_error/tool_models.hpp"
 #include "stochnav/survey_error/weighting_functions.hpp"
+#include "owsg_reference_well.hpp"
 
 namespace stochnav::survey_error {
 namespace {
@@ -38,37 +39,15 @@ namespace {
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-/// The well of owsg_gyro_reference.py: 30 m stations, vertical to 300 m, a build of 2 deg / 30 m
-/// turning from azimuth 30 to 78 deg up to 50 deg, a hold to 2400 m (81 stations; gyrocompass
-/// stations to 14 deg, the continuous survey initialised at the 16 deg station, 18).
-std::vector<ListingStation> tool_test_well() {
-  std::vector<ListingStation> stations;
-  for (int k = 0; k <= 80; ++k) {
-    const int build = std::clamp(k - 10, 0, 25);
-    stations.push_back({30.0 * k, 2.0 * build * kRadPerDeg, (30.0 + 2.0 * build) * kRadPerDeg});
-  }
-  return stations;
-}
-
-WellParameters tool_test_site() {
-  WellParameters well;
-  well.latitude_rad = 60.0 * kRadPerDeg;
-  well.earth_rate_rad_s = 15.041 * kRadPerDeg / 3600.0;
-  well.gravity_m_s2 = 9.80665;
-  return well;
-}
-
-const SourceCovariance& source_named(const SurveyCovariance& covariance, const std::string& code) {
-  const auto found =
-      std::find_if(covariance.sources.begin(), covariance.sources.end(),
-                   [&](const SourceCovariance& source) { return source.code == code; });
-  if (found == covariance.sources.end()) throw std::out_of_range("no source " + code);
-  return *found;
-}
+// owsg_reference_well.hpp's well: gyrocompass stations to 14 deg, the continuous survey
+// initialised at the 16-deg station (18).
+using testing::reference_site;
+using testing::reference_well;
+using testing::source_named;
 
 TEST(GyroToolModel, TheOwsgSourcesInTheOwsgOrder) {
   const SurveyCovariance covariance = tool_model_covariance(
-      kGyroNsCtModelName, tool_test_well(), tool_test_site(), owsg_gyro_ns_ct_terms());
+      kGyroNsCtModelName, reference_well(), reference_site(), owsg_gyro_ns_ct_terms());
   const std::vector<std::string> expected = {"DRFR",    "DSFS",    "DSTG",    "XYM1",    "XYM2",
                                              "XYM3E",   "XYM4E",   "XCLA",    "XCLH",    "AXYZ-MIS",
                                              "AXYZ-SF", "AXYZ-ZB", "GXY-B1S", "GXY-B2S", "GXY-G4",
@@ -96,9 +75,9 @@ TEST(GyroToolModel, TheOwsgSourcesInTheOwsgOrder) {
 }
 
 TEST(GyroToolModel, TotalIsTheSumSymmetricPsdWithAVerticalPart) {
-  const auto stations = tool_test_well();
+  const auto stations = reference_well();
   const SurveyCovariance covariance = tool_model_covariance(
-      kGyroNsCtModelName, stations, tool_test_site(), owsg_gyro_ns_ct_terms());
+      kGyroNsCtModelName, stations, reference_site(), owsg_gyro_ns_ct_terms());
   EXPECT_EQ(covariance.total_nev_m2.front(), Matrix3d::Zero()) << "the tie-on is exact";
   for (std::size_t k = 1; k < stations.size(); ++k) {
     Matrix3d sum = Matrix3d::Zero();
@@ -168,7 +147,7 @@ constexpr ReferenceCovariance kOwsgFormulaReference[] = {
 
 TEST(OwsgGyroReference, CovariancesEqualThoseOfTheOwsgFormulaStrings) {
   const SurveyCovariance covariance = tool_model_covariance(
-      kGyroNsCtModelName, tool_test_well(), tool_test_site(), owsg_gyro_ns_ct_terms());
+      kGyroNsCtModelName, reference_well(), reference_site(), owsg_gyro_ns_ct_terms());
   double largest_relative = 0.0;
   for (const ReferenceCovariance& reference : kOwsgFormulaReference) {
     const Matrix3d& c = source_named(covariance, reference.code).nev_m2.at(reference.station);
@@ -187,13 +166,13 @@ TEST(OwsgGyroReference, CovariancesEqualThoseOfTheOwsgFormulaStrings) {
 
 TEST(GyroToolModel, AGyrocompassStationAtNinetyDegreesIsRefused) {
   const std::vector<ListingStation> stations = {{0, 0, 0}, {30, std::numbers::pi / 2, 0}};
-  EXPECT_THROW(tool_model_covariance(kGyroNsCtModelName, stations, tool_test_site(),
+  EXPECT_THROW(tool_model_covariance(kGyroNsCtModelName, stations, reference_site(),
                                      owsg_gyro_ns_ct_terms()),
                std::invalid_argument);
-  WellParameters pole = tool_test_site();
+  WellParameters pole = reference_site();
   pole.latitude_rad = std::numbers::pi / 2;
   EXPECT_THROW(propagate_survey_errors(gyro_ns_ct_table_model(owsg_gyro_ns_ct_terms()),
-                                       tool_test_well(), pole),
+                                       reference_well(), pole),
                std::invalid_argument);
 }
 
@@ -361,8 +340,8 @@ std::vector<Vector3d> positions_from_directions(const std::vector<double>& md_m,
 bool tool_monte_carlo_agrees(const std::vector<SimulatedSource>& sources,
                              const ContinuousGyroTerms* continuous,
                              const std::vector<Matrix3d>& propagated, bool expect_pass) {
-  const auto stations = tool_test_well();
-  const WellParameters well = tool_test_site();
+  const auto stations = reference_well();
+  const WellParameters well = reference_site();
   const std::size_t n = stations.size();
   const std::vector<std::size_t> checked = {
       12, continuous_initialisation_station(stations, owsg_gyro_ns_ct_terms()), 40, n - 1};
@@ -476,8 +455,8 @@ struct SourceGroup {
 class GyroToolMonteCarlo : public ::testing::TestWithParam<SourceGroup> {};
 
 TEST_P(GyroToolMonteCarlo, SimulatedScatterMatchesThePropagatedCovariance) {
-  const auto stations = tool_test_well();
-  const WellParameters well = tool_test_site();
+  const auto stations = reference_well();
+  const WellParameters well = reference_site();
   const SurveyCovariance propagated =
       propagate_survey_errors(scaled_table_model(true), stations, well);
   std::vector<SimulatedSource> simulated;
@@ -506,8 +485,8 @@ TEST(GyroToolMonteCarloWhole, EverySourceButTheUnseenTortuosityTogether) {
   // XCLA and XCLH bend the path between stations where the survey does not see it; a listing
   // perturbed at its stations cannot simulate them (they are the Rev5 terms, checked against
   // the ISCWSA workbook).
-  const auto stations = tool_test_well();
-  const WellParameters well = tool_test_site();
+  const auto stations = reference_well();
+  const WellParameters well = reference_site();
   const ContinuousGyroTerms continuous = scaled_continuous_terms();
   SurveyCovariance propagated = propagate_survey_errors(scaled_table_model(true), stations, well);
   const auto gyro = continuous_gyro_covariance(continuous, stations, well);
@@ -525,8 +504,8 @@ TEST(GyroToolMonteCarloWhole, GyrocompassTermsEvaluatedAtEveryStationFailTheSame
   // Without the carrying into the continuous survey, GXY-B1S would follow each continuous
   // station's own inclination and azimuth: a different covariance, which the simulation of the
   // model (the initialising gyrocompass's error kept) rejects.
-  const auto stations = tool_test_well();
-  const WellParameters well = tool_test_site();
+  const auto stations = reference_well();
+  const WellParameters well = reference_site();
   const SurveyCovariance not_carried =
       propagate_survey_errors(scaled_table_model(false), stations, well);
   std::vector<SimulatedSource> simulated;
@@ -588,8 +567,8 @@ void PrintTo(const StationaryGyroMagnitudesDegH& m, std::ostream* os) { *os << m
 class StationaryGyroMonteCarlo : public ::testing::TestWithParam<StationaryGyroMagnitudesDegH> {};
 
 TEST_P(StationaryGyroMonteCarlo, GyroTermsMatchThePropagatedCovariance) {
-  const auto stations = tool_test_well();
-  const WellParameters well = tool_test_site();
+  const auto stations = reference_well();
+  const WellParameters well = reference_site();
   SurveyErrorModel model =
       GetParam().model == kGyroNsModelName ? gyro_ns_model() : gyro_mwd_model();
   for (ErrorSource& source : model.sources) source.magnitude *= kMonteCarloScale;
