@@ -32,7 +32,10 @@ void InsIntervalAccumulator::add_epoch(const Epoch& epoch) {
   weighted_f_n_dt_ += weight * f_n_dt;
   weighted_c_nb_dt_ += weight * c_dt;
   weighted_noise_ += (weight * weight) * epoch.velocity_noise;
-  removed_noise_ += (epoch.oscillation_share * epoch.oscillation_share) * epoch.velocity_noise;
+  // Zero but in a vibration episode: no matrix product on the epochs of every other interval.
+  if (epoch.oscillation_share > 0.0) {
+    removed_noise_ += (epoch.oscillation_share * epoch.oscillation_share) * epoch.velocity_noise;
+  }
 }
 
 Eigen::Matrix3d InsIntervalAccumulator::gyro_map(const Eigen::Matrix3d& a,
