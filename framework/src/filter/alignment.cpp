@@ -88,15 +88,18 @@ FineAlignmentResult fine_alignment(const NavState& initial,
   for (const ImuIncrement& increment : increments) navigator.step(increment);
   FineAlignmentResult result;
   result.state = navigator.state();
-  result.gyro_bias_b = navigator.gyro_bias_b();
-  result.accel_bias_b = navigator.accel_bias_b();
-  const Eigen::VectorXd sigma = navigator.covariance().diagonal().head<15>().cwiseSqrt();
+  // The whole biases: a run's navigator starts its noise models' augmented states from their
+  // prior, so the share of the bias the alignment put there would otherwise be lost (70 % of a
+  // FOG's turn-on bias with a 0.5 deg/h flicker model; the heading was aligned with all of it).
+  result.gyro_bias_b = navigator.gyro_total_bias_b();
+  result.accel_bias_b = navigator.accel_total_bias_b();
+  result.core_covariance = navigator.core_covariance_with_total_biases();
+  const Eigen::VectorXd sigma = result.core_covariance.diagonal().cwiseSqrt();
   result.position_sigma_m = sigma.segment<3>(0);
   result.velocity_sigma_mps = sigma.segment<3>(3);
   result.attitude_sigma_rad = sigma.segment<3>(6);
   result.accel_bias_sigma_mps2 = sigma.segment<3>(9);
   result.gyro_bias_sigma_radps = sigma.segment<3>(12);
-  result.core_covariance = navigator.covariance().topLeftCorner<15, 15>();
   return result;
 }
 

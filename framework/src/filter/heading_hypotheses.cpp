@@ -103,10 +103,10 @@ std::vector<SplitStart> linear_split(const CoreEstimate& start,
 // After a static alignment: headings over the whole circle, each with the gyro bias the static
 // data then imply. The static span's mean rate is m = C_bn w_ie + b; hypothesis i turns the
 // aligned attitude by d_i about the vertical (C_nb_i = Rot(d_i e_U) C_nb), so its bias is
-// b_i = m - C_bn_i w_ie, exactly, not linearised about the aligned heading (and all of it: the
-// alignment's augmented states, which held part of it, do not reach the run). Its prior weight is
-// the bias prior's density at b_i (the static data's noise is negligible beside it): the
-// gyrocompass's posterior. Its covariance is the start's conditioned on the heading, plus a
+// b_i = m - C_bn_i w_ie, exactly, not linearised about the aligned heading (and all of it in the
+// bias state, as fine_alignment hands it over: the augmented states restart from their prior).
+// Its prior weight is the bias prior's density at b_i (the static data's noise is negligible
+// beside it): the gyrocompass's posterior. Its covariance is the start's conditioned on the heading, plus a
 // heading sigma s_c along the direction in which the heading moves that bias.
 std::vector<SplitStart> circle_split(const CoreEstimate& start,
                                      const Eigen::Matrix<double, 15, 15>& p0, double sigma,

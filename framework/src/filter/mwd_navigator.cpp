@@ -144,6 +144,24 @@ Eigen::Vector3d MwdNavigator::sensor_correction(const AugmentedGroup& group) con
   return group.sensor_map * group.estimate;
 }
 
+Eigen::Vector3d MwdNavigator::gyro_total_bias_b() const {
+  return gyro_bias_b_ + sensor_correction(gyro_augmented_);
+}
+
+Eigen::Vector3d MwdNavigator::accel_total_bias_b() const {
+  return accel_bias_b_ + sensor_correction(accel_augmented_);
+}
+
+Eigen::Matrix<double, 15, 15> MwdNavigator::core_covariance_with_total_biases() const {
+  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(cs::kSize, layout_.size());
+  t.leftCols<cs::kSize>().setIdentity();
+  for (auto [group, row] :
+       {std::pair{&gyro_augmented_, cs::kGyroBias}, std::pair{&accel_augmented_, cs::kAccelBias}}) {
+    if (group->size > 0) t.block(row, group->offset, 3, group->size) = group->sensor_map;
+  }
+  return t * filter_.covariance() * t.transpose();
+}
+
 void MwdNavigator::accumulate_noise(plugin::NoiseModelPlugin& model, double t_s, double dt_s,
                                     const Eigen::Matrix3d& c_nb, Eigen::Matrix3d& cache,
                                     double& cached_dt, Eigen::Matrix3d& sum) {

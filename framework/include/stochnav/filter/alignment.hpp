@@ -50,18 +50,21 @@ Eigen::Quaterniond coarse_alignment(const StaticMeans& means, double latitude_ra
 /// Fine alignment: runs the navigation filter over the static period from `initial` (position
 /// known, velocity zero, attitude from coarse_alignment), with the given noise models and aids
 /// (typically a zero-velocity / static-position aid). Returns the navigator's final state and
-/// estimates.
+/// estimates, the biases whole: the bias states plus the noise models' augmented share
+/// (MwdNavigator::gyro_total_bias_b), so that a run whose augmented states start from their
+/// prior starts from all the bias the attitude was aligned with.
 struct FineAlignmentResult {
   NavState state;
-  Eigen::Vector3d gyro_bias_b = Eigen::Vector3d::Zero();         ///< rad/s
-  Eigen::Vector3d accel_bias_b = Eigen::Vector3d::Zero();        ///< m/s^2
+  Eigen::Vector3d gyro_bias_b = Eigen::Vector3d::Zero();         ///< whole bias, rad/s
+  Eigen::Vector3d accel_bias_b = Eigen::Vector3d::Zero();        ///< whole bias, m/s^2
   Eigen::Vector3d attitude_sigma_rad = Eigen::Vector3d::Zero();  ///< 1-sigma of phi, E N U
   // The other core 1-sigmas at the end (the diagonal of core_covariance).
   Eigen::Vector3d position_sigma_m = Eigen::Vector3d::Zero();       ///< ENU (m)
   Eigen::Vector3d velocity_sigma_mps = Eigen::Vector3d::Zero();     ///< ENU (m/s)
   Eigen::Vector3d accel_bias_sigma_mps2 = Eigen::Vector3d::Zero();  ///< body (m/s^2)
   Eigen::Vector3d gyro_bias_sigma_radps = Eigen::Vector3d::Zero();  ///< body (rad/s)
-  /// The whole core block of P at the end (core_state order), correlations included.
+  /// The core block of P at the end (core_state order), correlations included, with the bias
+  /// states' rows those of the whole biases (MwdNavigator::core_covariance_with_total_biases).
   Eigen::Matrix<double, 15, 15> core_covariance = Eigen::Matrix<double, 15, 15>::Zero();
 };
 FineAlignmentResult fine_alignment(const NavState& initial,

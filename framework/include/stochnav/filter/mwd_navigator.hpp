@@ -83,6 +83,15 @@ class MwdNavigator final {
   const NavState& state() const { return ins_.state(); }
   const Eigen::Vector3d& gyro_bias_b() const { return gyro_bias_b_; }    ///< rad/s
   const Eigen::Vector3d& accel_bias_b() const { return accel_bias_b_; }  ///< m/s^2
+  /// The whole bias the navigator compensates now, per body axis: the bias state plus the noise
+  /// model's augmented share M x (rad/s; m/s^2).
+  Eigen::Vector3d gyro_total_bias_b() const;
+  Eigen::Vector3d accel_total_bias_b() const;
+  /// The covariance of the core states (core_state order, 15 x 15) with each bias state
+  /// replaced by its whole bias, T P T^T: T takes the core rows and adds M to the bias rows at
+  /// the augmented columns. What a new navigator whose augmented states start from their prior
+  /// must start from to carry what this one knows of the sensor errors.
+  Eigen::Matrix<double, 15, 15> core_covariance_with_total_biases() const;
   /// Scale-factor estimates per body axis (dimensionless; zero when not estimated).
   const Eigen::Vector3d& gyro_scale_factor() const { return gyro_scale_.estimate; }
   const Eigen::Vector3d& accel_scale_factor() const { return accel_scale_.estimate; }
