@@ -9,10 +9,12 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 #include "static_truth.hpp"
 #include "stochnav/core/errors.hpp"
+#include "stochnav/filter/mwd_navigator.hpp"
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/io/psins_imu.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
@@ -161,6 +163,50 @@ TEST(FineAlignment, HandsOverTheWholeBiasOfTheBiasAndAugmentedStates) {
     worst_north_share = std::max(worst_north_share, std::abs(error_n.y()) / prior_sigma);
   }
   EXPECT_LT(worst_north_share, 0.25);
+}
+
+// A one-filter run continues the alignment's filter: a navigator started from the alignment's
+// whole end (FilterOptions::whole_start) holds the same bias and augmented states and the same
+// P, so its whole bias is the one handed over; a navigator of another layout refuses it.
+TEST(FineAlignment, ARunContinuesTheAlignmentsWholeFilter) {
+  const plugin::PluginRegistry registry({plugin::bundled_plugin_dir()});
+  const auto context = [](plugin::SensorGroup group) {
+    return plugin::NoiseModelContext{
+        .group = group, .imu_rate_hz = 100.0, .params_pointer = "/noise"};
+  };
+  const auto gyro =
+      registry.create_noise_model("gauss_markov", {{"sigma", 0.4}, {"tau_c", 36000.0}, {"N", 0.01}},
+                                  context(plugin::SensorGroup::kGyro), "/noise");
+  const auto accel = registry.create_noise_model("white", {{"N", 0.003}, {"K", 0.0}},
+                                                 context(plugin::SensorGroup::kAccel), "/noise");
+  const NavState truth = testing::static_truth_state();
+  testing::StaticImu imu(truth,
+                         {.gyro_arw = 0.01 * kDeg / 60.0,
+                          .accel_vrw = 5e-5,
+                          .gyro_bias = Eigen::Vector3d(2e-6, -1e-6, 1.5e-6)},
+                         100.0, 7);
+  std::vector<ImuIncrement> increments;
+  for (int k = 0; k < 30000; ++k) increments.push_back(imu.next());  // 5 min
+  testing::NoisyStaticAid zero_velocity(truth, 0.05, 0.002, 8);
+  FilterOptions options;
+  options.gyro_bias_sigma_radps.setConstant(0.3 * kDeg / 3600.0);
+  const FineAlignmentResult fine =
+      fine_alignment(truth, increments, *gyro, *accel, {&zero_velocity}, options);
+  ASSERT_EQ(fine.whole.gyro_augmented.size(), 3);
+  ASSERT_GT(fine.whole.gyro_augmented.norm(), 0.0);
+
+  FilterOptions run = options;
+  run.whole_start = fine.whole;
+  MwdNavigator navigator(fine.state, *gyro, *accel, {}, run);
+  EXPECT_EQ(navigator.covariance(), fine.whole.covariance);
+  EXPECT_EQ(navigator.gyro_bias_b(), fine.whole.gyro_bias_radps);
+  EXPECT_EQ(navigator.block_estimate("gyro.gauss_markov"), fine.whole.gyro_augmented);
+  EXPECT_LT((navigator.gyro_total_bias_b() - fine.gyro_bias_b).norm(), 1e-18);
+  EXPECT_LT((navigator.core_covariance_with_total_biases() - fine.core_covariance).norm(), 1e-24);
+
+  const auto white_gyro = registry.create_noise_model(
+      "white", {{"N", 0.01}}, context(plugin::SensorGroup::kGyro), "/noise");
+  EXPECT_THROW(MwdNavigator(fine.state, *white_gyro, *accel, {}, run), std::invalid_argument);
 }
 
 }  // namespace

@@ -88,12 +88,14 @@ FineAlignmentResult fine_alignment(const NavState& initial,
   for (const ImuIncrement& increment : increments) navigator.step(increment);
   FineAlignmentResult result;
   result.state = navigator.state();
-  // The whole biases: a run's navigator starts its noise models' augmented states from their
-  // prior, so the share of the bias the alignment put there would otherwise be lost (70 % of a
-  // FOG's turn-on bias with a 0.5 deg/h flicker model; the heading was aligned with all of it).
+  // The biases whole (bias state plus augmented share, 70 % of a FOG's turn-on bias in a
+  // 0.5 deg/h flicker model's states): the form a start whose augmented states begin at their
+  // prior needs (the bank over the heading). And the whole end, from which a one-filter run
+  // continues this filter.
   result.gyro_bias_b = navigator.gyro_total_bias_b();
   result.accel_bias_b = navigator.accel_total_bias_b();
   result.core_covariance = navigator.core_covariance_with_total_biases();
+  result.whole = navigator.whole_start();
   const Eigen::VectorXd sigma = result.core_covariance.diagonal().cwiseSqrt();
   result.position_sigma_m = sigma.segment<3>(0);
   result.velocity_sigma_mps = sigma.segment<3>(3);

@@ -64,6 +64,7 @@ struct SplitStart {
 FilterOptions with_start(const FilterOptions& options, const SplitStart& start) {
   FilterOptions split = options;
   split.initial_core_covariance = start.covariance;
+  split.whole_start.reset();  // each hypothesis starts with the whole bias in its bias state
   const Eigen::Matrix<double, 15, 1> sigma = start.covariance.diagonal().cwiseSqrt();
   split.position_sigma_m = sigma.segment<3>(core::kPosition);
   split.velocity_sigma_mps = sigma.segment<3>(core::kVelocity);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <string_view>
 #include <utility>
 
@@ -19,6 +21,17 @@ namespace cs = plugin::core_state;
 Eigen::MatrixXd initial_covariance(const plugin::StateLayout& layout, const FilterOptions& o,
                                    plugin::NoiseModelPlugin& gyro,
                                    plugin::NoiseModelPlugin& accel) {
+  if (o.whole_start) {
+    if (o.whole_start->covariance.rows() != layout.size() ||
+        o.whole_start->covariance.cols() != layout.size()) {
+      throw std::invalid_argument("MwdNavigator: FilterOptions::whole_start's covariance is " +
+                                  std::to_string(o.whole_start->covariance.rows()) + " x " +
+                                  std::to_string(o.whole_start->covariance.cols()) +
+                                  ", the state layout has " + std::to_string(layout.size()) +
+                                  " states; hand over from a navigator of the same models");
+    }
+    return o.whole_start->covariance;
+  }
   Eigen::MatrixXd p = Eigen::MatrixXd::Zero(layout.size(), layout.size());
   p.diagonal().segment<3>(cs::kPosition) = o.position_sigma_m.array().square().matrix();
   p.diagonal().segment<3>(cs::kVelocity) = o.velocity_sigma_mps.array().square().matrix();
@@ -116,6 +129,20 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
   }
   gyro_bias_b_ = options.initial_gyro_bias_radps;
   accel_bias_b_ = options.initial_accel_bias_mps2;
+  if (options.whole_start) {
+    gyro_bias_b_ = options.whole_start->gyro_bias_radps;
+    accel_bias_b_ = options.whole_start->accel_bias_mps2;
+    for (auto [group, estimate] : {std::pair{&gyro_augmented_, &options.whole_start->gyro_augmented},
+                                   std::pair{&accel_augmented_, &options.whole_start->accel_augmented}}) {
+      if (estimate->size() != group->size) {
+        throw std::invalid_argument("MwdNavigator: FilterOptions::whole_start holds " +
+                                    std::to_string(estimate->size()) + " augmented states of " +
+                                    std::string(group->model->type()) + ", the model has " +
+                                    std::to_string(group->size));
+      }
+      group->estimate = *estimate;
+    }
+  }
   gyro_scale_.offset = block_offset(layout_, "gyro_scale_factor");
   accel_scale_.offset = block_offset(layout_, "accel_scale_factor");
   head_f_ = Eigen::MatrixXd::Zero(head_size_, head_size_);
@@ -150,6 +177,14 @@ Eigen::Vector3d MwdNavigator::gyro_total_bias_b() const {
 
 Eigen::Vector3d MwdNavigator::accel_total_bias_b() const {
   return accel_bias_b_ + sensor_correction(accel_augmented_);
+}
+
+FilterOptions::WholeStart MwdNavigator::whole_start() const {
+  return {.gyro_bias_radps = gyro_bias_b_,
+          .accel_bias_mps2 = accel_bias_b_,
+          .gyro_augmented = gyro_augmented_.estimate,
+          .accel_augmented = accel_augmented_.estimate,
+          .covariance = filter_.covariance()};
 }
 
 Eigen::Matrix<double, 15, 15> MwdNavigator::core_covariance_with_total_biases() const {

@@ -66,6 +66,9 @@ struct FineAlignmentResult {
   /// The core block of P at the end (core_state order), correlations included, with the bias
   /// states' rows those of the whole biases (MwdNavigator::core_covariance_with_total_biases).
   Eigen::Matrix<double, 15, 15> core_covariance = Eigen::Matrix<double, 15, 15>::Zero();
+  /// The navigator's whole end (bias and augmented states apart, the whole P): a run with the
+  /// same noise models continues from it (FilterOptions::whole_start).
+  FilterOptions::WholeStart whole;
 };
 FineAlignmentResult fine_alignment(const NavState& initial,
                                    std::span<const ImuIncrement> increments,

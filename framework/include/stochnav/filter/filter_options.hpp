@@ -53,6 +53,23 @@ struct FilterOptions {
   /// as documented below.
   std::optional<Eigen::Matrix<double, 15, 15>> initial_core_covariance;
 
+  /// When set, a navigator's whole start: the bias states, the noise models' augmented states
+  /// and the whole initial P (StateLayout order), from a navigator of the same layout. A static
+  /// alignment hands its end over this way (experiment/run/initial_state.cpp): the run continues
+  /// the alignment's filter, so nothing it learned is dropped or counted twice. Takes precedence
+  /// over the sigmas, initial_core_covariance and the initial biases below, which then describe
+  /// the same start with each bias whole (bias state plus augmented share, the form the bank over
+  /// the heading starts from; heading_hypotheses.hpp clears whole_start for its hypotheses).
+  /// MwdNavigator throws std::invalid_argument when the sizes differ from its layout.
+  struct WholeStart {
+    Eigen::Vector3d gyro_bias_radps = Eigen::Vector3d::Zero();   ///< the bias state, body axes
+    Eigen::Vector3d accel_bias_mps2 = Eigen::Vector3d::Zero();   ///< the bias state, body axes
+    Eigen::VectorXd gyro_augmented;   ///< the gyro model's augmented states x
+    Eigen::VectorXd accel_augmented;  ///< the accelerometer model's augmented states x
+    Eigen::MatrixXd covariance;       ///< n x n, the whole error state's P
+  };
+  std::optional<WholeStart> whole_start;
+
   /// When the start comes from a static alignment: what its gyrocompass measured and assumed.
   /// The bank over the heading (filter/heading_hypotheses.hpp) gives each heading on the whole
   /// circle the gyro bias the static span's mean rate then implies and weighs it by how likely

@@ -92,6 +92,9 @@ class MwdNavigator final {
   /// the augmented columns. What a new navigator whose augmented states start from their prior
   /// must start from to carry what this one knows of the sensor errors.
   Eigen::Matrix<double, 15, 15> core_covariance_with_total_biases() const;
+  /// Everything a navigator of the same layout needs to continue this one from its state():
+  /// the bias states, the augmented states and the whole P (FilterOptions::whole_start).
+  FilterOptions::WholeStart whole_start() const;
   /// Scale-factor estimates per body axis (dimensionless; zero when not estimated).
   const Eigen::Vector3d& gyro_scale_factor() const { return gyro_scale_.estimate; }
   const Eigen::Vector3d& accel_scale_factor() const { return accel_scale_.estimate; }

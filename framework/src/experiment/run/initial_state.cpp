@@ -190,6 +190,9 @@ AlignedStart align_at_rest(std::span<const ImuIncrement> span, const NavState& s
   // With the correlations: the heading and the horizontal gyro biases are known together far
   // better than apart, and the run must not count that information a second time.
   out.initial_core_covariance = result.core_covariance;
+  // And whole: the run continues the alignment's filter (its augmented states and their
+  // correlations with the rest), which a start from the core block alone would reset.
+  out.whole_start = result.whole;
   out.static_gyrocompass = FilterOptions::StaticGyrocompass{
       means.omega_ib_b, options.initial_gyro_bias_radps,
       start_bias_sigma(options.gyro_bias_sigma_radps, gyro_noise)};
@@ -232,6 +235,10 @@ void apply_initial_error(const plugin::InitialErrorConfig& error, NavState& stat
   }
   options.initial_gyro_bias_radps += gyro_bias;
   options.initial_accel_bias_mps2 += accel_bias;
+  if (options.whole_start) {
+    options.whole_start->gyro_bias_radps += gyro_bias;
+    options.whole_start->accel_bias_mps2 += accel_bias;
+  }
 }
 
 FilterStart filter_start(const plugin::RunConfig& config, const NavState& start,
