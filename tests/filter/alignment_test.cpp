@@ -110,7 +110,7 @@ TEST(PsinsRecord, GyrocompassingFindsTheEarthRateAndTheHeaderHeading) {
 // the sum (before, the bias state alone: 0.3 of 0.5 deg/h here, and a run started with the
 // heading aligned on all of it). Seeds draw the true bias from the whole prior; its component
 // along North, which a static alignment observes within minutes, comes out to a fraction of the
-// prior (measured: at most 0.15 of it, where the bias state alone leaves about 0.64 of the true
+// prior (measured: at most 0.15 of it, where the bias state alone leaves about 0.62 of the true
 // component), and every component is inside 3 sigma of the handed-over covariance. (Up is
 // observed too, but slowly: 20 min leave it near its prior.)
 TEST(FineAlignment, HandsOverTheWholeBiasOfTheBiasAndAugmentedStates) {

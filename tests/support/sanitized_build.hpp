@@ -8,8 +8,8 @@
 // the code it runs, so that the whole suite runs under them in reasonable time (by hand: CI's
 // asan stage runs the unit-level suites only, .ci/asan_stage); the floors that need the full
 // size are checked only at full size (the release suite).
-// STOCHNAV_STUDY_FULL_SIZE=1 runs the studies at full size in a sanitized build too (docs/reliability.md,
-// "Sanitizers": the by-hand run).
+// STOCHNAV_STUDY_FULL_SIZE=1 runs the studies at full size in a sanitized build too
+// (docs/reliability.md, "Sanitizers": the by-hand run).
 
 #include <cstdlib>
 #include <cstring>

@@ -107,8 +107,8 @@ std::vector<SplitStart> linear_split(const CoreEstimate& start,
 // b_i = m - C_bn_i w_ie, exactly, not linearised about the aligned heading (and all of it in the
 // bias state, as fine_alignment hands it over: the augmented states restart from their prior).
 // Its prior weight is the bias prior's density at b_i (the static data's noise is negligible
-// beside it): the gyrocompass's posterior. Its covariance is the start's conditioned on the heading, plus a
-// heading sigma s_c along the direction in which the heading moves that bias.
+// beside it): the gyrocompass's posterior. Its covariance is the start's conditioned on the
+// heading, plus a heading sigma s_c along the direction in which the heading moves that bias.
 std::vector<SplitStart> circle_split(const CoreEstimate& start,
                                      const Eigen::Matrix<double, 15, 15>& p0, double sigma,
                                      const FilterOptions::StaticGyrocompass& gyrocompass) {

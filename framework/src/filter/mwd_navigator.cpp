@@ -132,8 +132,9 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
   if (options.whole_start) {
     gyro_bias_b_ = options.whole_start->gyro_bias_radps;
     accel_bias_b_ = options.whole_start->accel_bias_mps2;
-    for (auto [group, estimate] : {std::pair{&gyro_augmented_, &options.whole_start->gyro_augmented},
-                                   std::pair{&accel_augmented_, &options.whole_start->accel_augmented}}) {
+    for (auto [group, estimate] :
+         {std::pair{&gyro_augmented_, &options.whole_start->gyro_augmented},
+          std::pair{&accel_augmented_, &options.whole_start->accel_augmented}}) {
       if (estimate->size() != group->size) {
         throw std::invalid_argument("MwdNavigator: FilterOptions::whole_start holds " +
                                     std::to_string(estimate->size()) + " augmented states of " +

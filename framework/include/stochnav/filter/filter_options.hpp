@@ -62,8 +62,8 @@ struct FilterOptions {
   /// the heading starts from; heading_hypotheses.hpp clears whole_start for its hypotheses).
   /// MwdNavigator throws std::invalid_argument when the sizes differ from its layout.
   struct WholeStart {
-    Eigen::Vector3d gyro_bias_radps = Eigen::Vector3d::Zero();   ///< the bias state, body axes
-    Eigen::Vector3d accel_bias_mps2 = Eigen::Vector3d::Zero();   ///< the bias state, body axes
+    Eigen::Vector3d gyro_bias_radps = Eigen::Vector3d::Zero();  ///< the bias state, body axes
+    Eigen::Vector3d accel_bias_mps2 = Eigen::Vector3d::Zero();  ///< the bias state, body axes
     Eigen::VectorXd gyro_augmented;   ///< the gyro model's augmented states x
     Eigen::VectorXd accel_augmented;  ///< the accelerometer model's augmented states x
     Eigen::MatrixXd covariance;       ///< n x n, the whole error state's P
