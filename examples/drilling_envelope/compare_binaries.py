@@ -13,7 +13,6 @@ Usage: compare_binaries.py OUT_DIR WELLS HOURS SEED STOCHNAV_A [STOCHNAV_B ...] 
 Runs already in OUT_DIR are reused. Python 3 standard library only.
 """
 import argparse
-import csv
 import json
 import math
 import os
@@ -46,16 +45,7 @@ def main():
         if not os.path.exists(os.path.join(data, "truth.csv")):
             envelope.run(binaries["A"], "simulate", "scenario",
                          os.path.join(folder, "scenario.json"), "--out", data)
-        with open(os.path.join(data, "truth.csv")) as f:
-            first = next(csv.DictReader(f))
-        with open(os.path.join(envelope.ROOT, "configs/runs/drilling_recording.json")) as f:
-            config = json.load(f)
-        config.pop("data")
-        config["initial_state"]["tie_on"] = {"latitude_deg": float(first["lat"]),
-                                             "longitude_deg": float(first["lon"]),
-                                             "height_m": float(first["h"])}
-        with open(os.path.join(folder, "run.json"), "w") as f:
-            json.dump(config, f, indent=1)
+        envelope.write_run_config(folder, os.path.join(data, "truth.csv"))
         for name, binary in binaries.items():
             out = os.path.join(folder, "run_" + name)
             if not os.path.exists(os.path.join(out, "survey.csv")):

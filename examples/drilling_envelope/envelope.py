@@ -143,6 +143,21 @@ def station_errors(survey_csv, truth_csv):
     return pairs
 
 
+def write_run_config(folder, truth_csv):
+    """FOLDER/run.json: the shipped recording config with its tie-on at the well's surface
+    location (the truth's first row: what a rig knows), its data given on the command line."""
+    with open(truth_csv) as f:
+        first = next(csv.DictReader(f))
+    with open(os.path.join(ROOT, "configs/runs/drilling_recording.json")) as f:
+        config = json.load(f)
+    config.pop("data")
+    config["initial_state"]["tie_on"] = {"latitude_deg": float(first["lat"]),
+                                         "longitude_deg": float(first["lon"]),
+                                         "height_m": float(first["h"])}
+    with open(os.path.join(folder, "run.json"), "w") as f:
+        json.dump(config, f, indent=1)
+
+
 def score_well(stochnav, folder, scenario):
     """Simulates the well, runs it with the truth withheld (the run's folder holds the IMU and
     aid records only), then scores survey.csv against the truth."""
@@ -157,16 +172,7 @@ def score_well(stochnav, folder, scenario):
         target = os.path.join(recording, name)
         if not os.path.exists(target):
             os.symlink(os.path.join("..", "data", name), target)
-    with open(os.path.join(data, "truth.csv")) as f:
-        first = next(csv.DictReader(f))
-    with open(os.path.join(ROOT, "configs/runs/drilling_recording.json")) as f:
-        config = json.load(f)
-    config.pop("data")
-    config["initial_state"]["tie_on"] = {"latitude_deg": float(first["lat"]),
-                                         "longitude_deg": float(first["lon"]),
-                                         "height_m": float(first["h"])}
-    with open(os.path.join(folder, "run.json"), "w") as f:
-        json.dump(config, f, indent=1)
+    write_run_config(folder, os.path.join(data, "truth.csv"))
     out = os.path.join(folder, "run")
     run(stochnav, "run", os.path.join(folder, "run.json"), "--data", recording, "--out", out,
         "--no-plot")
