@@ -55,11 +55,13 @@ struct FilterOptions {
 
   /// When set, a navigator's whole start: the bias states, the noise models' augmented states
   /// and the whole initial P (StateLayout order), from a navigator of the same layout. A static
-  /// alignment hands its end over this way (experiment/run/initial_state.cpp): the run continues
-  /// the alignment's filter, so nothing it learned is dropped or counted twice. Takes precedence
-  /// over the sigmas, initial_core_covariance and the initial biases below, which then describe
-  /// the same start with each bias whole (bias state plus augmented share, the form the bank over
-  /// the heading starts from; heading_hypotheses.hpp clears whole_start for its hypotheses).
+  /// alignment hands its end over this way (experiment/run/initial_state.cpp): a one-filter run
+  /// continues the alignment's filter, so nothing it learned is dropped or counted twice. Takes
+  /// precedence over the sigmas, initial_core_covariance and the initial biases below, which
+  /// then describe the same start with each bias whole (bias state plus augmented share): the
+  /// form the bank over the heading starts from (heading_hypotheses.cpp clears whole_start for
+  /// its hypotheses, whose augmented states restart from their prior: the augmented share of the
+  /// bias uncertainty is counted twice there, which is conservative).
   /// MwdNavigator throws std::invalid_argument when the sizes differ from its layout.
   struct WholeStart {
     Eigen::Vector3d gyro_bias_radps = Eigen::Vector3d::Zero();  ///< the bias state, body axes
