@@ -15,7 +15,7 @@ using testing::NoisyStaticAid;
 using testing::StaticImu;
 using testing::StaticImuErrors;
 
-constexpr double kRateHz = 100.0;
+using testing::kRateHz;
 
 std::shared_ptr<plugin::NoiseModelPlugin> gauss_markov(const plugin::PluginRegistry& registry,
                                                        plugin::SensorGroup group, double sigma) {

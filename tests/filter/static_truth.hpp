@@ -17,6 +17,7 @@
 namespace stochnav::testing {
 
 inline constexpr double kDeg = 3.14159265358979323846 / 180.0;
+inline constexpr double kRateHz = 100.0;  ///< the simulated IMU's rate (Hz)
 
 inline NavState static_truth_state() {
   NavState truth;

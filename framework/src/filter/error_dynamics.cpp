@@ -14,6 +14,28 @@ namespace cs = plugin::core_state;
 
 }  // namespace
 
+void FastInputIntegrals::add_velocity_inputs(double dt_s, const Eigen::Matrix3d& c_nb_dt_epoch,
+                                             const Eigen::Vector3d& f_n_dt_epoch,
+                                             const Eigen::Matrix3d& accel_scale_dt_epoch) {
+  // Over an epoch the single integral runs linearly from its value at the start: the double
+  // integral gains dt times its mean over the epoch.
+  c_nb_dt2 += dt_s * (c_nb_dt + 0.5 * c_nb_dt_epoch);
+  f_n_dt2 += dt_s * (f_n_dt + 0.5 * f_n_dt_epoch);
+  accel_scale_dt2 += dt_s * (accel_scale_dt + 0.5 * accel_scale_dt_epoch);
+  interval_s += dt_s;
+  c_nb_dt += c_nb_dt_epoch;
+  f_n_dt += f_n_dt_epoch;
+  accel_scale_dt += accel_scale_dt_epoch;
+}
+
+PositionShapeCorrection position_shape_correction(const FastInputIntegrals& fast) {
+  // The signs follow the velocity rows: + [f_n x] phi, - C_nb db_a, - C_nb diag(f_b) ds_a.
+  const double half = 0.5 * fast.interval_s;
+  return {.attitude = skew(fast.f_n_dt2 - half * fast.f_n_dt),
+          .accel_bias = -(fast.c_nb_dt2 - half * fast.c_nb_dt),
+          .accel_scale = -(fast.accel_scale_dt2 - half * fast.accel_scale_dt)};
+}
+
 CoreMatrix integrated_core_dynamics(const NavState& state, const FastInputIntegrals& fast) {
   return integrated_core_dynamics(state, LatitudeTerms(state.latitude_rad), fast);
 }

@@ -233,8 +233,6 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   const Eigen::Matrix3d c_end = ins_.state().q_nb.toRotationMatrix();
   const Eigen::Matrix3d c_mid = 0.5 * (c_nb_ + c_end);
   c_nb_ = c_end;
-  fast_.interval_s += dt;
-  fast_.c_nb_dt += c_mid * dt;
   // The specific force the attitude error rotates (d dv/dt = [f_n x] phi + ...): the measured
   // one, or the reference trajectory's when the aids state the velocity.
   const Eigen::Vector3d coupling_delta_v_n =
@@ -244,10 +242,8 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   // change as well (filter/velocity_oscillation.hpp). The interval aids' mean-error maps keep
   // the reference's coupling alone: they measure the velocity less the oscillation, whose
   // counted part carries the attitude error's share of it.
-  const Eigen::Vector3d oscillation_change = reference_.active
-                                                 ? oscillation_.update(ins_.state().v_n, dt)
-                                                 : Eigen::Vector3d::Zero();
-  fast_.f_n_dt += coupling_delta_v_n + oscillation_change;
+  const Eigen::Vector3d oscillation_change =
+      reference_.active ? oscillation_.update(ins_.state().v_n, dt) : Eigen::Vector3d::Zero();
   // The accelerometer scale factors multiply the true specific force: a smoothed one from the
   // epochs before this one, not this epoch's measurement, whose noise also drives the velocity
   // error and would correlate the gains with the residuals (over a day of 1-s aids that biased
@@ -263,7 +259,11 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   }
   if (gyro_scale_.offset >= 0)
     fast_.gyro_scale_dt += c_mid * compensated.delta_theta_b.asDiagonal();
-  if (accel_scale_.offset >= 0) fast_.accel_scale_dt += c_mid * scale_factor_delta_v_b.asDiagonal();
+  const Eigen::Matrix3d accel_scale_dt =
+      accel_scale_.offset >= 0 ? Eigen::Matrix3d(c_mid * scale_factor_delta_v_b.asDiagonal())
+                               : Eigen::Matrix3d::Zero();
+  fast_.add_velocity_inputs(dt, c_mid * dt, coupling_delta_v_n + oscillation_change,
+                            accel_scale_dt);
   const Eigen::Matrix3d attitude_noise_before = attitude_noise_;
   accumulate_noise(gyro_noise_, t_start, dt, c_mid, gyro_white_cache_, gyro_cached_dt_,
                    attitude_noise_);
@@ -429,6 +429,7 @@ void MwdNavigator::propagate_fixed_size(const CoreMatrix& f_t, double interval) 
   }
   Square phi = second_order_transition_increment<N>(f);
   phi.diagonal().array() += 1.0;
+  add_position_shape_correction(phi);
   Square q_d = Square::Zero();
   const SecondOrderTerm second_order = second_order_term(interval);
   q_d.template topLeftCorner<cs::kSize, cs::kSize>() =
@@ -468,6 +469,7 @@ void MwdNavigator::propagate_by_dynamic_blocks(const CoreMatrix& f_t, double int
     }
     phi_.topLeftCorner(head_size_, head_size_) += head_f_ + 0.5 * head_f_ * head_f_;
   }
+  add_position_shape_correction(phi_);
   q_d_.setZero();
   const SecondOrderTerm second_order = second_order_term(interval);
   q_d_.topLeftCorner<cs::kSize, cs::kSize>() = core_process_noise(interval, second_order.noise);
@@ -490,6 +492,17 @@ void MwdNavigator::propagate_by_dynamic_blocks(const CoreMatrix& f_t, double int
   }
   feed_back_second_order_drift(second_order.drift);
   close_interval(interval);
+}
+
+// The position rows from the velocity rows' inputs' double integrals, not T / 2 times their
+// single integrals (filter/error_dynamics.hpp, position_shape_correction).
+void MwdNavigator::add_position_shape_correction(Eigen::Ref<Eigen::MatrixXd> phi) const {
+  const PositionShapeCorrection correction = position_shape_correction(fast_);
+  phi.block<3, 3>(cs::kPosition, cs::kAttitude) += correction.attitude;
+  phi.block<3, 3>(cs::kPosition, cs::kAccelBias) += correction.accel_bias;
+  if (accel_scale_.offset >= 0) {
+    phi.block<3, 3>(cs::kPosition, accel_scale_.offset) += correction.accel_scale;
+  }
 }
 
 // Qd of the 15 core states over the interval: the white noises accumulated through C_nb, the

@@ -40,7 +40,36 @@ struct FastInputIntegrals {
   Eigen::Matrix3d gyro_scale_dt = Eigen::Matrix3d::Zero();
   /// Integral of C_nb diag(f_ib_b) dt (m/s): d dv/dt = ... - C_nb diag(f_ib_b) ds_a.
   Eigen::Matrix3d accel_scale_dt = Eigen::Matrix3d::Zero();
+  // The double integrals int_0^T int_0^t (.) ds dt of the velocity rows' inputs: the position
+  // error's response to an attitude or accelerometer error held over the interval.
+  Eigen::Vector3d f_n_dt2 = Eigen::Vector3d::Zero();          ///< of f_n (m)
+  Eigen::Matrix3d c_nb_dt2 = Eigen::Matrix3d::Zero();         ///< of C_nb (s^2)
+  Eigen::Matrix3d accel_scale_dt2 = Eigen::Matrix3d::Zero();  ///< of C_nb diag(f_ib_b) (m)
+
+  /// Adds one epoch's increments (the integrals over the epoch of dt_s s) to both the single
+  /// and the double integrals, the integrands taken linear within the epoch.
+  void add_velocity_inputs(double dt_s, const Eigen::Matrix3d& c_nb_dt_epoch,
+                           const Eigen::Vector3d& f_n_dt_epoch,
+                           const Eigen::Matrix3d& accel_scale_dt_epoch);
 };
+
+/// The position rows' correction to the second-order transition I + F T + (F T)^2 / 2 when the
+/// inputs change within the interval. (F T)^2 / 2 gives position's response to the velocity
+/// rows' inputs as T / 2 times their single integrals, which holds for constant inputs only;
+/// the exact response is their double integrals. A vibration whose period divides the interval
+/// shows why it matters: its velocity change over each interval is nil, so the single integral
+/// is blind to it, while the velocity error it causes, phi x the oscillation's velocity, is
+/// sampled at the same phase at every interval's end and, taken as constant over the next
+/// interval, integrates into a position error that grows without bound. The double integral
+/// gives the oscillation's mean over the interval instead, and the position error stays bounded.
+/// Each block is added to Phi's position rows (dimensionless; attitude in rad, the
+/// accelerometer bias in m/s^2, its scale factor dimensionless).
+struct PositionShapeCorrection {
+  Eigen::Matrix3d attitude;     ///< to Phi(dr, phi) (m/rad)
+  Eigen::Matrix3d accel_bias;   ///< to Phi(dr, db_a) (s^2)
+  Eigen::Matrix3d accel_scale;  ///< to Phi(dr, ds_a) (m)
+};
+PositionShapeCorrection position_shape_correction(const FastInputIntegrals& fast);
 
 /// The integral of the core error-dynamics matrix F over the interval, F_bar T (15 x 15,
 /// dimensionless), with the slow terms evaluated at `state` (take the state at the interval's

@@ -167,6 +167,7 @@ class MwdNavigator final {
   SecondOrderTerm second_order_term(double interval) const;
   void feed_back_second_order_drift(const Eigen::Vector3d& drift);
   void close_interval(double interval);
+  void add_position_shape_correction(Eigen::Ref<Eigen::MatrixXd> phi) const;
   void update_augmented_transition(AugmentedGroup& group, double interval_s);
   void apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b, const Eigen::Vector3d& f_ib_b);
   Eigen::Vector3d reference_specific_force_increment(double dt_s,
