@@ -5,11 +5,14 @@ differ in one change), scored station by station against the truth.
 The wells are envelope.py's draw (draw_well) with the latitude redrawn within +-LAT deg (60 by
 default, where the runs are one filter rather than the bank over the heading). Each well is
 simulated once, by the first binary, and every binary runs the shipped recording config on the
-same records. Prints one JSON line per well and binary, then a table per binary: stations
-inside 3 sigma and the RMS of error / sigma per quantity. docs/drilling-envelope.md, section 7,
-gives the alignment handover's ablation made with it.
+same records. With --scenario FILE the wells are that one scenario instead, simulated with the
+seeds SEED, SEED + 1, ... (a seeded study of one well; HOURS and --lat are then unused).
+Prints one JSON line per well and binary, then a table per binary: stations inside 3 sigma and
+the RMS of error / sigma per quantity. docs/drilling-envelope.md, section 7, gives the ablations
+made with it.
 
 Usage: compare_binaries.py OUT_DIR WELLS HOURS SEED STOCHNAV_A [STOCHNAV_B ...] [--lat LAT]
+                           [--scenario FILE]
 Runs already in OUT_DIR are reused. Python 3 standard library only.
 """
 import argparse
@@ -30,13 +33,20 @@ def main():
     parser.add_argument("seed", type=int)
     parser.add_argument("binaries", nargs="+")
     parser.add_argument("--lat", type=float, default=60.0)
+    parser.add_argument("--scenario")
     args = parser.parse_args()
     binaries = dict(zip(string.ascii_uppercase, args.binaries))
     rng = random.Random(args.seed)
     rows = []
     for k in range(args.wells):
-        scenario, case = envelope.draw_well(rng, k, args.hours)
-        scenario["site"]["latitude_deg"] = rng.uniform(-args.lat, args.lat)
+        if args.scenario:
+            with open(args.scenario) as f:
+                scenario = json.load(f)
+            scenario["seed"] = args.seed + k
+            case = "seed %d" % scenario["seed"]
+        else:
+            scenario, case = envelope.draw_well(rng, k, args.hours)
+            scenario["site"]["latitude_deg"] = rng.uniform(-args.lat, args.lat)
         folder = os.path.join(args.out, f"well_{k}")
         os.makedirs(folder, exist_ok=True)
         with open(os.path.join(folder, "scenario.json"), "w") as f:
