@@ -105,11 +105,10 @@ Comparison compare_over_one_second(const SensorError& error) {
     const Eigen::Matrix3d c_start = exact.state().q_nb.toRotationMatrix();
     exact.update(ideal);
     erring.update(read);
-    const Eigen::Matrix3d c_mid = 0.5 * (c_start + exact.state().q_nb.toRotationMatrix());
     interval.add_epoch({.v_start_n = exact_v0,
                         .v_end_n = exact.state().v_n,
-                        .c_nb_mid = c_mid,
-                        .delta_v_b = ideal.delta_v_b,
+                        .c_nb_mean = epoch_mean_attitude(c_start, ideal.delta_theta_b),
+                        .delta_v_n = exact.specific_force_increment_n(),
                         .scale_factor_delta_v_b = ideal.delta_v_b,
                         .delta_theta_b = ideal.delta_theta_b,
                         .velocity_noise = velocity_noise,
@@ -220,8 +219,8 @@ TEST(InsIntervalMap, VibrationAddsTheHighPassedNoiseItTakesOut) {
   for (int k = 0; k < 100; ++k) {
     InsIntervalAccumulator::Epoch epoch{.v_start_n = Eigen::Vector3d::Zero(),
                                         .v_end_n = Eigen::Vector3d::Zero(),
-                                        .c_nb_mid = Eigen::Matrix3d::Identity(),
-                                        .delta_v_b = Eigen::Vector3d(0.0, 0.0, 9.8 * dt),
+                                        .c_nb_mean = Eigen::Matrix3d::Identity(),
+                                        .delta_v_n = Eigen::Vector3d(0.0, 0.0, 9.8 * dt),
                                         .scale_factor_delta_v_b = Eigen::Vector3d::Zero(),
                                         .delta_theta_b = Eigen::Vector3d::Zero(),
                                         .velocity_noise = rate * dt * Eigen::Matrix3d::Identity(),

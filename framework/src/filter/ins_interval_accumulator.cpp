@@ -13,18 +13,18 @@ namespace cs = plugin::core_state;
 
 void InsIntervalAccumulator::add_epoch(const Epoch& epoch) {
   const double dt_s = epoch.dt_s;
-  const Eigen::Matrix3d& c_nb_mid = epoch.c_nb_mid;
+  const Eigen::Matrix3d& c_nb_mean = epoch.c_nb_mean;
   const double weight = duration_s_ + 0.5 * dt_s;  // u - t_prev at the epoch's midpoint
-  const Eigen::Vector3d f_n_dt = c_nb_mid * epoch.delta_v_b;
-  const Eigen::Matrix3d c_dt = c_nb_mid * dt_s;
-  const Eigen::Matrix3d gyro_scale_step = c_nb_mid * epoch.delta_theta_b.asDiagonal();
+  const Eigen::Vector3d& f_n_dt = epoch.delta_v_n;
+  const Eigen::Matrix3d c_dt = c_nb_mean * dt_s;
+  const Eigen::Matrix3d gyro_scale_step = c_nb_mean * epoch.delta_theta_b.asDiagonal();
   const Eigen::Matrix3d f_x = skew(f_n_dt);
   // The running integrals A at the epoch's midpoint.
   weighted_f_x_c_nb_.noalias() += weight * f_x * (c_nb_dt_ + 0.5 * c_dt);
   weighted_f_x_gyro_scale_.noalias() += weight * f_x * (gyro_scale_dt_ + 0.5 * gyro_scale_step);
   c_nb_dt_ += c_dt;
   gyro_scale_dt_ += gyro_scale_step;
-  weighted_accel_scale_.noalias() += weight * c_nb_mid * epoch.scale_factor_delta_v_b.asDiagonal();
+  weighted_accel_scale_.noalias() += weight * c_nb_mean * epoch.scale_factor_delta_v_b.asDiagonal();
   duration_s_ += dt_s;
   v_n_dt_ += 0.5 * dt_s * (epoch.v_start_n + epoch.v_end_n);
   const Eigen::Matrix3d f_image = skew(weighted_f_n_dt_ + (0.5 * weight) * f_n_dt);

@@ -230,14 +230,17 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   const Eigen::Vector3d v_start = ins_.state().v_n - oscillation_.velocity_n();
   ins_.update(compensated);
 
-  const Eigen::Matrix3d c_end = ins_.state().q_nb.toRotationMatrix();
-  const Eigen::Matrix3d c_mid = 0.5 * (c_nb_ + c_end);
-  c_nb_ = c_end;
+  // The epoch's mean attitude for the integrals of C_nb (the chord of the start and end attitudes
+  // is short across the spin axis: ins/strapdown.hpp), and the specific force the strapdown
+  // integrated, rotation- and sculling-compensated, in n.
+  const Eigen::Matrix3d c_mean = epoch_mean_attitude(c_nb_, compensated.delta_theta_b);
+  c_nb_ = ins_.state().q_nb.toRotationMatrix();
+  const Eigen::Vector3d& specific_force_dv_n = ins_.specific_force_increment_n();
   // The specific force the attitude error rotates (d dv/dt = [f_n x] phi + ...): the measured
   // one, or the reference trajectory's when the aids state the velocity.
   const Eigen::Vector3d coupling_delta_v_n =
-      reference_.active ? reference_specific_force_increment(dt, c_mid * compensated.delta_v_b)
-                        : Eigen::Vector3d(c_mid * compensated.delta_v_b);
+      reference_.active ? reference_specific_force_increment(dt, specific_force_dv_n)
+                        : specific_force_dv_n;
   // The tool's vibration, which the reference lacks: the velocity error inherits phi x its
   // change as well (filter/velocity_oscillation.hpp). The interval aids' mean-error maps keep
   // the reference's coupling alone: they measure the velocity less the oscillation, whose
@@ -250,32 +253,32 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   // the scale factors, hence the inclination, by -0.015 deg in the middle of the build).
   const bool smoothing = accel_scale_.offset >= 0 || !interval_aids_.empty() || reference_.active;
   const Eigen::Vector3d scale_factor_delta_v_b =
-      smoothing ? Eigen::Vector3d(c_mid.transpose() * smoothed_specific_force_n_ * dt)
+      smoothing ? Eigen::Vector3d(c_mean.transpose() * smoothed_specific_force_n_ * dt)
                 : Eigen::Vector3d::Zero();
   if (smoothing && dt > 0.0) {
     smoothed_specific_force_n_ +=
         (std::min(dt, kSpecificForceSmoothing_s) / kSpecificForceSmoothing_s) *
-        (c_mid * compensated.delta_v_b / dt - smoothed_specific_force_n_);
+        (specific_force_dv_n / dt - smoothed_specific_force_n_);
   }
   if (gyro_scale_.offset >= 0)
-    fast_.gyro_scale_dt += c_mid * compensated.delta_theta_b.asDiagonal();
+    fast_.gyro_scale_dt += c_mean * compensated.delta_theta_b.asDiagonal();
   const Eigen::Matrix3d accel_scale_dt =
-      accel_scale_.offset >= 0 ? Eigen::Matrix3d(c_mid * scale_factor_delta_v_b.asDiagonal())
+      accel_scale_.offset >= 0 ? Eigen::Matrix3d(c_mean * scale_factor_delta_v_b.asDiagonal())
                                : Eigen::Matrix3d::Zero();
-  fast_.add_velocity_inputs(dt, c_mid * dt, coupling_delta_v_n + oscillation_change,
+  fast_.add_velocity_inputs(dt, c_mean * dt, coupling_delta_v_n + oscillation_change,
                             accel_scale_dt);
   const Eigen::Matrix3d attitude_noise_before = attitude_noise_;
-  accumulate_noise(gyro_noise_, t_start, dt, c_mid, gyro_white_cache_, gyro_cached_dt_,
+  accumulate_noise(gyro_noise_, t_start, dt, c_mean, gyro_white_cache_, gyro_cached_dt_,
                    attitude_noise_);
   const Eigen::Matrix3d velocity_noise_before = velocity_noise_;
-  accumulate_noise(accel_noise_, t_start, dt, c_mid, accel_white_cache_, accel_cached_dt_,
+  accumulate_noise(accel_noise_, t_start, dt, c_mean, accel_white_cache_, accel_cached_dt_,
                    velocity_noise_);
   if (!interval_aids_.empty()) {
     const InsIntervalAccumulator::Epoch interval_epoch{
         .v_start_n = v_start,
         .v_end_n = ins_.state().v_n - oscillation_.velocity_n(),
-        .c_nb_mid = c_mid,
-        .delta_v_b = c_mid.transpose() * coupling_delta_v_n,
+        .c_nb_mean = c_mean,
+        .delta_v_n = coupling_delta_v_n,
         .scale_factor_delta_v_b = scale_factor_delta_v_b,
         .delta_theta_b = compensated.delta_theta_b,
         .velocity_noise = velocity_noise_ - velocity_noise_before,
@@ -659,7 +662,7 @@ void MwdNavigator::feed_back(const Eigen::VectorXd& correction) {
   CoreEstimate estimate{ins_.state(), accel_bias_b_, gyro_bias_b_};
   apply_core_correction(correction, estimate);
   oscillation_.shift(estimate.state.v_n - ins_.state().v_n);
-  ins_.set_state(estimate.state);
+  ins_.correct_state(estimate.state);
   c_nb_ = estimate.state.q_nb.toRotationMatrix();
   accel_bias_b_ = estimate.accel_bias_b;
   gyro_bias_b_ = estimate.gyro_bias_b;

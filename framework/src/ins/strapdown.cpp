@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "stochnav/ins/cross_product_matrix.hpp"
 #include "stochnav/ins/earth.hpp"
 
 namespace stochnav {
@@ -49,12 +50,38 @@ void StrapdownIntegrator::set_state(const NavState& state) {
   has_second_previous_ = false;
 }
 
+Eigen::Matrix3d epoch_mean_attitude(const Eigen::Matrix3d& c_nb_start,
+                                    const Eigen::Vector3d& delta_theta_b) {
+  const double angle_squared = delta_theta_b.squaredNorm();
+  double first;   // (1 - cos a) / a^2
+  double second;  // (a - sin a) / a^3
+  if (angle_squared < 1e-2) {  // series to a^4: relative error under 1e-9
+    first = 0.5 - angle_squared / 24.0 + angle_squared * angle_squared / 720.0;
+    second = 1.0 / 6.0 - angle_squared / 120.0 + angle_squared * angle_squared / 5040.0;
+  } else {
+    const double angle = std::sqrt(angle_squared);
+    first = (1.0 - std::cos(angle)) / angle_squared;
+    second = (angle - std::sin(angle)) / (angle_squared * angle);
+  }
+  const Eigen::Matrix3d a = skew(delta_theta_b);
+  return c_nb_start * (Eigen::Matrix3d::Identity() + first * a + second * (a * a));
+}
+
+void StrapdownIntegrator::correct_state(const NavState& state) {
+  previous_state_.latitude_rad += state.latitude_rad - state_.latitude_rad;
+  previous_state_.longitude_rad += state.longitude_rad - state_.longitude_rad;
+  previous_state_.height_m += state.height_m - state_.height_m;
+  state_ = state;
+  state_.q_nb.normalize();
+}
+
 void StrapdownIntegrator::update(const ImuIncrement& increment) {
   const double dt = increment.dt_s;
   const Eigen::Vector3d& dtheta = increment.delta_theta_b;
   const Eigen::Vector3d& dv = increment.delta_v_b;
   if (!(dt > 0.0)) {
     state_.t_s = increment.t_s;
+    specific_force_increment_n_.setZero();
     return;
   }
   const Eigen::Vector3d& dtheta_prev = has_previous_ ? previous_delta_theta_b_ : dtheta;
@@ -89,6 +116,7 @@ void StrapdownIntegrator::update(const ImuIncrement& increment) {
   const Eigen::Vector3d omega_en_old = transport_rate_n(trig_mid, mid.radii, h_mid, old.v_n);
   const Eigen::Vector3d dv_sf_n =
       dv_body_n - 0.5 * ((omega_ie_mid + omega_en_old) * dt).cross(dv_body_n);
+  specific_force_increment_n_ = dv_sf_n;
   // Coriolis and gravity with the trapezoid velocity of a predictor step: exact for a velocity
   // changing linearly, and never amplifying vibration aliased into the samples (an
   // extrapolation from k-1 and k-2 would double it at the Nyquist frequency).

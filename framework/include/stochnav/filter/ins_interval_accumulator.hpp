@@ -20,7 +20,7 @@
 // sigmas of 0.7-1.2 m). The gyro terms are the attitude's drift inside the interval seen
 // through the specific force (a 100-ppm gyro scale factor on the spin axis: about
 // g T^2 / 6 * 2 pi 1e-4 = 1e-3 m/s). Time-weighted integrals are taken at each
-// IMU epoch's midpoint.
+// IMU epoch's midpoint, the epoch's C_nb as its mean over the epoch.
 //
 // The white noise inside the interval makes the rest of the mean's error, with covariance
 //   (1/T^2) [ int (u - t_prev)^2 dQ_v(u) + int [W_f(u) x] dQ_phi(u) [W_f(u) x]^T ],
@@ -64,8 +64,8 @@ class InsIntervalAccumulator {
   struct Epoch {
     Eigen::Vector3d v_start_n;  ///< INS velocity at the epoch's start, ENU (m/s)
     Eigen::Vector3d v_end_n;    ///< and at its end
-    Eigen::Matrix3d c_nb_mid;   ///< attitude at the epoch's midpoint
-    Eigen::Vector3d delta_v_b;  ///< compensated velocity increment, body (m/s)
+    Eigen::Matrix3d c_nb_mean;  ///< mean attitude over the epoch (ins/strapdown.hpp)
+    Eigen::Vector3d delta_v_n;  ///< specific-force velocity increment, ENU (m/s)
     /// The increment of the specific force the scale factors multiply, free of this epoch's
     /// noise (MwdNavigator: a smoothed specific force): the measured increment would correlate
     /// the map with the noise of the measurement it weighs.
