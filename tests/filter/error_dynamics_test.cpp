@@ -23,7 +23,8 @@ TEST(PositionShapeCorrection, IsNilForInputsConstantOverTheInterval) {
   const Eigen::Vector3d f_n(0.4, -0.2, 9.8);
   FastInputIntegrals fast;
   for (int k = 0; k < kEpochs; ++k) {
-    fast.add_velocity_inputs(kDt, c_nb * kDt, f_n * kDt, 2.0 * c_nb * kDt);
+    fast.add_velocity_inputs(kDt, c_nb * kDt, f_n * kDt);
+    fast.add_accel_scale_input(kDt, 2.0 * c_nb * kDt);
   }
   EXPECT_NEAR(fast.interval_s, 1.0, 1e-12);
   EXPECT_TRUE(fast.f_n_dt.isApprox(f_n, 1e-12));
@@ -43,8 +44,7 @@ TEST(PositionShapeCorrection, GivesAPhaseLockedVibrationItsDoubleIntegral) {
   for (int k = 0; k < kEpochs; ++k) {
     const double t0 = k * kDt;
     const double increment = a / w * (std::cos(w * t0) - std::cos(w * (t0 + kDt)));  // m/s
-    fast.add_velocity_inputs(kDt, Eigen::Matrix3d::Identity() * kDt, increment * axis,
-                             Eigen::Matrix3d::Zero());
+    fast.add_velocity_inputs(kDt, Eigen::Matrix3d::Identity() * kDt, increment * axis);
   }
   EXPECT_LT(fast.f_n_dt.norm(), 1e-12);
   const Eigen::Matrix3d expected = skew(Eigen::Vector3d(a * 1.0 / w * axis));

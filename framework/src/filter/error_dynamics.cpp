@@ -14,17 +14,20 @@ namespace cs = plugin::core_state;
 
 }  // namespace
 
+// Over an epoch a single integral runs linearly from its value at the start: the double
+// integral gains dt times its mean over the epoch.
 void FastInputIntegrals::add_velocity_inputs(double dt_s, const Eigen::Matrix3d& c_nb_dt_epoch,
-                                             const Eigen::Vector3d& f_n_dt_epoch,
-                                             const Eigen::Matrix3d& accel_scale_dt_epoch) {
-  // Over an epoch the single integral runs linearly from its value at the start: the double
-  // integral gains dt times its mean over the epoch.
+                                             const Eigen::Vector3d& f_n_dt_epoch) {
   c_nb_dt2 += dt_s * (c_nb_dt + 0.5 * c_nb_dt_epoch);
   f_n_dt2 += dt_s * (f_n_dt + 0.5 * f_n_dt_epoch);
-  accel_scale_dt2 += dt_s * (accel_scale_dt + 0.5 * accel_scale_dt_epoch);
   interval_s += dt_s;
   c_nb_dt += c_nb_dt_epoch;
   f_n_dt += f_n_dt_epoch;
+}
+
+void FastInputIntegrals::add_accel_scale_input(double dt_s,
+                                               const Eigen::Matrix3d& accel_scale_dt_epoch) {
+  accel_scale_dt2 += dt_s * (accel_scale_dt + 0.5 * accel_scale_dt_epoch);
   accel_scale_dt += accel_scale_dt_epoch;
 }
 

@@ -262,11 +262,10 @@ void MwdNavigator::step(const ImuIncrement& raw) {
   }
   if (gyro_scale_.offset >= 0)
     fast_.gyro_scale_dt += c_mean * compensated.delta_theta_b.asDiagonal();
-  const Eigen::Matrix3d accel_scale_dt =
-      accel_scale_.offset >= 0 ? Eigen::Matrix3d(c_mean * scale_factor_delta_v_b.asDiagonal())
-                               : Eigen::Matrix3d::Zero();
-  fast_.add_velocity_inputs(dt, c_mean * dt, coupling_delta_v_n + oscillation_change,
-                            accel_scale_dt);
+  fast_.add_velocity_inputs(dt, c_mean * dt, coupling_delta_v_n + oscillation_change);
+  if (accel_scale_.offset >= 0) {
+    fast_.add_accel_scale_input(dt, c_mean * scale_factor_delta_v_b.asDiagonal());
+  }
   const Eigen::Matrix3d attitude_noise_before = attitude_noise_;
   accumulate_noise(gyro_noise_, t_start, dt, c_mean, gyro_white_cache_, gyro_cached_dt_,
                    attitude_noise_);

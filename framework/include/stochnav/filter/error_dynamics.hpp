@@ -47,10 +47,11 @@ struct FastInputIntegrals {
   Eigen::Matrix3d accel_scale_dt2 = Eigen::Matrix3d::Zero();  ///< of C_nb diag(f_ib_b) (m)
 
   /// Adds one epoch's increments (the integrals over the epoch of dt_s s) to both the single
-  /// and the double integrals, the integrands taken linear within the epoch.
+  /// and the double integrals, the integrands taken linear within the epoch, and dt_s to T.
   void add_velocity_inputs(double dt_s, const Eigen::Matrix3d& c_nb_dt_epoch,
-                           const Eigen::Vector3d& f_n_dt_epoch,
-                           const Eigen::Matrix3d& accel_scale_dt_epoch);
+                           const Eigen::Vector3d& f_n_dt_epoch);
+  /// The same for the accelerometer scale-factor input, when those states are estimated.
+  void add_accel_scale_input(double dt_s, const Eigen::Matrix3d& accel_scale_dt_epoch);
 };
 
 /// The position rows' correction to the second-order transition I + F T + (F T)^2 / 2 when the
