@@ -138,6 +138,33 @@ TEST(HeadingHypotheses, TheSplitStartHasTheStartsMeanAndCovariance) {
   }
 }
 
+// Below 10 deg of start sigma one filter is formed, unless the start's +-3 sigma headings cross
+// the east-west line with the tool axis above 60 deg of inclination: there the rotating
+// cross-axis gyros cannot tell psi from 180 deg - psi, and one linearised filter that starts on
+// the other side of the line from the truth settles near the mirror (docs/drilling-envelope.md,
+// section 7).
+TEST(HeadingHypotheses, AStartWithinReachOfTheEastWestMirrorFormsABank) {
+  struct Start {
+    double inclination_deg, azimuth_deg, sigma_deg;
+    bool bank;
+  };
+  for (const Start& c : {Start{82.0, 87.0, 7.0, true}, Start{82.0, 267.0, 7.0, true},
+                         Start{62.0, 110.0, 7.0, true}, Start{82.0, 60.0, 7.0, false},
+                         Start{82.0, 120.0, 7.0, false}, Start{55.0, 90.0, 7.0, false},
+                         Start{82.0, 90.0, 3.5, false}, Start{30.0, 0.0, 12.0, true}}) {
+    NavState site = testing::static_truth_state();
+    site.q_nb = quaternion_from_mwd({.inclination_rad = c.inclination_deg * kDeg,
+                                     .toolface_rad = 0.0,
+                                     .azimuth_rad = c.azimuth_deg * kDeg});
+    const FilterOptions options = uncertain_heading_start(c.sigma_deg * kDeg);
+    HeadingHypotheses bank(site, options, white_noise_plugins(site, 1),
+                           [&] { return white_noise_plugins(site, 1); });
+    EXPECT_EQ(bank.hypotheses() > 1, c.bank)
+        << "inclination " << c.inclination_deg << ", azimuth " << c.azimuth_deg << ", sigma "
+        << c.sigma_deg;
+  }
+}
+
 // A horizontal tool pointing east at 80 N, after a static alignment that measured the mean rate
 // C_bn w_ie + b exactly (noise-free): the coarse (TRIAD) attitude, part of the bias that attitude
 // implies, the heading sigma of a linearised fine alignment, the span's mean rate and the

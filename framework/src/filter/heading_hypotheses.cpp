@@ -15,8 +15,22 @@ namespace core = plugin::core_state;
 constexpr int kHeading = core::kAttitude + 2;  // phi_U
 // A bank is formed when the start's heading sigma exceeds this many hypothesis sigmas (10 deg
 // at the default 4): below it one first-order filter with the second-order attitude term is
-// consistent (docs/drilling-envelope.md, section 4: aligned starts of 5.7-7.9 deg at 60 N).
+// consistent (docs/drilling-envelope.md, section 4: aligned starts of 5.7-7.9 deg at 60 N),
+// unless the start's heading interval reaches the east-west mirror (below).
 constexpr double kSplitAbove = 2.5;
+// The east-west mirror. A rotating tool's cross-axis gyros measure the Earth rate across the
+// tool axis free of their biases: the lateral part omega_N sin(psi) and, on the high side,
+// a part in omega_N cos(psi) cos(I). The headings psi and 180 deg - psi give the same lateral
+// part; only the high side's cos(I) share and the along-hole gyro, one unknown with its bias,
+// tell them apart. Where the tool axis is near horizontal east-west, one linearised filter
+// that starts on the other side of the east-west line from the truth settles near the mirror
+// at a sigma the mirror's data support (120 rpm, 57 N, inclination 82, azimuth 87 turning to
+// 83: 94.4 deg estimated against a truth of 83.4, the mirror at 96.6; the heading sigma 0.3 deg;
+// docs/drilling-envelope.md, section 7). A bank reads the two sides through its weights, so it
+// is formed whenever the start is wider than one hypothesis, its +-3 sigma heading interval
+// crosses the east-west line, and the inclination is above 60 deg (|cos I|, the share of the
+// heading's information that is first order on that line, below this).
+constexpr double kMirrorShareBelow = 0.5;
 constexpr double kSpreadSigmas = 3.0;  // the grid covers +-3 start sigmas
 constexpr int kMaxHalfWidth = 7;       // at most 15 hypotheses
 constexpr double kDropBelow = 1e-5;    // of the total weight
@@ -151,6 +165,27 @@ std::vector<SplitStart> circle_split(const CoreEstimate& start,
   return starts;
 }
 
+// Whether the headings within +-reach_rad of the start's cross the east-west line at an
+// inclination that leaves the heading's first-order information there (|cos I| of it) below
+// kMirrorShareBelow.
+bool reaches_east_west_mirror(const Eigen::Quaterniond& q_nb, double reach_rad) {
+  const Eigen::Vector3d axis_n = q_nb * Eigen::Vector3d::UnitZ();  // ENU
+  const double azimuth = std::atan2(axis_n.x(), axis_n.y());
+  const double from_east_west =
+      std::abs(std::remainder(azimuth - 0.5 * std::numbers::pi, std::numbers::pi));
+  return from_east_west < reach_rad && std::abs(axis_n.z()) < kMirrorShareBelow;
+}
+
+// Whether a start needs the bank: wider than one first-order filter can hold, or wider than
+// one hypothesis and within reach of the east-west mirror.
+bool start_needs_bank(const NavState& initial, double start_variance, double sigma) {
+  if (!(sigma > 0.0)) return false;
+  if (start_variance > std::pow(kSplitAbove * sigma, 2)) return true;
+  const double start_sigma = std::sqrt(start_variance);
+  return start_sigma > sigma &&
+         reaches_east_west_mirror(initial.q_nb, kSpreadSigmas * start_sigma);
+}
+
 }  // namespace
 
 HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOptions& options,
@@ -159,9 +194,10 @@ HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOption
   const Eigen::Matrix<double, 15, 15> p0 = core_start_covariance(options);
   const double sigma = options.heading_hypothesis_sigma_rad;
   robust_weights_ = options.heading_hypotheses_robust_weights;
+  likelihood_power_ = options.heading_hypotheses_likelihood_power;
   const bool after_alignment = options.static_gyrocompass &&
                                (options.static_gyrocompass->bias_sigma_radps.array() > 0.0).all();
-  if (!(sigma > 0.0) || !(p0(kHeading, kHeading) > std::pow(kSplitAbove * sigma, 2))) {
+  if (!start_needs_bank(initial, p0(kHeading, kHeading), sigma)) {
     hypotheses_.push_back({std::move(first), nullptr, 0.0});
     hypotheses_.back().navigator = make_navigator(initial, options, hypotheses_.back().plugins);
     return;
@@ -226,7 +262,7 @@ void HeadingHypotheses::reweigh() {
   for (Hypothesis& hypothesis : hypotheses_) {
     for (const InnovationRecord& record : hypothesis.navigator->innovations()) {
       if (std::find(common.begin(), common.end(), record.aid_index) == common.end()) continue;
-      hypothesis.log_weight += log_likelihood(record, robust_weights_);
+      hypothesis.log_weight += likelihood_power_ * log_likelihood(record, robust_weights_);
     }
   }
 }
@@ -326,6 +362,20 @@ double HeadingHypotheses::weight(std::size_t i) const {
 
 const MwdNavigator& HeadingHypotheses::most_probable() const {
   return *hypotheses_[best_].navigator;
+}
+
+double HeadingHypotheses::heading_span_rad() const {
+  const MwdNavigator& best = most_probable();
+  const CoreEstimate reference{best.state(), best.accel_bias_b(), best.gyro_bias_b()};
+  double lowest = 0.0, highest = 0.0;
+  for (const Hypothesis& h : hypotheses_) {
+    const MwdNavigator& n = *h.navigator;
+    const double difference =
+        core_difference({n.state(), n.accel_bias_b(), n.gyro_bias_b()}, reference)(kHeading);
+    lowest = std::min(lowest, difference);
+    highest = std::max(highest, difference);
+  }
+  return highest - lowest;
 }
 
 }  // namespace stochnav

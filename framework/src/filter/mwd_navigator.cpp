@@ -148,8 +148,13 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
   accel_scale_.offset = block_offset(layout_, "accel_scale_factor");
   head_f_ = Eigen::MatrixXd::Zero(head_size_, head_size_);
   aid_intervals_.assign(aids_.size(), InsIntervalAccumulator{});
+  interval_shared_with_.assign(aids_.size(), -1);
   for (std::size_t index = 0; index < aids_.size(); ++index) {
-    if (aids_[index]->measures_interval_mean()) interval_aids_.push_back(index);
+    if (!aids_[index]->measures_interval_mean()) continue;
+    if (!interval_aids_.empty()) {
+      interval_shared_with_[index] = static_cast<int>(interval_aids_.front());
+    }
+    interval_aids_.push_back(index);
   }
   interval_layout_ = interval_map_layout();
   interval_map_ = Eigen::MatrixXd::Zero(3, interval_layout_.width);
@@ -284,7 +289,9 @@ void MwdNavigator::step(const ImuIncrement& raw) {
         .attitude_noise = attitude_noise_ - attitude_noise_before,
         .dt_s = dt,
         .oscillation_share = oscillation_.share()};
-    for (const std::size_t index : interval_aids_) aid_intervals_[index].add_epoch(interval_epoch);
+    for (const std::size_t index : interval_aids_) {
+      if (interval_shared_with_[index] < 0) aid_intervals_[index].add_epoch(interval_epoch);
+    }
   }
 
   bool measurement_due = false;
@@ -333,6 +340,36 @@ Eigen::Vector3d MwdNavigator::reference_specific_force_increment(
         weight * (measured_delta_v_n / dt_s - reference_.smoothed_specific_force_n);
   }
   return increment;
+}
+
+const InsIntervalAccumulator& MwdNavigator::aid_interval(std::size_t index) const {
+  const int shared = interval_shared_with_[index];
+  return aid_intervals_[shared < 0 ? index : static_cast<std::size_t>(shared)];
+}
+
+void MwdNavigator::restart_aid_interval(std::size_t index) {
+  const int restarted = static_cast<int>(index);
+  int heir = -1;
+  for (const std::size_t other : interval_aids_) {
+    if (interval_shared_with_[other] != restarted) continue;
+    if (heir < 0) {
+      heir = static_cast<int>(other);
+      aid_intervals_[other] = aid_intervals_[index];
+      interval_shared_with_[other] = -1;
+    } else {
+      interval_shared_with_[other] = heir;
+    }
+  }
+  aid_intervals_[index] = InsIntervalAccumulator{};
+  interval_shared_with_[index] = -1;
+  if (!aids_[index]->measures_interval_mean()) return;
+  for (const std::size_t other : interval_aids_) {
+    if (other != index && interval_shared_with_[other] < 0 &&
+        !(aid_intervals_[other].duration_s() > 0.0)) {
+      interval_shared_with_[index] = static_cast<int>(other);
+      return;
+    }
+  }
 }
 
 IntervalMapLayout MwdNavigator::interval_map_layout() const {
@@ -589,9 +626,9 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
   for (std::size_t index = 0; index < aids_.size(); ++index) {
     plugin::AidPlugin& aid = *aids_[index];
     if (!aid.has_measurement(t_s)) continue;
-    const InsIntervalAccumulator interval = aid_intervals_[index];  // empty unless an interval aid
+    const InsIntervalAccumulator interval = aid_interval(index);  // empty unless an interval aid
     imu.interval = interval.interval();
-    aid_intervals_[index] = InsIntervalAccumulator{};
+    restart_aid_interval(index);
     const int m = aid.measurement_size();
     residual_.resize(m);
     h_core_.resize(m, cs::kSize);

@@ -82,14 +82,14 @@ Eigen::Vector3d earth_rate_n(double latitude_rad) {
 }
 
 Eigen::Vector3d transport_rate_n(double latitude_rad, double height_m, const Eigen::Vector3d& v_n) {
-  return transport_from(earth_radii(latitude_rad), std::tan(latitude_rad), height_m, v_n);
+  return transport_rate_n(LatitudeTrig(latitude_rad), height_m, v_n);
 }
 
 LatitudeTrig::LatitudeTrig(double latitude)
     : latitude_rad(latitude),
       sin(std::sin(latitude)),
       cos(std::cos(latitude)),
-      tan(std::tan(latitude)) {}
+      tan(this->sin / this->cos) {}
 
 EarthRadii earth_radii(const LatitudeTrig& latitude) { return radii_from_sin(latitude.sin); }
 

@@ -26,9 +26,19 @@ std::optional<std::size_t> AidSchedule::row_at(double t_s) const {
     }
     return static_cast<std::size_t>(k);
   }
-  const auto it = std::lower_bound(rows_.begin(), rows_.end(), t_s - kEpochMatchTolerance_s);
-  if (it == rows_.end() || *it > t_s + kEpochMatchTolerance_s) return std::nullopt;
-  return static_cast<std::size_t>(it - rows_.begin());
+  // The first row not before t - tolerance: from the previous query's when t has not gone
+  // back, by a binary search otherwise; the same row either way.
+  const double earliest = t_s - kEpochMatchTolerance_s;
+  std::size_t row = std::min(next_row_, rows_.size());
+  if (row > 0 && !(rows_[row - 1] < earliest)) {
+    row = static_cast<std::size_t>(std::lower_bound(rows_.begin(), rows_.end(), earliest) -
+                                   rows_.begin());
+  } else {
+    while (row < rows_.size() && rows_[row] < earliest) ++row;
+  }
+  next_row_ = row;
+  if (row == rows_.size() || rows_[row] > t_s + kEpochMatchTolerance_s) return std::nullopt;
+  return row;
 }
 
 }  // namespace stochnav::plugin

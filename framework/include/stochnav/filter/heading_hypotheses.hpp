@@ -1,6 +1,8 @@
 #pragma once
 // A bank of navigation filters over the heading (a Gaussian sum), for a start that leaves the
-// heading uncertain by more than 10 deg: a static alignment at high latitude, where the
+// heading uncertain by more than 10 deg, or by more than one hypothesis' sigma within reach of
+// the east-west mirror (heading_hypotheses.cpp: a rotating tool's cross axes cannot tell psi
+// from 180 deg - psi): a static alignment at high latitude, where the
 // horizontal Earth rate is a fraction of the equator's (80 N: a sixth) and a FOG's turn-on bias
 // may be as large. The gyrocompass's heading is then far from Gaussian (seed 1 at 80 N: 120 deg
 // off while the linearised fine alignment said 18 +- 18), and one extended Kalman filter
@@ -30,10 +32,12 @@
 // cross axes give first-order information and each hypothesis estimates its heading.
 //
 // The weights. At every aid epoch each hypothesis' weight is multiplied by the likelihood of
-// its innovations (gated out or not; an aid counts only at epochs where every hypothesis
-// measured it, so that the weights compare like with like): a Student-t of 5 degrees of
-// freedom with scale S, robust to outliers, where an innovation every hypothesis gated out is
-// left out (FilterOptions::heading_hypotheses_robust_weights); N(z; 0, S) without. The
+// its innovations raised to a power (FilterOptions::heading_hypotheses_likelihood_power, 1/2:
+// successive innovations are not independent), gated out or not (an aid counts only at epochs
+// where every hypothesis measured it, so that the weights compare like with like): a
+// Student-t of 5 degrees of freedom with scale S, robust to outliers, where an innovation
+// every hypothesis gated out is left out (FilterOptions::heading_hypotheses_robust_weights);
+// N(z; 0, S) without. The
 // Gaussian reads an outlier's NIS at full weight, so that differences of a part in a thousand
 // in S between hypotheses become decisive: 362 gated-out ROP innovations in a vibration
 // episode at 8.37 Hz (NIS 154) collapsed a sliding well's bank at 74 N onto a heading 24 deg
@@ -43,9 +47,9 @@
 // The outputs are the mixture's: the mean (about the most probable hypothesis, as an error
 // state) and the covariance sum_i w_i (P_i + (x_i - x)(x_i - x)^T) of the 15 core states.
 // Innovations and health are the most probable hypothesis'. With one hypothesis (a start
-// whose heading sigma is below 2.5 s_c, or s_c = 0) every output is that filter's own. Each
-// hypothesis is a whole navigator: a bank that cannot single out a heading (sliding east-west
-// at 74 N: 21 hypotheses after 8 h) costs that many filters.
+// whose heading sigma is below 2.5 s_c and away from the mirror, or s_c = 0) every output is
+// that filter's own. Each hypothesis is a whole navigator: a bank that cannot single out a
+// heading (sliding east-west at 74 N: 21 hypotheses after 8 h) costs that many filters.
 
 #include <Eigen/Core>
 #include <functional>
@@ -96,6 +100,9 @@ class HeadingHypotheses final {
   double largest_weight() const;
   /// The most probable hypothesis' filter.
   const MwdNavigator& most_probable() const;
+  /// The span of the hypotheses' headings (rad): the largest less the smallest heading
+  /// difference from the most probable one; 0 with one hypothesis.
+  double heading_span_rad() const;
   /// Hypothesis i's filter and normalised weight (i < hypotheses()).
   const MwdNavigator& hypothesis(std::size_t i) const { return *hypotheses_.at(i).navigator; }
   double weight(std::size_t i) const;
@@ -112,6 +119,7 @@ class HeadingHypotheses final {
 
   std::vector<Hypothesis> hypotheses_;
   bool robust_weights_ = true;  // FilterOptions::heading_hypotheses_robust_weights
+  double likelihood_power_ = 0.5;  // FilterOptions::heading_hypotheses_likelihood_power
   std::size_t initial_count_ = 1;
   std::size_t best_ = 0;
   CoreEstimate mixture_;

@@ -144,6 +144,11 @@ class MwdNavigator final {
     Eigen::Vector3d estimate = Eigen::Vector3d::Zero();
   };
   IntervalMapLayout interval_map_layout() const;
+  // The interval aid `index` reads (its own or the one it shares), and its restart at the aid's
+  // measurement epoch: an aid sharing it inherits the sums, and the restarted one shares an
+  // interval that starts at the same epoch.
+  const InsIntervalAccumulator& aid_interval(std::size_t index) const;
+  void restart_aid_interval(std::size_t index);
   // The measurement matrix of an aid that sees the error state only through its interval's
   // mean (AidPlugin::measures_interval_mean): h_core extended to the states beyond the core.
   const Eigen::MatrixXd& widened_measurement_matrix(const InsIntervalAccumulator& interval);
@@ -193,6 +198,10 @@ class MwdNavigator final {
   Eigen::MatrixXd head_f_;                             // head_size_ x head_size_ scratch
   std::vector<InsIntervalAccumulator> aid_intervals_;  // per aid, since its previous epoch
   std::vector<std::size_t> interval_aids_;             // the aids that measure an interval mean
+  // Interval aids whose intervals started at the same epoch hold the same sums (the pipe tally
+  // and ROP, measuring every second): one of them accumulates, and the others read its sums.
+  // Per aid: -1 for its own accumulator, else the aid whose accumulator it reads.
+  std::vector<int> interval_shared_with_;
   IntervalMapLayout interval_layout_;
   Eigen::MatrixXd interval_map_;  // 3 x interval_layout_.width
 

@@ -52,8 +52,9 @@ Eigen::Vector3d earth_rate_n(double latitude_rad);
 Eigen::Vector3d transport_rate_n(double latitude_rad, double height_m, const Eigen::Vector3d& v_n);
 
 /// The sine, cosine and tangent of one geodetic latitude (rad), computed once where several of
-/// the terms above are evaluated at the same latitude (the strapdown update). The overloads
-/// below give bit for bit what the latitude_rad overloads give.
+/// the terms above are evaluated at the same latitude (the strapdown update); the tangent as
+/// sin / cos (within 2 ulp of std::tan, at a division's cost instead of a tan call's). The
+/// overloads below give bit for bit what the latitude_rad overloads give.
 struct LatitudeTrig {
   explicit LatitudeTrig(double latitude_rad);
   double latitude_rad;

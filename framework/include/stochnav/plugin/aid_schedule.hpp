@@ -21,13 +21,18 @@ class AidSchedule final {
 
   /// Whether t (s) is a measurement time.
   bool due(double t_s) const { return row_at(t_s).has_value(); }
-  /// For row schedules, the row at t; for periodic ones, k. nullopt when not due.
+  /// For row schedules, the row at t; for periodic ones, k. nullopt when not due. Any order
+  /// of t; ascending times (a run's epochs) cost O(1) each, other orders a binary search.
   std::optional<std::size_t> row_at(double t_s) const;
 
  private:
   double start_s_ = 0.0;
   double period_s_ = 0.0;
   std::span<const double> rows_;
+  // The first row at or after the previous query's time less the tolerance: where the next
+  // query of a run, one epoch later, starts its search. Not shared between threads: each
+  // plugin instance holds its own schedule.
+  mutable std::size_t next_row_ = 0;
 };
 
 }  // namespace stochnav::plugin

@@ -29,6 +29,7 @@
 #include "stochnav/ins/mwd_attitude.hpp"
 #include "stochnav/plugin/aid_schedule.hpp"
 #include "stochnav/plugin/runtime.hpp"
+#include "stochnav/plugin/state_layout.hpp"
 
 namespace stochnav {
 namespace {
@@ -186,15 +187,23 @@ void add_survey_qc(const std::vector<SurveyStation>& stations, NavigationRunResu
 // of the drilled length), and a heading in the prior's tail leaves the 3-sigma box in position
 // while the azimuth stays about inside (sliding east-west at 74 N: north 4.9 sigma, azimuth 3.1;
 // docs/drilling-envelope.md, section 4, fix 6). Not "optimistic", which says the covariance is
-// too small: unresolved, with a warning.
+// too small: unresolved, with a warning. Hypotheses whose headings all lie within 2 sigmas of
+// the most probable one's heading sigma (their span) make a one-peaked mixture, as two equal
+// Gaussians 2 sigmas apart do: resolved (a 160-rpm east-west well kept two hypotheses 0.08 deg
+// apart at a sigma of 0.2 deg, which merge only within 0.2 sigma; section 7).
 constexpr double kResolvedWeight = 0.9;
+constexpr double kResolvedSpanSigmas = 2.0;
 
 void add_heading_resolution(const HeadingHypotheses& bank, NavigationRunResult& result) {
   if (bank.initial_hypotheses() <= 1) return;
-  const bool resolved = bank.hypotheses() == 1 || bank.largest_weight() >= kResolvedWeight;
+  constexpr int kHeading = plugin::core_state::kAttitude + 2;
+  const double heading_sigma = std::sqrt(bank.most_probable().covariance()(kHeading, kHeading));
+  const bool resolved = bank.hypotheses() == 1 || bank.largest_weight() >= kResolvedWeight ||
+                        bank.heading_span_rad() <= kResolvedSpanSigmas * heading_sigma;
   result.self_check["heading"] = {{"resolved", resolved},
                                   {"hypotheses", bank.hypotheses()},
-                                  {"largest_weight", bank.largest_weight()}};
+                                  {"largest_weight", bank.largest_weight()},
+                                  {"span_deg", bank.heading_span_rad() * kDegPerRad}};
   if (resolved) return;
   result.warnings.push_back(fmt::format(
       "warning: the heading is not resolved: {} hypotheses remain, the most probable holds {:.0f} "
