@@ -37,12 +37,12 @@
 // where every hypothesis measured it, so that the weights compare like with like): a
 // Student-t of 5 degrees of freedom with scale S, robust to outliers, where an innovation
 // every hypothesis gated out is left out (FilterOptions::heading_hypotheses_robust_weights);
-// N(z; 0, S) without. The
-// Gaussian reads an outlier's NIS at full weight, so that differences of a part in a thousand
-// in S between hypotheses become decisive: 362 gated-out ROP innovations in a vibration
-// episode at 8.37 Hz (NIS 154) collapsed a sliding well's bank at 74 N onto a heading 24 deg
-// off. A hypothesis below 1e-5 of the total is dropped; two whose headings agree to a fifth of
-// a sigma merge (the weights add). Once one is left the bank is that filter.
+// N(z; 0, S) without. The Gaussian reads an outlier's NIS at full weight, so that differences
+// of a part in a thousand in S between hypotheses become decisive: 362 gated-out ROP
+// innovations in a vibration episode at 8.37 Hz (NIS 154) collapsed a sliding well's bank at
+// 74 N onto a heading 24 deg off. A hypothesis below 1e-5 of the total is dropped; two whose
+// headings agree to a fifth of a sigma merge (the weights add). Once one is left the bank is
+// that filter.
 //
 // The outputs are the mixture's: the mean (about the most probable hypothesis, as an error
 // state) and the covariance sum_i w_i (P_i + (x_i - x)(x_i - x)^T) of the 15 core states.
