@@ -251,9 +251,10 @@ TEST(DrillingEnvelope, FastRotaryEastWestIsInsideItsThreeSigma) {
       << "the full likelihood, seed 2";
 }
 
-// The ablation: one first-order filter on the same well is outside on azimuth and north. (A
-// bank over the heading, which forms there since the start reaches the east-west mirror, is
-// inside without the second-order term too; docs/drilling-envelope.md, section 7.)
+// The ablation: one first-order filter on the same well is outside on azimuth and north. (The
+// start reaches the east-west mirror, so the shipped run is a bank over the heading, which the
+// ablation turns off too: it isolates the second-order term; docs/drilling-envelope.md,
+// section 7.)
 TEST(DrillingEnvelope, EastWestRotaryFirstOrderOnlyLeavesItsThreeSigma) {
   if (!stochnav::testing::study_at_full_size()) {
     GTEST_SKIP() << "the 12-h ablation runs in the release suite only";
