@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "stochnav/ins/earth.hpp"
+#include "stochnav/ins/mwd_attitude.hpp"
 #include "stochnav/ins/strapdown.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 
@@ -169,11 +170,11 @@ std::vector<SplitStart> circle_split(const CoreEstimate& start,
 // inclination that leaves the heading's first-order information there (|cos I| of it) below
 // kMirrorShareBelow.
 bool reaches_east_west_mirror(const Eigen::Quaterniond& q_nb, double reach_rad) {
-  const Eigen::Vector3d axis_n = q_nb * Eigen::Vector3d::UnitZ();  // ENU
-  const double azimuth = std::atan2(axis_n.x(), axis_n.y());
-  const double from_east_west =
-      std::abs(std::remainder(azimuth - 0.5 * std::numbers::pi, std::numbers::pi));
-  return from_east_west < reach_rad && std::abs(axis_n.z()) < kMirrorShareBelow;
+  const MwdAttitude attitude = mwd_from_quaternion(q_nb);
+  const double from_east_west = std::abs(
+      std::remainder(attitude.azimuth_rad - 0.5 * std::numbers::pi, std::numbers::pi));
+  return from_east_west < reach_rad &&
+         std::abs(std::cos(attitude.inclination_rad)) < kMirrorShareBelow;
 }
 
 // Whether a start needs the bank: wider than one first-order filter can hold, or wider than
