@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <boost/math/distributions/chi_squared.hpp>
+#include <array>
+#include <memory>
 #include <numbers>
 
 #include "static_truth.hpp"
@@ -205,6 +207,80 @@ TEST(MwdNavigator, IntervalPropagationMatchesEveryEpochPropagationUnderAPhaseLoc
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(std::sqrt(covariances[0](i, i)) / std::sqrt(covariances[1](i, i)), 1.0, 0.01)
         << "position axis " << i;
+  }
+}
+
+// An interval aid (plugin::InsInterval) that measures every `period` epochs from `phase`,
+// records the interval it is given and makes no update, so that the navigator's state, and
+// with it every interval, is a function of the IMU record alone.
+class IntervalRecorder final : public plugin::AidPlugin {
+ public:
+  IntervalRecorder(int period, int phase)
+      : AidPlugin(plugin::NisGate{.enabled = false}), period_(period), phase_(phase) {}
+  std::string_view type() const override { return "interval_recorder"; }
+  int measurement_size() const override { return 1; }
+  bool has_measurement(double t_s) const override {
+    const auto epoch = static_cast<long>(std::lround(t_s * kRateHz));
+    return epoch >= phase_ && (epoch - phase_) % period_ == 0;
+  }
+  bool measure(double, const NavState&, const plugin::ImuSample& imu, Eigen::Ref<Eigen::VectorXd>,
+               Eigen::Ref<Eigen::MatrixXd>, Eigen::Ref<Eigen::MatrixXd>) const override {
+    intervals.push_back(imu.interval);
+    return false;
+  }
+  bool measures_interval_mean() const override { return true; }
+  std::string describe() const override { return "interval_recorder"; }
+
+  mutable std::vector<plugin::InsInterval> intervals;
+
+ private:
+  int period_, phase_;
+};
+
+// Interval aids whose intervals start at the same epoch share one accumulator; when one of them
+// measures alone, the next inherits the sums and the rest follow the heir
+// (MwdNavigator::restart_aid_interval). Four aids: every 4 epochs, twice every 8 (the one every
+// 4 measures alone with both as its followers), and every 7 from 3 (staggered against the
+// others: alone, in pairs, all four together). Each must see the interval it sees as the
+// navigator's only aid, to the last bit.
+TEST(MwdNavigator, SharedIntervalSumsAreEachAidsOwnUnderStaggeredEpochs) {
+  const NavState truth = testing::static_truth_state();
+  const StaticImuErrors errors{.gyro_arw = 0.2 * kDeg / 60.0, .accel_vrw = 0.05 / 60.0};
+  const std::array<std::pair<int, int>, 4> schedules{{{4, 0}, {8, 0}, {8, 0}, {7, 3}}};
+  constexpr int kEpochs = 2000;
+  // The covariance at every epoch and no second-order attitude feedback: otherwise the epochs
+  // at which P is propagated, which follow the aids' epochs, move the state by the last bits.
+  FilterOptions options;
+  options.covariance_interval_s = 0.0;
+  options.second_order_attitude_correlation_s = 0.0;
+  const auto run = [&](std::vector<IntervalRecorder*> aids) {
+    StaticImu imu(truth, errors, kRateHz, 11);
+    TestWhiteNoise gyro(plugin::SensorGroup::kGyro, errors.gyro_arw);
+    TestWhiteNoise accel(plugin::SensorGroup::kAccel, errors.accel_vrw);
+    std::vector<plugin::AidPlugin*> plugins(aids.begin(), aids.end());
+    MwdNavigator navigator(truth, gyro, accel, plugins, options);
+    for (int k = 0; k < kEpochs; ++k) navigator.step(imu.next());
+  };
+  std::vector<std::unique_ptr<IntervalRecorder>> together, alone;
+  for (const auto& [period, phase] : schedules) {
+    together.push_back(std::make_unique<IntervalRecorder>(period, phase));
+    alone.push_back(std::make_unique<IntervalRecorder>(period, phase));
+  }
+  run({together[0].get(), together[1].get(), together[2].get(), together[3].get()});
+  for (const auto& aid : alone) run({aid.get()});
+  for (std::size_t a = 0; a < schedules.size(); ++a) {
+    const auto& shared = together[a]->intervals;
+    const auto& own = alone[a]->intervals;
+    ASSERT_EQ(shared.size(), own.size()) << "aid " << a;
+    ASSERT_GT(shared.size(), 100u) << "aid " << a;
+    for (std::size_t i = 0; i < shared.size(); ++i) {
+      SCOPED_TRACE("aid " + std::to_string(a) + ", measurement " + std::to_string(i));
+      EXPECT_GT(own[i].duration_s, 0.0);
+      EXPECT_EQ(shared[i].duration_s, own[i].duration_s);
+      EXPECT_EQ(shared[i].mean_v_n, own[i].mean_v_n);
+      EXPECT_EQ(shared[i].mean_velocity_error_map, own[i].mean_velocity_error_map);
+      EXPECT_EQ(shared[i].mean_velocity_noise_covariance, own[i].mean_velocity_noise_covariance);
+    }
   }
 }
 
