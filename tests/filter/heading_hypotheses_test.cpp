@@ -366,5 +366,59 @@ TEST(HeadingHypotheses, AnOutlierBurstEveryHypothesisGatesOutDoesNotMoveTheWeigh
             0.02);
 }
 
+// The consider rule is the bank's (FilterOptions::heading_hypotheses_hold_together): every
+// hypothesis holds its heading while those near horizontal east-west carry at least half the
+// weight, and estimates it otherwise. A horizontal hole pointing east at 80 N after an
+// alignment: with a gyro-bias prior of 0.3 deg/h most of the weight lies near east-west, and
+// every hypothesis holds its heading, those whose own attitude would estimate it too; with 1.3
+// deg/h the weight spreads around the circle, and every hypothesis estimates its heading.
+// Decided by each hypothesis' own attitude (the ablation), some hold and some estimate, and the
+// weights compare held filters with estimated ones (docs/drilling-envelope.md, section 7).
+TEST(HeadingHypotheses, TheBankHoldsEveryHypothesisHeadingAlike) {
+  for (const double prior_deg_h : {0.3, 1.3}) {
+    for (const bool together : {true, false}) {
+      SCOPED_TRACE(std::to_string(prior_deg_h) + " deg/h, " +
+                   (together ? "held together" : "each by its own attitude"));
+      const double bias = prior_deg_h * kDeg / 3600.0;
+      const Eigen::Vector3d gyro_bias(0.2 * bias, -0.2 * bias, bias);
+      AlignedAt80N start = aligned_at_80n(gyro_bias, bias);
+      start.options.heading_hypotheses_hold_together = together;
+      const auto plugins = [&] {
+        return NavigatorPlugins{
+            std::make_shared<TestWhiteNoise>(plugin::SensorGroup::kGyro, 0.01 * kDeg / 60.0),
+            std::make_shared<TestWhiteNoise>(plugin::SensorGroup::kAccel, 0.01 / 60.0),
+            {std::make_shared<FaultyStaticAid>(start.truth, Fault::kNone)}};
+      };
+      HeadingHypotheses bank(start.aligned, start.options, plugins(), plugins);
+      StaticImu imu(start.truth, {.gyro_arw = 0.01 * kDeg / 60.0, .accel_vrw = 0.01 / 60.0,
+                                  .gyro_bias = gyro_bias},
+                    100.0, 5);
+      for (int k = 0; k < 500; ++k) bank.step(imu.next());  // aid epochs at 1, 2, ..., 5 s
+      ASSERT_GE(bank.hypotheses(), 5u);
+      double weight_near_east_west = 0.0;
+      std::size_t held = 0;
+      for (std::size_t i = 0; i < bank.hypotheses(); ++i) {
+        const MwdNavigator& hypothesis = bank.hypothesis(i);
+        if (heading_information_is_second_order(hypothesis.state().q_nb)) {
+          weight_near_east_west += bank.weight(i);
+        }
+        held += hypothesis.heading_held();
+      }
+      const bool most_near_east_west = prior_deg_h < 1.0;
+      if (most_near_east_west) {
+        EXPECT_GT(weight_near_east_west, 0.6);
+      } else {
+        EXPECT_LT(weight_near_east_west, 0.4);
+      }
+      if (together) {
+        EXPECT_EQ(held, most_near_east_west ? bank.hypotheses() : 0u);
+      } else {
+        EXPECT_GT(held, 0u);
+        EXPECT_LT(held, bank.hypotheses());
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace stochnav

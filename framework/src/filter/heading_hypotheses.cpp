@@ -195,6 +195,7 @@ HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOption
   const Eigen::Matrix<double, 15, 15> p0 = core_start_covariance(options);
   const double sigma = options.heading_hypothesis_sigma_rad;
   robust_weights_ = options.heading_hypotheses_robust_weights;
+  hold_together_ = options.heading_hypotheses_hold_together;
   likelihood_power_ = options.heading_hypotheses_likelihood_power;
   const bool after_alignment = options.static_gyrocompass &&
                                (options.static_gyrocompass->bias_sigma_radps.array() > 0.0).all();
@@ -229,11 +230,35 @@ HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOption
 }
 
 void HeadingHypotheses::step(const ImuIncrement& raw) {
+  hold_headings();
   for (Hypothesis& hypothesis : hypotheses_) hypothesis.navigator->step(raw);
   if (hypotheses_.size() == 1) return;
   reweigh();
   prune_and_merge();
   update_mixture();
+}
+
+// The consider rule of FilterOptions::heading_considered, decided for the whole bank: every
+// hypothesis holds its heading when those whose own attitude would hold it carry at least half
+// the weight. Decided per hypothesis, the filters near east-west (heading held, its variance
+// growing) and their neighbours (heading estimated, its variance shrinking on what the aids
+// seem to say of it) were weighed by innovations whose S differed by that treatment alone: at
+// 74 N, sliding east-west, the held cells nearest the truth lost to estimated ones 20-40 deg
+// off by about a factor of 2 every half hour (docs/drilling-envelope.md, section 8).
+void HeadingHypotheses::hold_headings() {
+  if (!hold_together_ || hypotheses_.size() < 2) {
+    for (Hypothesis& hypothesis : hypotheses_) hypothesis.navigator->hold_heading(std::nullopt);
+    return;
+  }
+  double held = 0.0, total = 0.0;
+  for (const Hypothesis& hypothesis : hypotheses_) {
+    const double weight = std::exp(hypothesis.log_weight);
+    total += weight;
+    if (heading_information_is_second_order(hypothesis.navigator->state().q_nb)) held += weight;
+  }
+  for (Hypothesis& hypothesis : hypotheses_) {
+    hypothesis.navigator->hold_heading(held >= 0.5 * total);
+  }
 }
 
 void HeadingHypotheses::reweigh() {

@@ -93,6 +93,10 @@ constexpr double kHeadingFirstOrderShareFloor = 0.14;
 
 }  // namespace
 
+bool heading_information_is_second_order(const Eigen::Quaterniond& q_nb) {
+  return heading_first_order_share(q_nb) < kHeadingFirstOrderShareFloor;
+}
+
 MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gyro_noise,
                            plugin::NoiseModelPlugin& accel_noise,
                            std::vector<plugin::AidPlugin*> aids, const FilterOptions& options)
@@ -604,10 +608,12 @@ void MwdNavigator::update_augmented_transition(AugmentedGroup& group, double int
   group.noise.assign(group.blocks, group.q_d);
 }
 
+bool MwdNavigator::heading_held() const { return filter_.considered(kHeadingState); }
+
 void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
                               const Eigen::Vector3d& f_ib_b) {
   if (options_.heading_considered) {
-    if (heading_first_order_share(ins_.state().q_nb) < kHeadingFirstOrderShareFloor) {
+    if (heading_held_.value_or(heading_information_is_second_order(ins_.state().q_nb))) {
       filter_.consider(kHeadingState);
     } else {
       filter_.release(kHeadingState);

@@ -22,6 +22,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -132,6 +133,10 @@ class ErrorStateFilter final {
   void consider(Eigen::Index index);
   /// Makes a consider state an estimated one again (no-op for an estimated state).
   void release(Eigen::Index index) { std::erase(considered_, index); }
+  /// Whether state `index` is a consider state.
+  bool considered(Eigen::Index index) const {
+    return std::find(considered_.begin(), considered_.end(), index) != considered_.end();
+  }
 
   /// S = H P H^T + R of the last update attempt (m x m) and its gain K (n x m; zero if
   /// rejected): for innovation records and adaptive noise models.

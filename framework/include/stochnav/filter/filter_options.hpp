@@ -140,6 +140,13 @@ struct FilterOptions {
   /// discarded the first-order information of a vertical start at 80 N (azimuth sigma 6.5 deg
   /// instead of 0.15, north 5 sigma off; docs/drilling-envelope.md, section 4, fix 5).
   bool heading_hypotheses_consider_heading = true;
+  /// Whether the bank decides the consider rule above for all its hypotheses alike (run config
+  /// "filter/heading_hypothesis_hold_together"): the heading is held in every hypothesis while
+  /// those near horizontal east-west carry at least half the weight, else estimated in every
+  /// one. false, the ablation: each hypothesis decides by its own attitude, and held and
+  /// estimated neighbours are weighed by innovations whose S differ by that alone
+  /// (docs/drilling-envelope.md, section 8).
+  bool heading_hypotheses_hold_together = true;
   /// Whether the bank's weights are robust to aid outliers (run config "filter/heading_
   /// hypothesis_robust_weights"): an innovation gated out by every hypothesis does not weigh
   /// them (the aid, not a heading, failed there), and each one that does counts by a Student-t

@@ -113,12 +113,14 @@ class HeadingHypotheses final {
     std::unique_ptr<MwdNavigator> navigator;
     double log_weight = 0.0;
   };
+  void hold_headings();
   void reweigh();
   void prune_and_merge();
   void update_mixture();
 
   std::vector<Hypothesis> hypotheses_;
   bool robust_weights_ = true;  // FilterOptions::heading_hypotheses_robust_weights
+  bool hold_together_ = true;   // FilterOptions::heading_hypotheses_hold_together
   double likelihood_power_ = 0.5;  // FilterOptions::heading_hypotheses_likelihood_power
   std::size_t initial_count_ = 1;
   std::size_t best_ = 0;

@@ -33,6 +33,7 @@
 // Lifetime: the navigator keeps references to the plugins; they must outlive it.
 
 #include <Eigen/Core>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -64,6 +65,11 @@ struct InnovationRecord {
   double innovation[kMaxSize] = {};        ///< z (aid units)
   double innovation_sigma[kMaxSize] = {};  ///< sqrt(diag S)
 };
+
+/// Whether the heading's bias-free information at attitude q_nb is second order: the tool axis
+/// within about 8 deg of horizontal east-west, where FilterOptions::heading_considered holds
+/// the heading as a consider state (mwd_navigator.cpp, heading_first_order_share).
+bool heading_information_is_second_order(const Eigen::Quaterniond& q_nb);
 
 class MwdNavigator final {
  public:
@@ -120,6 +126,14 @@ class MwdNavigator final {
   const FilterHealth& health() const { return filter_.health(); }
   /// The update attempts of the last step.
   std::span<const InnovationRecord> innovations() const { return innovations_; }
+  /// With FilterOptions::heading_considered: whether the heading is a consider state from the
+  /// next step on, decided by the caller instead of by this navigator's own attitude. A bank
+  /// over the heading decides for all its hypotheses alike (HeadingHypotheses), so that its
+  /// weights compare innovations of filters that treat the heading the same way.
+  /// std::nullopt: this navigator's attitude decides again.
+  void hold_heading(std::optional<bool> held) { heading_held_ = held; }
+  /// Whether the heading was a consider state at the last aid epoch.
+  bool heading_held() const;
 
  private:
   struct AugmentedGroup {
@@ -184,6 +198,7 @@ class MwdNavigator final {
   plugin::NoiseModelPlugin& accel_noise_;
   std::vector<plugin::AidPlugin*> aids_;
   std::vector<int> consecutive_rejections_;  ///< per aid, for FilterOptions' lockout rule
+  std::optional<bool> heading_held_;         ///< hold_heading(); unset: this attitude's rule
   FilterOptions options_;
   plugin::StateLayout layout_;
   StrapdownIntegrator ins_;
