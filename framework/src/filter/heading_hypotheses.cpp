@@ -244,7 +244,7 @@ void HeadingHypotheses::step(const ImuIncrement& raw) {
 // growing) and their neighbours (heading estimated, its variance shrinking on what the aids
 // seem to say of it) were weighed by innovations whose S differed by that treatment alone: at
 // 74 N, sliding east-west, the held cells nearest the truth lost to estimated ones 20-40 deg
-// off by about a factor of 2 every half hour (docs/drilling-envelope.md, section 8).
+// off by about a factor of 2 every half hour (docs/drilling-envelope.md, section 7).
 void HeadingHypotheses::hold_headings() {
   if (!hold_together_ || hypotheses_.size() < 2) {
     for (Hypothesis& hypothesis : hypotheses_) hypothesis.navigator->hold_heading(std::nullopt);

@@ -145,7 +145,7 @@ struct FilterOptions {
   /// those near horizontal east-west carry at least half the weight, else estimated in every
   /// one. false, the ablation: each hypothesis decides by its own attitude, and held and
   /// estimated neighbours are weighed by innovations whose S differ by that alone
-  /// (docs/drilling-envelope.md, section 8).
+  /// (docs/drilling-envelope.md, section 7).
   bool heading_hypotheses_hold_together = true;
   /// Whether the bank's weights are robust to aid outliers (run config "filter/heading_
   /// hypothesis_robust_weights"): an innovation gated out by every hypothesis does not weigh

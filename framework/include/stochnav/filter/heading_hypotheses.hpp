@@ -29,7 +29,12 @@
 // unknown); a first-order filter a few degrees from the truth read it as first order and ended
 // 2.2 deg off with a sigma of 0.8 (80 N, seed 3); with consider headings the weights read it
 // over the whole bank, and the heading's resolution is the cell. In any other direction the
-// cross axes give first-order information and each hypothesis estimates its heading.
+// cross axes give first-order information and the heading is estimated. The bank decides for
+// all its hypotheses alike (FilterOptions::heading_hypotheses_hold_together): every one holds
+// its heading while those near east-west carry at least half the weight, and every one
+// estimates it otherwise. Decided per hypothesis, held cells (their heading variance growing)
+// and estimated neighbours (theirs shrinking) were weighed by innovations whose S differed by
+// that treatment alone, and the held cells nearest the truth lost.
 //
 // The weights. At every aid epoch each hypothesis' weight is multiplied by the likelihood of
 // its innovations raised to a power (FilterOptions::heading_hypotheses_likelihood_power, 1/2:
