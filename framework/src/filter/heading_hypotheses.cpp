@@ -230,7 +230,6 @@ HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOption
 }
 
 void HeadingHypotheses::step(const ImuIncrement& raw) {
-  hold_headings();
   for (Hypothesis& hypothesis : hypotheses_) hypothesis.navigator->step(raw);
   if (hypotheses_.size() == 1) return;
   reweigh();
@@ -238,23 +237,21 @@ void HeadingHypotheses::step(const ImuIncrement& raw) {
   update_mixture();
 }
 
-// The consider rule of FilterOptions::heading_considered, decided for the whole bank: every
-// hypothesis holds its heading when those whose own attitude would hold it carry at least half
-// the weight. Decided per hypothesis, the filters near east-west (heading held, its variance
-// growing) and their neighbours (heading estimated, its variance shrinking on what the aids
-// seem to say of it) were weighed by innovations whose S differed by that treatment alone: at
-// 74 N, sliding east-west, the held cells nearest the truth lost to estimated ones 20-40 deg
-// off by about a factor of 2 every half hour (docs/drilling-envelope.md, section 7).
-void HeadingHypotheses::hold_headings() {
-  if (!hold_together_ || hypotheses_.size() < 2) {
-    for (Hypothesis& hypothesis : hypotheses_) hypothesis.navigator->hold_heading(std::nullopt);
-    return;
-  }
-  double held = 0.0, total = 0.0;
-  for (const Hypothesis& hypothesis : hypotheses_) {
-    const double weight = std::exp(hypothesis.log_weight);
-    total += weight;
-    if (heading_information_is_second_order(hypothesis.navigator->state().q_nb)) held += weight;
+// The consider rule of FilterOptions::heading_considered, decided for the whole bank from the
+// weights (unnormalised, their sum `total`): every hypothesis holds its heading when those
+// whose own attitude would hold it carry at least half the weight. Decided per hypothesis, the
+// filters near east-west (heading held, its variance growing) and their neighbours (heading
+// estimated, its variance shrinking on what the aids seem to say of it) were weighed by
+// innovations whose S differed by that treatment alone: at 74 N, sliding east-west, the held
+// cells nearest the truth lost to estimated ones 20-40 deg off by about a factor of 2 every
+// half hour (docs/drilling-envelope.md, section 7).
+void HeadingHypotheses::hold_headings(const std::vector<double>& weights, double total) {
+  if (!hold_together_) return;
+  double held = 0.0;
+  for (std::size_t i = 0; i < hypotheses_.size(); ++i) {
+    if (heading_information_is_second_order(hypotheses_[i].navigator->state().q_nb)) {
+      held += weights[i];
+    }
   }
   for (Hypothesis& hypothesis : hypotheses_) {
     hypothesis.navigator->hold_heading(held >= 0.5 * total);
@@ -329,12 +326,17 @@ void HeadingHypotheses::prune_and_merge() {
 }
 
 void HeadingHypotheses::update_mixture() {
-  if (hypotheses_.size() == 1) return;
+  if (hypotheses_.size() == 1) {
+    // The bank is one filter now: its own attitude decides its consider rule again.
+    hypotheses_.front().navigator->hold_heading(std::nullopt);
+    return;
+  }
   const MwdNavigator& best = *hypotheses_[best_].navigator;
   mixture_ = {best.state(), best.accel_bias_b(), best.gyro_bias_b()};
   std::vector<double> weights;
   double total = 0.0;
   for (const Hypothesis& h : hypotheses_) total += weights.emplace_back(std::exp(h.log_weight));
+  hold_headings(weights, total);  // for the next step's aid epochs
   std::vector<Eigen::Matrix<double, 15, 1>> differences;
   Eigen::Matrix<double, 15, 1> mean = Eigen::Matrix<double, 15, 1>::Zero();
   for (std::size_t i = 0; i < hypotheses_.size(); ++i) {

@@ -118,7 +118,7 @@ class HeadingHypotheses final {
     std::unique_ptr<MwdNavigator> navigator;
     double log_weight = 0.0;
   };
-  void hold_headings();
+  void hold_headings(const std::vector<double>& weights, double total);
   void reweigh();
   void prune_and_merge();
   void update_mixture();
