@@ -129,6 +129,13 @@ TEST(HeadingHypotheses, TheSplitStartHasTheStartsMeanAndCovariance) {
       EXPECT_NEAR(p(i, i) / p0(i, i), 1.0, 1e-9) << "state " << i << ", " << sigma_deg;
     }
     EXPECT_LT(bank.state().q_nb.angularDistance(site.q_nb), 1e-9) << sigma_deg;
+    // The weight near the most probable (middle) one: itself alone within 1 deg, with its two
+    // neighbours (8 deg away) within 9 deg, all within 90 deg.
+    EXPECT_NEAR(bank.weight_within_rad(1.0 * kDeg), bank.largest_weight(), 1e-12) << sigma_deg;
+    EXPECT_NEAR(bank.weight_within_rad(9.0 * kDeg),
+                bank.largest_weight() + bank.weight(1) + bank.weight(2), 1e-12)
+        << sigma_deg;
+    EXPECT_NEAR(bank.weight_within_rad(90.0 * kDeg), 1.0, 1e-12) << sigma_deg;
     // The middle hypothesis' prior weight: about the grid spacing times the density of the
     // remaining spread, N(0, sigma^2 - 4^2), at zero.
     const double spread_deg = std::sqrt(sigma_deg * sigma_deg - 16.0);
@@ -139,10 +146,10 @@ TEST(HeadingHypotheses, TheSplitStartHasTheStartsMeanAndCovariance) {
 }
 
 // Below 10 deg of start sigma one filter is formed, unless the start's +-3 sigma headings cross
-// the east-west line with the tool axis above 60 deg of inclination: there the rotating
-// cross-axis gyros cannot tell psi from 180 deg - psi, and one linearised filter that starts on
-// the other side of the line from the truth settles near the mirror (docs/drilling-envelope.md,
-// section 7).
+// the east-west line with the tool axis above 60 deg of inclination (at any start sigma above a
+// quarter of a degree): there the rotating cross-axis gyros cannot tell psi from 180 deg - psi,
+// and one linearised filter that starts on the other side of the line from the truth settles
+// near the mirror (docs/drilling-envelope.md, section 7).
 TEST(HeadingHypotheses, AStartWithinReachOfTheEastWestMirrorFormsABank) {
   struct Start {
     double inclination_deg, azimuth_deg, sigma_deg;
@@ -151,7 +158,9 @@ TEST(HeadingHypotheses, AStartWithinReachOfTheEastWestMirrorFormsABank) {
   for (const Start& c : {Start{82.0, 87.0, 7.0, true}, Start{82.0, 267.0, 7.0, true},
                          Start{62.0, 110.0, 7.0, true}, Start{82.0, 60.0, 7.0, false},
                          Start{82.0, 120.0, 7.0, false}, Start{55.0, 90.0, 7.0, false},
-                         Start{82.0, 90.0, 3.5, false}, Start{30.0, 0.0, 12.0, true}}) {
+                         Start{82.0, 90.0, 3.5, true}, Start{82.0, 94.0, 1.5, true},
+                         Start{82.0, 90.0, 0.2, false}, Start{82.0, 99.0, 2.5, false},
+                         Start{30.0, 0.0, 12.0, true}}) {
     NavState site = testing::static_truth_state();
     site.q_nb = quaternion_from_mwd({.inclination_rad = c.inclination_deg * kDeg,
                                      .toolface_rad = 0.0,
@@ -163,6 +172,62 @@ TEST(HeadingHypotheses, AStartWithinReachOfTheEastWestMirrorFormsABank) {
         << "inclination " << c.inclination_deg << ", azimuth " << c.azimuth_deg << ", sigma "
         << c.sigma_deg;
   }
+}
+
+// A running filter is checked at every epoch as a start is
+// (FilterOptions::heading_hypotheses_split_running): a tool horizontal near east-west, started
+// one plain filter at a heading sigma of 0.2 deg (below the mirror's quarter of a degree) whose
+// heading uncertainty then grows (no aid; a gyro bias prior of 200 deg/h), becomes a bank of
+// hypotheses 1.5 times narrower once its +-3 sigma headings reach the east-west line, 5 deg
+// away (sigma 5/3 deg); the bank is that filter's distribution (the mixture's mean and
+// covariance); without the rule it stays one filter.
+TEST(HeadingHypotheses, ARunningFilterWhoseHeadingComesToNeedTheBankSplits) {
+  NavState site = testing::static_truth_state();
+  site.q_nb = quaternion_from_mwd(
+      {.inclination_rad = 88.0 * kDeg, .toolface_rad = 0.0, .azimuth_rad = 85.0 * kDeg});
+  FilterOptions options = uncertain_heading_start(0.2 * kDeg);
+  const double bias_sigma = 200.0 * kDeg / 3600.0;
+  options.gyro_bias_sigma_radps.setConstant(bias_sigma);
+  options.initial_core_covariance->diagonal().segment<3>(plugin::core_state::kGyroBias)
+      .setConstant(bias_sigma * bias_sigma);
+  (*options.initial_core_covariance)(kHeading, kGyroBiasX) =
+      (*options.initial_core_covariance)(kGyroBiasX, kHeading) = 0.0;
+  const auto plugins = [] {
+    return NavigatorPlugins{
+        std::make_shared<TestWhiteNoise>(plugin::SensorGroup::kGyro, 0.01 * kDeg / 60.0),
+        std::make_shared<TestWhiteNoise>(plugin::SensorGroup::kAccel, 0.01 / 60.0),
+        {}};
+  };
+  HeadingHypotheses bank(site, options, plugins(), plugins);
+  FilterOptions one_filter = options;
+  one_filter.heading_hypotheses_split_running = false;
+  HeadingHypotheses plain(site, one_filter, plugins(), plugins);
+  ASSERT_EQ(bank.hypotheses(), 1u);
+  StaticImu imu(site, {.gyro_arw = 0.01 * kDeg / 60.0, .accel_vrw = 0.01 / 60.0}, 100.0, 9);
+  int epochs = 0;
+  for (; epochs < 20000 && bank.splits() == 0; ++epochs) {
+    const ImuIncrement increment = imu.next();
+    bank.step(increment);
+    plain.step(increment);
+  }
+  ASSERT_EQ(bank.splits(), 1u) << "after " << epochs << " epochs";
+  const Eigen::MatrixXd p = plain.covariance().topLeftCorner<15, 15>();
+  EXPECT_NEAR(std::sqrt(p(kHeading, kHeading)), 5.0 / 3.0 * kDeg, 0.01 * kDeg);
+  // +-3 sigma on a grid 2 sigma / 1.5 apart: seven hypotheses, the outer two below 1e-5 of the
+  // middle one's prior weight; the mixture is the filter's distribution (the grid's
+  // truncation loses a few % of the heading's variance).
+  EXPECT_EQ(bank.hypotheses(), 5u);
+  const Eigen::MatrixXd& mixture = bank.covariance();
+  ASSERT_EQ(mixture.rows(), 15);
+  EXPECT_NEAR(mixture(kHeading, kHeading) / p(kHeading, kHeading), 1.0, 0.05);
+  for (int i = 0; i < 15; ++i) {
+    if (i == kHeading) continue;
+    EXPECT_NEAR(mixture(i, i) / p(i, i), 1.0, 0.05) << "state " << i;
+  }
+  EXPECT_LT(bank.state().q_nb.angularDistance(plain.state().q_nb), 1e-9);
+  for (int k = 0; k < 1000; ++k) plain.step(imu.next());
+  EXPECT_EQ(plain.hypotheses(), 1u);
+  EXPECT_EQ(plain.splits(), 0u);
 }
 
 // A horizontal tool pointing east at 80 N, after a static alignment that measured the mean rate
@@ -307,18 +372,13 @@ class FaultyStaticAid final : public plugin::AidPlugin {
   bool measure(double t_s, const NavState& state, const plugin::ImuSample&,
                Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::MatrixXd> h,
                Eigen::Ref<Eigen::MatrixXd> r) const override {
-    testing::static_measurement(site_, state, kPositionSigma, kVelocitySigma, z, h, r);
-    std::mt19937_64 engine(static_cast<std::uint64_t>(std::llround(t_s)));
-    std::normal_distribution<double> normal(0.0, 1.0);
-    for (int i = 0; i < 6; ++i) z(i) -= (i < 3 ? kPositionSigma : kVelocitySigma) * normal(engine);
+    testing::time_seeded_static_measurement(site_, state, t_s, z, h, r);
     if (fault_ == Fault::kBurst && in_fault(t_s)) z.tail<3>().array() -= 0.1;
     return true;
   }
   std::string describe() const override { return "faulty_static"; }
 
  private:
-  static constexpr double kPositionSigma = 0.05;   // m
-  static constexpr double kVelocitySigma = 0.002;  // m/s
   static bool in_fault(double t_s) { return t_s >= 10.0 && t_s < 20.0; }
   NavState site_;
   Fault fault_;

@@ -18,6 +18,7 @@ namespace stochnav {
 namespace {
 
 using testing::core_error;
+using testing::IntervalRecorder;
 using testing::kDeg;
 using testing::NoisyStaticAid;
 using testing::StaticImu;
@@ -209,33 +210,6 @@ TEST(MwdNavigator, IntervalPropagationMatchesEveryEpochPropagationUnderAPhaseLoc
         << "position axis " << i;
   }
 }
-
-// An interval aid (plugin::InsInterval) that measures every `period` epochs from `phase`,
-// records the interval it is given and makes no update, so that the navigator's state, and
-// with it every interval, is a function of the IMU record alone.
-class IntervalRecorder final : public plugin::AidPlugin {
- public:
-  IntervalRecorder(int period, int phase)
-      : AidPlugin(plugin::NisGate{.enabled = false}), period_(period), phase_(phase) {}
-  std::string_view type() const override { return "interval_recorder"; }
-  int measurement_size() const override { return 1; }
-  bool has_measurement(double t_s) const override {
-    const auto epoch = static_cast<long>(std::lround(t_s * kRateHz));
-    return epoch >= phase_ && (epoch - phase_) % period_ == 0;
-  }
-  bool measure(double, const NavState&, const plugin::ImuSample& imu, Eigen::Ref<Eigen::VectorXd>,
-               Eigen::Ref<Eigen::MatrixXd>, Eigen::Ref<Eigen::MatrixXd>) const override {
-    intervals.push_back(imu.interval);
-    return false;
-  }
-  bool measures_interval_mean() const override { return true; }
-  std::string describe() const override { return "interval_recorder"; }
-
-  mutable std::vector<plugin::InsInterval> intervals;
-
- private:
-  int period_, phase_;
-};
 
 // Interval aids whose intervals start at the same epoch share one accumulator; when one of them
 // measures alone, the next inherits the sums and the rest follow the heir

@@ -4,7 +4,9 @@
 // and a noisy position / zero-velocity aid (the real plugins are tested in tests/plugin).
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <random>
+#include <vector>
 
 #include "stochnav/ins/earth.hpp"
 #include "stochnav/ins/mwd_attitude.hpp"
@@ -144,6 +146,44 @@ class NoisyStaticAid final : public plugin::AidPlugin {
   mutable std::normal_distribution<double> normal_{0.0, 1.0};
 };
 
+/// Position and velocity fixes of a static tool (as NoisyStaticAid, sigmas 0.05 m and 0.002 m/s)
+/// whose noise is a function of the epoch's whole second alone: two aids, or one aid asked
+/// twice, give the same measurement at the same epoch.
+inline void time_seeded_static_measurement(const NavState& site, const NavState& state,
+                                           double t_s, Eigen::Ref<Eigen::VectorXd> z,
+                                           Eigen::Ref<Eigen::MatrixXd> h,
+                                           Eigen::Ref<Eigen::MatrixXd> r) {
+  constexpr double kPositionSigma = 0.05;   // m
+  constexpr double kVelocitySigma = 0.002;  // m/s
+  static_measurement(site, state, kPositionSigma, kVelocitySigma, z, h, r);
+  std::mt19937_64 engine(static_cast<std::uint64_t>(std::llround(t_s)));
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (int i = 0; i < 6; ++i) z(i) -= (i < 3 ? kPositionSigma : kVelocitySigma) * normal(engine);
+}
+
+/// An aid of time_seeded_static_measurement at every whole second after 0.5 s (gate: `gate`).
+class TimeSeededStaticAid final : public plugin::AidPlugin {
+ public:
+  explicit TimeSeededStaticAid(const NavState& site,
+                               plugin::NisGate gate = plugin::NisGate{.enabled = false})
+      : AidPlugin(gate), site_(site) {}
+  std::string_view type() const override { return "time_seeded_static"; }
+  int measurement_size() const override { return 6; }
+  bool has_measurement(double t_s) const override {
+    return std::abs(t_s - std::round(t_s)) < 1e-6 && t_s > 0.5;
+  }
+  bool measure(double t_s, const NavState& state, const plugin::ImuSample&,
+               Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::MatrixXd> h,
+               Eigen::Ref<Eigen::MatrixXd> r) const override {
+    time_seeded_static_measurement(site_, state, t_s, z, h, r);
+    return true;
+  }
+  std::string describe() const override { return "time_seeded_static"; }
+
+ private:
+  NavState site_;
+};
+
 /// Estimate - truth as the filter's 15 core error states (see filter/error_dynamics.hpp).
 inline Eigen::Matrix<double, 15, 1> core_error(const NavState& estimate, const NavState& truth,
                                                const Eigen::Vector3d& accel_bias_estimate,
@@ -163,5 +203,32 @@ inline Eigen::Matrix<double, 15, 1> core_error(const NavState& estimate, const N
   dx.segment<3>(12) = gyro_bias_estimate - errors.gyro_bias;
   return dx;
 }
+
+/// An interval aid (plugin::InsInterval) that measures every `period` epochs (at kRateHz) from
+/// `phase`, records the interval it is given and makes no update, so that the navigator's
+/// state, and with it every interval, is a function of the IMU record alone.
+class IntervalRecorder final : public plugin::AidPlugin {
+ public:
+  IntervalRecorder(int period, int phase)
+      : AidPlugin(plugin::NisGate{.enabled = false}), period_(period), phase_(phase) {}
+  std::string_view type() const override { return "interval_recorder"; }
+  int measurement_size() const override { return 1; }
+  bool has_measurement(double t_s) const override {
+    const auto epoch = static_cast<long>(std::lround(t_s * kRateHz));
+    return epoch >= phase_ && (epoch - phase_) % period_ == 0;
+  }
+  bool measure(double, const NavState&, const plugin::ImuSample& imu, Eigen::Ref<Eigen::VectorXd>,
+               Eigen::Ref<Eigen::MatrixXd>, Eigen::Ref<Eigen::MatrixXd>) const override {
+    intervals.push_back(imu.interval);
+    return false;
+  }
+  bool measures_interval_mean() const override { return true; }
+  std::string describe() const override { return "interval_recorder"; }
+
+  mutable std::vector<plugin::InsInterval> intervals;
+
+ private:
+  int period_, phase_;
+};
 
 }  // namespace stochnav::testing

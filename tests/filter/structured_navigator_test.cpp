@@ -3,11 +3,17 @@
 // FilterOptions::structured_covariance = false): with ~100 augmented states (the `augmented`
 // plugin: a flicker bank, a Gauss-Markov state, a ramp and an oscillator per axis: by blocks),
 // and with the layouts of the fixed-size kernels (filter/core_covariance.hpp): scale-factor
-// states, first-order Gauss-Markov states, both.
+// states, first-order Gauss-Markov states, both. And a navigator split from another
+// (MwdNavigator::split) continues as it.
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <memory>
+#include <random>
+
 #include "static_truth.hpp"
+#include "stochnav/filter/core_correction.hpp"
 #include "stochnav/filter/mwd_navigator.hpp"
 #include "stochnav/plugin/plugin_registry.hpp"
 
@@ -18,6 +24,7 @@ using testing::kDeg;
 using testing::NoisyStaticAid;
 using testing::StaticImu;
 using testing::StaticImuErrors;
+using testing::TimeSeededStaticAid;
 
 constexpr double kImuRateHz = 100.0;
 
@@ -203,6 +210,95 @@ TEST(StructuredNavigator, MatchesTheDensePathWithScaleFactorAndGaussMarkovStates
   const NavigatorRun dense = run(models, false, 100e-6, kSeconds);
   ASSERT_EQ(structured.covariance.rows(), 27);
   expect_same_filter(structured, dense, kRoundingTolerance, kStateRoundingTolerance);
+}
+
+// MwdNavigator::split: a copy on plugins of its own, with no correction and the same P, is the
+// navigator: stepped on, both give the same state, P and aid intervals to the last bit. Split in
+// the middle of a covariance interval (the accumulated fast inputs and noise carried over) and
+// of an interval aid's interval, with dense and structured augmented states and scale factors.
+// A correction moves the copy by it; a copy onto other models is refused.
+TEST(MwdNavigator, ASplitCopyContinuesAsTheNavigatorToTheLastBit) {
+  const plugin::PluginRegistry registry({plugin::bundled_plugin_dir()});
+  const NavState truth = testing::static_truth_state();
+  const StaticImuErrors errors{.gyro_arw = 0.05 * kDeg / 60.0,
+                               .accel_vrw = 5e-4,
+                               .gyro_bias = Eigen::Vector3d(1e-6, -2e-6, 3e-6),
+                               .accel_bias = Eigen::Vector3d(3e-4, 1e-4, -2e-4)};
+  for (const bool structured : {false, true}) {
+    SCOPED_TRACE(structured ? "structured" : "dense");
+    FilterOptions options;
+    options.structured_covariance = structured;
+    options.gyro_scale_factor_sigma.setConstant(100e-6);
+    options.accel_scale_factor_sigma.setConstant(100e-6);
+    const NoiseModels models = flicker_banks(registry);
+    TimeSeededStaticAid fix(truth);
+    testing::IntervalRecorder recorder(7, 3);
+    MwdNavigator navigator(truth, *models.gyro, *models.accel, {&fix, &recorder}, options);
+    StaticImu imu(truth, errors, kImuRateHz, 21);
+    for (int k = 0; k < 1234; ++k) navigator.step(imu.next());  // 0.04 s into an interval
+
+    // A copy of a copy, the first gone with its plugins before the second steps (nothing may
+    // point into it: the sanitizer stage).
+    const int n = static_cast<int>(navigator.covariance().rows());
+    const NoiseModels own = flicker_banks(registry);
+    TimeSeededStaticAid own_fix(truth);
+    testing::IntervalRecorder own_recorder(7, 3);
+    std::unique_ptr<MwdNavigator> copy;
+    {
+      const NoiseModels first = flicker_banks(registry);
+      TimeSeededStaticAid first_fix(truth);
+      testing::IntervalRecorder first_recorder(7, 3);
+      const std::unique_ptr<MwdNavigator> first_copy =
+          navigator.split(*first.gyro, *first.accel, {&first_fix, &first_recorder},
+                          Eigen::VectorXd::Zero(n), navigator.covariance(), false);
+      copy = first_copy->split(*own.gyro, *own.accel, {&own_fix, &own_recorder},
+                               Eigen::VectorXd::Zero(n), first_copy->covariance(), false);
+    }
+    const std::size_t recorded = recorder.intervals.size();
+    for (int k = 0; k < 1000; ++k) {
+      const ImuIncrement increment = imu.next();
+      navigator.step(increment);
+      copy->step(increment);
+    }
+    EXPECT_EQ(copy->state().q_nb.coeffs(), navigator.state().q_nb.coeffs());
+    EXPECT_EQ(copy->state().v_n, navigator.state().v_n);
+    EXPECT_EQ(copy->state().latitude_rad, navigator.state().latitude_rad);
+    EXPECT_EQ(copy->state().height_m, navigator.state().height_m);
+    EXPECT_EQ(copy->gyro_bias_b(), navigator.gyro_bias_b());
+    EXPECT_EQ(copy->accel_scale_factor(), navigator.accel_scale_factor());
+    EXPECT_EQ(copy->block_estimate("gyro.augmented"), navigator.block_estimate("gyro.augmented"));
+    EXPECT_EQ(copy->covariance(), navigator.covariance());
+    ASSERT_EQ(own_recorder.intervals.size(), recorder.intervals.size() - recorded);
+    ASSERT_GT(own_recorder.intervals.size(), 100u);
+    // The first interval after the split began before it.
+    EXPECT_EQ(own_recorder.intervals.front().duration_s, recorder.intervals[recorded].duration_s);
+    for (std::size_t i = 0; i < own_recorder.intervals.size(); ++i) {
+      EXPECT_EQ(own_recorder.intervals[i].mean_v_n, recorder.intervals[recorded + i].mean_v_n);
+      EXPECT_EQ(own_recorder.intervals[i].mean_velocity_error_map,
+                recorder.intervals[recorded + i].mean_velocity_error_map);
+    }
+
+    // A correction of 0.1 rad in heading turns the copy by it.
+    Eigen::VectorXd correction = Eigen::VectorXd::Zero(n);
+    correction(plugin::core_state::kAttitude + 2) = 0.1;
+    const NoiseModels turned_models = flicker_banks(registry);
+    TimeSeededStaticAid turned_fix(truth);
+    testing::IntervalRecorder turned_recorder(7, 3);
+    const std::unique_ptr<MwdNavigator> turned =
+        navigator.split(*turned_models.gyro, *turned_models.accel,
+                        {&turned_fix, &turned_recorder}, correction, navigator.covariance(),
+                        false);
+    const CoreEstimate from{navigator.state(), navigator.accel_bias_b(), navigator.gyro_bias_b()};
+    const CoreEstimate to{turned->state(), turned->accel_bias_b(), turned->gyro_bias_b()};
+    EXPECT_NEAR(std::abs(core_difference(to, from)(plugin::core_state::kAttitude + 2)), 0.1,
+                1e-12);
+
+    // Other models lay out another error state.
+    const NoiseModels white = white_with_bias_walk(registry);
+    EXPECT_THROW((void)navigator.split(*white.gyro, *white.accel, {&own_fix, &own_recorder},
+                                       Eigen::VectorXd::Zero(n), navigator.covariance(), false),
+                 std::invalid_argument);
+  }
 }
 
 }  // namespace

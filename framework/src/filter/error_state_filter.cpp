@@ -4,6 +4,8 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "stochnav/filter/core_covariance.hpp"
@@ -210,6 +212,16 @@ UpdateOutcome ErrorStateFilter::update(const Eigen::Ref<const Eigen::VectorXd>& 
   }
   outcome.accepted = true;
   return outcome;
+}
+
+void ErrorStateFilter::replace_covariance(const Eigen::Ref<const Eigen::MatrixXd>& covariance) {
+  if (covariance.rows() != size() || covariance.cols() != size()) {
+    throw std::invalid_argument("ErrorStateFilter::replace_covariance: " +
+                                std::to_string(covariance.rows()) + " x " +
+                                std::to_string(covariance.cols()) + " for a filter of " +
+                                std::to_string(size()) + " states");
+  }
+  covariance_ = covariance;
 }
 
 void ErrorStateFilter::consider(Eigen::Index index) {

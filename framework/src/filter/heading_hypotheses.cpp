@@ -27,11 +27,25 @@ constexpr double kSplitAbove = 2.5;
 // that starts on the other side of the east-west line from the truth settles near the mirror
 // at a sigma the mirror's data support (120 rpm, 57 N, inclination 82, azimuth 87 turning to
 // 83: 94.4 deg estimated against a truth of 83.4, the mirror at 96.6; the heading sigma 0.3 deg;
-// docs/drilling-envelope.md, section 7). A bank reads the two sides through its weights, so it
-// is formed whenever the start is wider than one hypothesis, its +-3 sigma heading interval
-// crosses the east-west line, and the inclination is above 60 deg (|cos I|, the share of the
-// heading's information that is first order on that line, below this).
+// docs/drilling-envelope.md, section 7). A bank reads the two sides through its weights, so
+// one filter, at the start or running, is split whenever its +-3 sigma heading interval crosses
+// the east-west line with the inclination above 60 deg (|cos I|, the share of the heading's
+// information that is first order on that line, below this), at any heading sigma above
+// kMirrorFloor: a start of 3.5 deg, 7 deg across the line (2 sigma), settled 5.5 deg off at a
+// sigma of 0.6 (north 3.5 m against 0.4) as one filter (section 7).
 constexpr double kMirrorShareBelow = 0.5;
+// A filter that settles on the mirror is off by twice its distance from the line, at most 6 of
+// its sigmas: 1.5 deg for a quarter of a degree, inside 3 sigma of the 0.6 deg such a filter
+// converges to in 2.5 h at 57 N, 160 rpm.
+constexpr double kMirrorFloor = 0.25 * std::numbers::pi / 180.0;
+// The heading sigma s split on the mirror's account against its hypotheses' s_h. Their grid is
+// 2 s_h apart and the middle one's neighbours get exp(-2 s_h^2 / (s^2 - s_h^2)) of its weight:
+// at s = 1.5 s_h a fifth, below a tenth under s = 1.37 s_h, where they are soon dropped or
+// merged and the bank is one filter again. So the hypotheses are at most s / 1.5 wide, and a
+// filter that was split before is split again only once its heading sigma has grown past 1.5
+// times its hypotheses' (a survivor held as a consider state near east-west grows; one that
+// estimates its heading does not), not at every epoch.
+constexpr double kMirrorSplitAbove = 1.5;
 constexpr double kSpreadSigmas = 3.0;  // the grid covers +-3 start sigmas
 constexpr int kMaxHalfWidth = 7;       // at most 15 hypotheses
 constexpr double kDropBelow = 1e-5;    // of the total weight
@@ -177,14 +191,21 @@ bool reaches_east_west_mirror(const Eigen::Quaterniond& q_nb, double reach_rad) 
          std::abs(std::cos(attitude.inclination_rad)) < kMirrorShareBelow;
 }
 
-// Whether a start needs the bank: wider than one first-order filter can hold, or wider than
-// one hypothesis and within reach of the east-west mirror.
-bool start_needs_bank(const NavState& initial, double start_variance, double sigma) {
-  if (!(sigma > 0.0)) return false;
-  if (start_variance > std::pow(kSplitAbove * sigma, 2)) return true;
-  const double start_sigma = std::sqrt(start_variance);
-  return start_sigma > sigma &&
-         reaches_east_west_mirror(initial.q_nb, kSpreadSigmas * start_sigma);
+// The heading sigma of the hypotheses one filter of heading variance s^2 is split into, or 0 for
+// no split (s_c the hypothesis sigma): s_c when s is wider than one first-order filter can
+// hold; at most s / kMirrorSplitAbove when its heading interval reaches the east-west mirror,
+// s is above kMirrorFloor and above kMirrorSplitAbove times `last_split_sigma`, the sigma of the
+// hypotheses this filter was split into before (0: never).
+double split_hypothesis_sigma(const NavState& state, double heading_variance, double sigma,
+                              double last_split_sigma) {
+  if (!(sigma > 0.0)) return 0.0;
+  if (heading_variance > std::pow(kSplitAbove * sigma, 2)) return sigma;
+  const double heading_sigma = std::sqrt(heading_variance);
+  if (heading_sigma > kMirrorFloor && heading_sigma > kMirrorSplitAbove * last_split_sigma &&
+      reaches_east_west_mirror(state.q_nb, kSpreadSigmas * heading_sigma)) {
+    return std::min(sigma, heading_sigma / kMirrorSplitAbove);
+  }
+  return 0.0;
 }
 
 }  // namespace
@@ -193,13 +214,19 @@ HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOption
                                      NavigatorPlugins first,
                                      const std::function<NavigatorPlugins()>& make_plugins) {
   const Eigen::Matrix<double, 15, 15> p0 = core_start_covariance(options);
-  const double sigma = options.heading_hypothesis_sigma_rad;
+  make_plugins_ = make_plugins;
+  hypothesis_sigma_rad_ = options.heading_hypothesis_sigma_rad;
+  split_running_ = options.heading_hypotheses_split_running;
+  consider_heading_ = options.heading_hypotheses_consider_heading;
   robust_weights_ = options.heading_hypotheses_robust_weights;
   hold_together_ = options.heading_hypotheses_hold_together;
   likelihood_power_ = options.heading_hypotheses_likelihood_power;
   const bool after_alignment = options.static_gyrocompass &&
                                (options.static_gyrocompass->bias_sigma_radps.array() > 0.0).all();
-  if (!start_needs_bank(initial, p0(kHeading, kHeading), sigma)) {
+  const double sigma =
+      split_hypothesis_sigma(initial, p0(kHeading, kHeading), hypothesis_sigma_rad_, 0.0);
+  last_split_sigma_rad_ = sigma;
+  if (sigma == 0.0) {
     hypotheses_.push_back({std::move(first), nullptr, 0.0});
     hypotheses_.back().navigator = make_navigator(initial, options, hypotheses_.back().plugins);
     return;
@@ -231,8 +258,51 @@ HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOption
 
 void HeadingHypotheses::step(const ImuIncrement& raw) {
   for (Hypothesis& hypothesis : hypotheses_) hypothesis.navigator->step(raw);
-  if (hypotheses_.size() == 1) return;
+  if (hypotheses_.size() == 1) {
+    if (!split_running_) return;
+    const MwdNavigator& running = *hypotheses_.front().navigator;
+    const double sigma =
+        split_hypothesis_sigma(running.state(), running.covariance()(kHeading, kHeading),
+                               hypothesis_sigma_rad_, last_split_sigma_rad_);
+    if (sigma > 0.0) split_running_filter(sigma);
+    return;
+  }
   reweigh();
+  prune_and_merge();
+  update_mixture();
+}
+
+// One running filter whose heading now needs the bank (split_hypothesis_sigma): its whole state
+// split along the heading as a start without an alignment is (linear_split), into hypotheses of
+// heading sigma `sigma`, each a copy of the filter (MwdNavigator::split: its open aid intervals,
+// reference trajectory and augmented states carried over) corrected by P e_U d_i / s^2 with the
+// conditioned covariance, on the grid of spacing 2 sigma over +-3 s. The middle one keeps the
+// running filter's plugins.
+void HeadingHypotheses::split_running_filter(double sigma) {
+  Hypothesis running = std::move(hypotheses_.front());
+  hypotheses_.clear();
+  const MwdNavigator& filter = *running.navigator;
+  const Eigen::MatrixXd& p = filter.covariance();
+  const double variance = p(kHeading, kHeading);
+  const double spacing = 2.0 * sigma;
+  const int half_width = std::min(
+      kMaxHalfWidth, static_cast<int>(std::ceil(kSpreadSigmas * std::sqrt(variance) / spacing)));
+  const Eigen::VectorXd gain = p.col(kHeading) / variance;
+  Eigen::MatrixXd conditioned = p - (1.0 - sigma * sigma / variance) * gain * p.row(kHeading);
+  conditioned = 0.5 * (conditioned + conditioned.transpose()).eval();
+  const double residual_variance = variance - sigma * sigma;
+  for (int i = -half_width; i <= half_width; ++i) {
+    const double heading_error = i * spacing;
+    Hypothesis hypothesis{i == 0 ? running.plugins : make_plugins_(), nullptr,
+                          -0.5 * heading_error * heading_error / residual_variance};
+    hypothesis.navigator =
+        filter.split(*hypothesis.plugins.gyro, *hypothesis.plugins.accel,
+                     raw_aids(hypothesis.plugins), gain * heading_error, conditioned,
+                     consider_heading_);
+    hypotheses_.push_back(std::move(hypothesis));
+  }
+  ++splits_;
+  last_split_sigma_rad_ = sigma;
   prune_and_merge();
   update_mixture();
 }
@@ -392,18 +462,31 @@ const MwdNavigator& HeadingHypotheses::most_probable() const {
   return *hypotheses_[best_].navigator;
 }
 
-double HeadingHypotheses::heading_span_rad() const {
+double HeadingHypotheses::heading_from_most_probable_rad(std::size_t i) const {
   const MwdNavigator& best = most_probable();
-  const CoreEstimate reference{best.state(), best.accel_bias_b(), best.gyro_bias_b()};
+  const MwdNavigator& n = *hypotheses_.at(i).navigator;
+  return core_difference({n.state(), n.accel_bias_b(), n.gyro_bias_b()},
+                         {best.state(), best.accel_bias_b(), best.gyro_bias_b()})(kHeading);
+}
+
+double HeadingHypotheses::heading_span_rad() const {
   double lowest = 0.0, highest = 0.0;
-  for (const Hypothesis& h : hypotheses_) {
-    const MwdNavigator& n = *h.navigator;
-    const double difference =
-        core_difference({n.state(), n.accel_bias_b(), n.gyro_bias_b()}, reference)(kHeading);
+  for (std::size_t i = 0; i < hypotheses_.size(); ++i) {
+    const double difference = heading_from_most_probable_rad(i);
     lowest = std::min(lowest, difference);
     highest = std::max(highest, difference);
   }
   return highest - lowest;
+}
+
+double HeadingHypotheses::weight_within_rad(double half_width_rad) const {
+  double total = 0.0, within = 0.0;
+  for (std::size_t i = 0; i < hypotheses_.size(); ++i) {
+    const double w = std::exp(hypotheses_[i].log_weight);
+    total += w;
+    if (std::abs(heading_from_most_probable_rad(i)) <= half_width_rad) within += w;
+  }
+  return within / total;
 }
 
 }  // namespace stochnav

@@ -100,8 +100,8 @@ bool heading_information_is_second_order(const Eigen::Quaterniond& q_nb) {
 MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gyro_noise,
                            plugin::NoiseModelPlugin& accel_noise,
                            std::vector<plugin::AidPlugin*> aids, const FilterOptions& options)
-    : gyro_noise_(gyro_noise),
-      accel_noise_(accel_noise),
+    : gyro_noise_(&gyro_noise),
+      accel_noise_(&accel_noise),
       aids_(std::move(aids)),
       options_(options),
       layout_(plugin::assign_state_layout(gyro_noise, accel_noise, sensor_error_states(options))),
@@ -174,6 +174,44 @@ MwdNavigator::MwdNavigator(const NavState& initial, plugin::NoiseModelPlugin& gy
   reference_.v_n = initial.v_n;
   reference_.smoothed_specific_force_n = smoothed_specific_force_n_;
   consecutive_rejections_.assign(aids_.size(), 0);
+}
+
+std::unique_ptr<MwdNavigator> MwdNavigator::split(plugin::NoiseModelPlugin& gyro_noise,
+                                                 plugin::NoiseModelPlugin& accel_noise,
+                                                 std::vector<plugin::AidPlugin*> aids,
+                                                 const Eigen::VectorXd& correction,
+                                                 const Eigen::MatrixXd& covariance,
+                                                 bool heading_considered) const {
+  const plugin::StateLayout layout =
+      plugin::assign_state_layout(gyro_noise, accel_noise, sensor_error_states(options_));
+  const auto same_blocks = [&] {
+    if (layout.blocks().size() != layout_.blocks().size()) return false;
+    for (std::size_t i = 0; i < layout.blocks().size(); ++i) {
+      const plugin::StateBlock& a = layout.blocks()[i];
+      const plugin::StateBlock& b = layout_.blocks()[i];
+      if (a.name != b.name || a.offset != b.offset || a.size != b.size) return false;
+    }
+    return true;
+  };
+  const int n = layout_.size();
+  if (!same_blocks() || aids.size() != aids_.size() || correction.size() != n ||
+      covariance.rows() != n || covariance.cols() != n) {
+    throw std::invalid_argument(
+        "MwdNavigator::split: the plugins, the correction or the covariance do not match the "
+        "navigator's layout of " + std::to_string(n) + " states and " +
+        std::to_string(aids_.size()) + " aids");
+  }
+  std::unique_ptr<MwdNavigator> copy(new MwdNavigator(*this));
+  copy->gyro_noise_ = &gyro_noise;
+  copy->accel_noise_ = &accel_noise;
+  copy->gyro_augmented_.model = &gyro_noise;
+  copy->accel_augmented_.model = &accel_noise;
+  copy->aids_ = std::move(aids);
+  copy->interval_layout_ = copy->interval_map_layout();  // points into the copy's groups
+  copy->options_.heading_considered = heading_considered;
+  copy->filter_.replace_covariance(covariance);
+  copy->feed_back(correction);
+  return copy;
 }
 
 Eigen::Vector3d MwdNavigator::sensor_correction(const AugmentedGroup& group) const {
@@ -276,10 +314,10 @@ void MwdNavigator::step(const ImuIncrement& raw) {
     fast_.add_accel_scale_input(dt, c_mean * scale_factor_delta_v_b.asDiagonal());
   }
   const Eigen::Matrix3d attitude_noise_before = attitude_noise_;
-  accumulate_noise(gyro_noise_, t_start, dt, c_mean, gyro_white_cache_, gyro_cached_dt_,
+  accumulate_noise(*gyro_noise_, t_start, dt, c_mean, gyro_white_cache_, gyro_cached_dt_,
                    attitude_noise_);
   const Eigen::Matrix3d velocity_noise_before = velocity_noise_;
-  accumulate_noise(accel_noise_, t_start, dt, c_mean, accel_white_cache_, accel_cached_dt_,
+  accumulate_noise(*accel_noise_, t_start, dt, c_mean, accel_white_cache_, accel_cached_dt_,
                    velocity_noise_);
   if (!interval_aids_.empty()) {
     const InsIntervalAccumulator::Epoch interval_epoch{
@@ -555,9 +593,9 @@ CoreMatrix MwdNavigator::core_process_noise(double interval,
   CoreMatrix q_d = CoreMatrix::Zero();
   q_d.block<3, 3>(cs::kAttitude, cs::kAttitude) = attitude_noise_ + second_order_noise;
   q_d.block<3, 3>(cs::kVelocity, cs::kVelocity) = velocity_noise_;
-  gyro_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
+  gyro_noise_->bias_walk_covariance(interval_start_s_, interval, bias_walk_);
   q_d.block<3, 3>(cs::kGyroBias, cs::kGyroBias) = bias_walk_;
-  accel_noise_.bias_walk_covariance(interval_start_s_, interval, bias_walk_);
+  accel_noise_->bias_walk_covariance(interval_start_s_, interval, bias_walk_);
   q_d.block<3, 3>(cs::kAccelBias, cs::kAccelBias) = bias_walk_;
   return q_d;
 }
@@ -641,7 +679,7 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
     r_.resize(m, m);
     if (!aid.measure(t_s, ins_.state(), imu, residual_, h_core_, r_)) continue;
 
-    const bool adaptive = gyro_noise_.time_varying() || accel_noise_.time_varying();
+    const bool adaptive = gyro_noise_->time_varying() || accel_noise_->time_varying();
     const Eigen::MatrixXd prior = adaptive ? filter_.covariance() : Eigen::MatrixXd();
     correction_.setZero();
     int& rejections = consecutive_rejections_[index];
@@ -677,8 +715,8 @@ void MwdNavigator::apply_aids(double t_s, const Eigen::Vector3d& omega_ib_b,
                                             filter_.last_gain(),
                                             prior,
                                             filter_.covariance()};
-      gyro_noise_.on_update(feedback);
-      accel_noise_.on_update(feedback);
+      gyro_noise_->on_update(feedback);
+      accel_noise_->on_update(feedback);
     }
     if (outcome.accepted) {
       feed_back(correction_);

@@ -24,8 +24,9 @@
 //                     "aid_rows": {"rows", "on_grid", "moved", "max_offset_s",
 //                     "before_start", "after_end"} (experiment/aid_epochs.hpp: rows off the
 //                     IMU grid are applied at the next epoch),
-//                     "heading_hypotheses": {"initial", "final", "largest_weight"} (the bank
-//                     of filters over an uncertain start heading, filter/heading_hypotheses.hpp),
+//                     "heading_hypotheses": {"initial", "final", "largest_weight", "splits"}
+//                     (the bank of filters over an uncertain heading, at the start or split
+//                     from the running filter, filter/heading_hypotheses.hpp),
 //                     "self_check": {"source", "optimistic", "reason", "survey_qc":
 //                     {"stations", "checked", "flagged", "worst_inclination_sigmas",
 //                     "worst_azimuth_sigmas"}} (a station whose continuous solution leaves its
@@ -105,8 +106,8 @@ struct NavigationRunResult {
   std::vector<std::string> warnings;      ///< aids rejected too often
   std::size_t survey_stations = 0;        ///< stations in survey.csv
   nlohmann::json aid_rows;                ///< AidEpochs::summary_json(): where the rows went
-  /// {"initial", "final", "largest_weight"}: the bank over the heading (HeadingHypotheses;
-  /// 1 and 1 for a single filter).
+  /// {"initial", "final", "largest_weight", "splits"}: the bank over the heading
+  /// (HeadingHypotheses; 1, 1 and 0 for a filter that never split).
   nlohmann::json heading_hypotheses;
   NavState start;                         ///< the start (after alignment, before the error)
   FilterOptions filter_options;           ///< the options the navigator ran with

@@ -127,6 +127,10 @@ class ErrorStateFilter final {
                        Eigen::Ref<Eigen::VectorXd> correction,
                        JosephForm form = JosephForm::kExpanded);
 
+  /// Replaces P (n x n, symmetric positive definite; the size must not change): a filter split
+  /// from another (MwdNavigator::split). Throws std::invalid_argument for another size.
+  void replace_covariance(const Eigen::Ref<const Eigen::MatrixXd>& covariance);
+
   /// Makes state `index` a consider state (Schmidt-Kalman): update() never corrects its
   /// estimate (its row of K is zero), while P keeps its uncertainty and its correlations with
   /// the other states, whose gains are the optimal ones (the Joseph form holds for any gain).

@@ -119,7 +119,9 @@ struct FilterOptions {
 
   /// Heading 1-sigma (rad) of each hypothesis of the bank of filters over the heading
   /// (filter/heading_hypotheses.hpp) that a run forms when its start's heading sigma exceeds
-  /// 2.5 times this (10 deg); 0: one filter whatever the start. After a static alignment the
+  /// 2.5 times this (10 deg), or when the start's +-3 sigma headings reach the east-west mirror
+  /// (then at most the start's sigma / 1.5 each); 0: one filter whatever the start (and no
+  /// split of a running filter). After a static alignment the
   /// hypotheses cover the whole circle 2 sigmas apart (45 at 4 deg, fewer once the prior's
   /// unlikely headings are dropped). 8 deg was tried and is worse (docs/drilling-envelope.md,
   /// section 4).
@@ -147,6 +149,15 @@ struct FilterOptions {
   /// estimated neighbours are weighed by innovations whose S differ by that alone
   /// (docs/drilling-envelope.md, section 7).
   bool heading_hypotheses_hold_together = true;
+  /// Whether one running filter splits into a bank when its heading comes to need one (run
+  /// config "filter/heading_hypothesis_split_running"): checked at every epoch by the rule a
+  /// start is checked by (heading sigma above 2.5 hypothesis sigmas, or above 0.25 deg with the
+  /// +-3-sigma heading interval across the east-west line at an inclination above 60 deg; once
+  /// split, only after growing past 1.5 times the hypotheses' sigma). A well that turns
+  /// east-west, or whose heading sigma grows there, meets the mirror (heading_hypotheses.cpp)
+  /// as a start would. false, the ablation: the test is made at the start only
+  /// (docs/drilling-envelope.md, section 7).
+  bool heading_hypotheses_split_running = true;
   /// Whether the bank's weights are robust to aid outliers (run config "filter/heading_
   /// hypothesis_robust_weights"): an innovation gated out by every hypothesis does not weigh
   /// them (the aid, not a heading, failed there), and each one that does counts by a Student-t

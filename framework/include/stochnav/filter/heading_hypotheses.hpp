@@ -1,8 +1,10 @@
 #pragma once
 // A bank of navigation filters over the heading (a Gaussian sum), for a start that leaves the
-// heading uncertain by more than 10 deg, or by more than one hypothesis' sigma within reach of
+// heading uncertain by more than 10 deg, or by more than a quarter of a degree within reach of
 // the east-west mirror (heading_hypotheses.cpp: a rotating tool's cross axes cannot tell psi
-// from 180 deg - psi): a static alignment at high latitude, where the
+// from 180 deg - psi; there the hypotheses are at most the start's sigma / 1.5 wide), and for a
+// running filter whose heading comes to need it (below): a static alignment at high latitude,
+// where the
 // horizontal Earth rate is a fraction of the equator's (80 N: a sixth) and a FOG's turn-on bias
 // may be as large. The gyrocompass's heading is then far from Gaussian (seed 1 at 80 N: 120 deg
 // off while the linearised fine alignment said 18 +- 18), and one extended Kalman filter
@@ -11,7 +13,8 @@
 // (plus the second-order term, filter/second_order_attitude.hpp) to hold.
 //
 // The split after a static alignment (FilterOptions::static_gyrocompass set): headings
-// over the whole circle, 2 s_c apart (s_c: FilterOptions::heading_hypothesis_sigma_rad). With
+// over the whole circle, 2 s_c apart (s_c: FilterOptions::heading_hypothesis_sigma_rad, or
+// narrower on the mirror's account). With
 // m the static span's mean rate, hypothesis i turns the aligned attitude by d_i about the
 // vertical and carries the gyro bias the span then implies, b_i = m - C_bn(d_i) w_ie, exactly;
 // its prior weight is the bias prior's density at b_i (the gyrocompass's posterior); its
@@ -20,6 +23,14 @@
 // grid 2 s_c apart over +-3 start sigmas s0, each hypothesis conditioned on its heading linearly
 // (corrected by P0 e_U d_i / s0^2, covariance P0 - (1 - s_c^2 / s0^2) P0 e_U e_U^T P0 / s0^2,
 // weight exp(-d_i^2 / (2 (s0^2 - s_c^2))): N(0, P0) to within 1.5 % in density).
+//
+// A running filter (FilterOptions::heading_hypotheses_split_running) is checked at every epoch
+// as a start is: a heading sigma s above 10 deg, or above a quarter of a degree with its +-3 s
+// headings across the east-west line at an inclination above 60 deg (a well turned east-west,
+// or a heading uncertainty grown there), and above 1.5 times its hypotheses' sigma if it was
+// split before, splits it as a start without an alignment is, each hypothesis a whole copy of
+// the filter (MwdNavigator::split: its augmented states, open aid intervals and reference
+// trajectory) corrected along the heading, with the conditioned covariance.
 //
 // In a horizontal east-west hole each hypothesis holds its heading as a consider state
 // (FilterOptions::heading_considered, ::heading_hypotheses_consider_heading): no update corrects
@@ -53,8 +64,9 @@
 // state) and the covariance sum_i w_i (P_i + (x_i - x)(x_i - x)^T) of the 15 core states.
 // Innovations and health are the most probable hypothesis'. With one hypothesis (a start
 // whose heading sigma is below 2.5 s_c and away from the mirror, or s_c = 0) every output is
-// that filter's own. Each hypothesis is a whole navigator: a bank that cannot single out a
-// heading (sliding east-west at 74 N: 21 hypotheses after 8 h) costs that many filters.
+// that filter's own, until it splits. Each hypothesis is a whole navigator: a bank that cannot
+// single out a heading (sliding east-west at 74 N: 21 hypotheses after 8 h) costs that many
+// filters.
 
 #include <Eigen/Core>
 #include <functional>
@@ -100,6 +112,9 @@ class HeadingHypotheses final {
   const FilterHealth& health() const;
 
   std::size_t initial_hypotheses() const { return initial_count_; }
+  /// How many times one running filter split into a bank
+  /// (FilterOptions::heading_hypotheses_split_running).
+  std::size_t splits() const { return splits_; }
   std::size_t hypotheses() const { return hypotheses_.size(); }
   /// The normalised weight of the most probable hypothesis.
   double largest_weight() const;
@@ -108,6 +123,9 @@ class HeadingHypotheses final {
   /// The span of the hypotheses' headings (rad): the largest less the smallest heading
   /// difference from the most probable one; 0 with one hypothesis.
   double heading_span_rad() const;
+  /// The normalised weight of the hypotheses whose heading lies within `half_width_rad` of the
+  /// most probable one's (itself included).
+  double weight_within_rad(double half_width_rad) const;
   /// Hypothesis i's filter and normalised weight (i < hypotheses()).
   const MwdNavigator& hypothesis(std::size_t i) const { return *hypotheses_.at(i).navigator; }
   double weight(std::size_t i) const;
@@ -118,12 +136,21 @@ class HeadingHypotheses final {
     std::unique_ptr<MwdNavigator> navigator;
     double log_weight = 0.0;
   };
+  void split_running_filter(double sigma);
+  // Hypothesis i's heading less the most probable one's (rad), as an error state.
+  double heading_from_most_probable_rad(std::size_t i) const;
   void hold_headings(const std::vector<double>& weights, double total);
   void reweigh();
   void prune_and_merge();
   void update_mixture();
 
   std::vector<Hypothesis> hypotheses_;
+  std::function<NavigatorPlugins()> make_plugins_;
+  double hypothesis_sigma_rad_ = 0.0;  // FilterOptions::heading_hypothesis_sigma_rad
+  double last_split_sigma_rad_ = 0.0;  // the hypotheses' heading sigma at the last split
+  bool split_running_ = true;          // FilterOptions::heading_hypotheses_split_running
+  bool consider_heading_ = true;       // FilterOptions::heading_hypotheses_consider_heading
+  std::size_t splits_ = 0;
   bool robust_weights_ = true;  // FilterOptions::heading_hypotheses_robust_weights
   bool hold_together_ = true;   // FilterOptions::heading_hypotheses_hold_together
   double likelihood_power_ = 0.5;  // FilterOptions::heading_hypotheses_likelihood_power

@@ -33,6 +33,7 @@
 // Lifetime: the navigator keeps references to the plugins; they must outlive it.
 
 #include <Eigen/Core>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -79,9 +80,24 @@ class MwdNavigator final {
                plugin::NoiseModelPlugin& accel_noise, std::vector<plugin::AidPlugin*> aids,
                const FilterOptions& options);
 
-  // Holds references to the plugins and pointers into itself (the interval map's layout).
-  MwdNavigator(const MwdNavigator&) = delete;
+  // Holds pointers to the plugins and into itself (the interval map's layout): a copy is made
+  // by split() only, on plugins of its own.
   MwdNavigator& operator=(const MwdNavigator&) = delete;
+
+  /// A copy of this navigator, everything it holds (the INS, P, the open aid intervals, the
+  /// reference trajectory), run on its own plugins (built as this one's were: same models, same
+  /// aid data; a plugin's own history, such as an adaptive model's, starts afresh), then
+  /// corrected by the error state `correction` (n, fed back as an update's) and given the
+  /// covariance `covariance` (n x n, symmetric positive definite), its
+  /// FilterOptions::heading_considered set to `heading_considered`: a hypothesis split from a
+  /// running filter (HeadingHypotheses). Throws std::invalid_argument when the plugins' layout
+  /// or the sizes differ from this navigator's.
+  std::unique_ptr<MwdNavigator> split(plugin::NoiseModelPlugin& gyro_noise,
+                                      plugin::NoiseModelPlugin& accel_noise,
+                                      std::vector<plugin::AidPlugin*> aids,
+                                      const Eigen::VectorXd& correction,
+                                      const Eigen::MatrixXd& covariance,
+                                      bool heading_considered) const;
 
   /// Advances over one IMU epoch of raw (uncompensated) increments.
   void step(const ImuIncrement& raw);
@@ -136,6 +152,8 @@ class MwdNavigator final {
   bool heading_held() const;
 
  private:
+  MwdNavigator(const MwdNavigator&) = default;  // split() only
+
   struct AugmentedGroup {
     plugin::NoiseModelPlugin* model = nullptr;
     int offset = -1;
@@ -194,8 +212,8 @@ class MwdNavigator final {
   void feed_back(const Eigen::VectorXd& correction);
   Eigen::Vector3d sensor_correction(const AugmentedGroup& group) const;
 
-  plugin::NoiseModelPlugin& gyro_noise_;
-  plugin::NoiseModelPlugin& accel_noise_;
+  plugin::NoiseModelPlugin* gyro_noise_;
+  plugin::NoiseModelPlugin* accel_noise_;
   std::vector<plugin::AidPlugin*> aids_;
   std::vector<int> consecutive_rejections_;  ///< per aid, for FilterOptions' lockout rule
   std::optional<bool> heading_held_;         ///< hold_heading(); unset: this attitude's rule
