@@ -12,8 +12,12 @@
 
 namespace stochnav {
 
+// The innovation factor starts factorised (of a 1 x 1 identity): an LLT never computed holds an
+// indeterminate status, which a copy of the filter (MwdNavigator::split) would read.
 ErrorStateFilter::ErrorStateFilter(Eigen::MatrixXd initial_covariance)
-    : covariance_(std::move(initial_covariance)), initial_covariance_(covariance_) {}
+    : covariance_(std::move(initial_covariance)),
+      initial_covariance_(covariance_),
+      innovation_factor_(Eigen::MatrixXd::Identity(1, 1)) {}
 
 void ErrorStateFilter::propagate(const Eigen::Ref<const Eigen::MatrixXd>& phi,
                                  const Eigen::Ref<const Eigen::MatrixXd>& q_d) {
