@@ -5,7 +5,6 @@
 #include <numbers>
 
 #include "stochnav/ins/earth.hpp"
-#include "stochnav/ins/mwd_attitude.hpp"
 #include "stochnav/ins/strapdown.hpp"
 #include "stochnav/plugin/state_layout.hpp"
 
@@ -180,15 +179,16 @@ std::vector<SplitStart> circle_split(const CoreEstimate& start,
   return starts;
 }
 
-// Whether the headings within +-reach_rad of the start's cross the east-west line at an
+// Whether the headings within +-reach_rad of this attitude's cross the east-west line at an
 // inclination that leaves the heading's first-order information there (|cos I| of it) below
-// kMirrorShareBelow.
+// kMirrorShareBelow. From the tool axis in ENU (C_nb's third column, ins/mwd_attitude.hpp):
+// cos I is minus its up component, and the azimuth's distance from the east-west line is the
+// angle of its horizontal part from that line. Checked at every epoch of a running filter: the
+// inclination first, with no trigonometry.
 bool reaches_east_west_mirror(const Eigen::Quaterniond& q_nb, double reach_rad) {
-  const MwdAttitude attitude = mwd_from_quaternion(q_nb);
-  const double from_east_west = std::abs(
-      std::remainder(attitude.azimuth_rad - 0.5 * std::numbers::pi, std::numbers::pi));
-  return from_east_west < reach_rad &&
-         std::abs(std::cos(attitude.inclination_rad)) < kMirrorShareBelow;
+  const Eigen::Vector3d tool_axis_n = q_nb * Eigen::Vector3d::UnitZ();
+  if (!(std::abs(tool_axis_n.z()) < kMirrorShareBelow)) return false;
+  return std::atan2(std::abs(tool_axis_n.y()), std::abs(tool_axis_n.x())) < reach_rad;
 }
 
 // The heading sigma of the hypotheses one filter of heading variance s^2 is split into, or 0 for
