@@ -261,7 +261,8 @@ double end_error_sigmas(const stochnav::testing::CsvColumns& errors, const std::
 
 // A start narrower than one hypothesis (heading sigma 3.5 deg against 4) whose heading is 7 deg
 // across the east-west line from the truth (2 sigma), on the 160-rpm well at 57 N (seed 2,
-// 2.5 h): the start reaches the mirror, so it is a bank of hypotheses 3.5 / 1.5 deg wide. Its
+// 2.5 h): the start reaches the mirror, so at its first rotation (the scenario's static start
+// over) it is split into a bank of hypotheses about 3.5 / 1.5 deg wide. Its
 // azimuth and north end inside 3 sigma, and where the weights cannot tell the truth from its
 // mirror it says so (heading unresolved). One filter (the ablation, "heading_hypothesis_sigma_
 // deg": 0, what such a start was before) settles near the mirror, 5.5 deg off at a sigma of
@@ -289,7 +290,8 @@ TEST(DrillingEnvelope, AStartAcrossTheEastWestMirrorIsABankEvenWhenNarrow) {
   const std::string one_out =
       simulate_and_run(scratch, "mirror_start", scenario, start_across_the_line(0.0), "_one");
   const nlohmann::json bank = read_json(bank_out + "/metrics.json");
-  EXPECT_GT(bank["heading_hypotheses"]["initial"].get<int>(), 1);
+  EXPECT_EQ(bank["heading_hypotheses"]["initial"].get<int>(), 1);
+  EXPECT_EQ(bank["heading_hypotheses"]["splits"].get<int>(), 1);
   const auto bank_errors = read_csv_columns(bank_out + "/errors.csv");
   for (const std::string column : {"azimuth_err_deg", "lat_err_m"}) {
     EXPECT_LE(end_error_sigmas(bank_errors, column), 3.0) << column;

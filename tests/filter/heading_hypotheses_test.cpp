@@ -15,6 +15,7 @@
 #include <memory>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "stochnav/filter/alignment.hpp"
@@ -145,12 +146,15 @@ TEST(HeadingHypotheses, TheSplitStartHasTheStartsMeanAndCovariance) {
   }
 }
 
-// Below 10 deg of start sigma one filter is formed, unless the start's +-3 sigma headings cross
-// the east-west line with the tool axis above 60 deg of inclination (at any start sigma above a
-// quarter of a degree): there the rotating cross-axis gyros cannot tell psi from 180 deg - psi,
-// and one linearised filter that starts on the other side of the line from the truth settles
-// near the mirror (docs/drilling-envelope.md, section 7).
-TEST(HeadingHypotheses, AStartWithinReachOfTheEastWestMirrorFormsABank) {
+// Below 10 deg of start sigma one filter is formed, unless the tool rotates with its +-3 sigma
+// headings across the east-west line and its axis above 60 deg of inclination (at any heading
+// sigma above a quarter of a degree): there the rotating cross-axis gyros cannot tell psi from
+// 180 deg - psi, and one linearised filter that starts on the other side of the line from the
+// truth settles near the mirror (docs/drilling-envelope.md, section 7). Whether the tool rotates
+// is not known at the start, so the mirror's bank forms once the tool has turned a full turn
+// (here spinning at 60 rpm from the start: after 1 s); under the ablation
+// (FilterOptions::heading_hypotheses_mirror_at_rotation false) at the start.
+TEST(HeadingHypotheses, ARotatingToolWithinReachOfTheEastWestMirrorFormsABank) {
   struct Start {
     double inclination_deg, azimuth_deg, sigma_deg;
     bool bank;
@@ -165,27 +169,118 @@ TEST(HeadingHypotheses, AStartWithinReachOfTheEastWestMirrorFormsABank) {
     site.q_nb = quaternion_from_mwd({.inclination_rad = c.inclination_deg * kDeg,
                                      .toolface_rad = 0.0,
                                      .azimuth_rad = c.azimuth_deg * kDeg});
-    const FilterOptions options = uncertain_heading_start(c.sigma_deg * kDeg);
+    const bool wide = c.sigma_deg > 10.0;
+    FilterOptions options = uncertain_heading_start(c.sigma_deg * kDeg);
     HeadingHypotheses bank(site, options, white_noise_plugins(site, 1),
                            [&] { return white_noise_plugins(site, 1); });
-    EXPECT_EQ(bank.hypotheses() > 1, c.bank)
-        << "inclination " << c.inclination_deg << ", azimuth " << c.azimuth_deg << ", sigma "
-        << c.sigma_deg;
+    const auto start = [&] {
+      return "inclination " + std::to_string(c.inclination_deg) + ", azimuth " +
+             std::to_string(c.azimuth_deg) + ", sigma " + std::to_string(c.sigma_deg);
+    };
+    EXPECT_EQ(bank.initial_hypotheses() > 1, wide) << start();
+    StaticImu imu(site, {}, testing::kRateHz, 1, 2.0 * std::numbers::pi);
+    for (int k = 0; k < 90; ++k) bank.step(imu.next());
+    EXPECT_EQ(bank.splits(), 0u) << "before a full turn: " << start();
+    for (int k = 0; k < 30; ++k) bank.step(imu.next());
+    EXPECT_EQ(bank.splits() > 0 || wide, c.bank) << start();
+    options.heading_hypotheses_mirror_at_rotation = false;
+    HeadingHypotheses ablation(site, options, white_noise_plugins(site, 1),
+                               [&] { return white_noise_plugins(site, 1); });
+    EXPECT_EQ(ablation.initial_hypotheses() > 1, c.bank) << "ablation, " << start();
+  }
+}
+
+// Feeds `seconds` of a tool at the site turning about its axis at `spin` rad/s to `bank`,
+// continuing the truth's toolface and the record's time from `at`.
+struct TurningTool {
+  NavState site;
+  double toolface_rad = 0.0;
+  double t_s = 0.0;
+  std::uint64_t seed = 3;
+
+  void feed(HeadingHypotheses& bank, double spin, double seconds) {
+    NavState turned = site;
+    turned.q_nb = site.q_nb * Eigen::Quaterniond(Eigen::AngleAxisd(toolface_rad,
+                                                                   Eigen::Vector3d::UnitZ()));
+    StaticImu imu(turned, {}, testing::kRateHz, seed++, spin);
+    const int epochs = static_cast<int>(std::lround(seconds * testing::kRateHz));
+    for (int k = 0; k < epochs; ++k) {
+      ImuIncrement increment = imu.next();
+      increment.t_s += t_s;
+      bank.step(increment);
+    }
+    toolface_rad += spin * seconds;
+    t_s += seconds;
+  }
+};
+
+// A still (or sliding) tool is not split on the mirror's account however long its heading
+// interval reaches across the east-west line: its cross-axis biases and the Earth rate across
+// its axis are one unknown on either side. Nor is a slide's orientation (half a turn) or rocking
+// (back and forth). Once it rotates (a full turn, net, within 10 min), either way round or as
+// slowly as 1 rpm, it is split into hypotheses 1.5 times narrower than it is then.
+TEST(HeadingHypotheses, TheMirrorWaitsForTheToolToRotate) {
+  NavState site = testing::static_truth_state();
+  site.q_nb = quaternion_from_mwd(
+      {.inclination_rad = 85.0 * kDeg, .toolface_rad = 0.0, .azimuth_rad = 89.0 * kDeg});
+  const FilterOptions options = uncertain_heading_start(5.0 * kDeg);
+  const auto still_minute = [&](TurningTool& tool) {
+    auto bank = std::make_unique<HeadingHypotheses>(
+        site, options, white_noise_plugins(site, 2), [&] { return white_noise_plugins(site, 2); });
+    tool.feed(*bank, 0.0, 60.0);
+    return bank;
+  };
+  const double pi = std::numbers::pi;
+  {
+    TurningTool tool{site};
+    const auto bank = still_minute(tool);
+    EXPECT_EQ(bank->splits(), 0u);
+    EXPECT_EQ(bank->hypotheses(), 1u);
+    // Still across the line, 1 deg away: +-3 sigma reaches well over it.
+    EXPECT_GT(std::sqrt(bank->covariance()(kHeading, kHeading)), 2.0 * kDeg);
+    tool.feed(*bank, pi / 10.0, 10.0);  // an orientation: half a turn in 10 s
+    tool.feed(*bank, 0.0, 60.0);
+    for (int k = 0; k < 6; ++k) {  // rocking: a quarter turn and back, six times
+      tool.feed(*bank, pi / 10.0, 5.0);
+      tool.feed(*bank, -pi / 10.0, 5.0);
+    }
+    EXPECT_EQ(bank->splits(), 0u) << "an orientation or rocking";
+  }
+  for (const double spin : {4.0 * pi, -4.0 * pi}) {  // 120 rpm
+    TurningTool tool{site};
+    const auto bank = still_minute(tool);
+    const double sigma_still = std::sqrt(bank->covariance()(kHeading, kHeading));
+    tool.feed(*bank, spin, 1.0);
+    EXPECT_EQ(bank->splits(), 1u) << spin;
+    ASSERT_GT(bank->hypotheses(), 1u) << spin;
+    const double hypothesis_sigma =
+        std::sqrt(bank->most_probable().covariance()(kHeading, kHeading));
+    EXPECT_NEAR(hypothesis_sigma / sigma_still, 1.0 / 1.5, 0.05) << spin;
+  }
+  {
+    TurningTool tool{site};
+    const auto bank = still_minute(tool);
+    tool.feed(*bank, 2.0 * pi / 60.0, 55.0);  // 1 rpm: 11/12 of a turn
+    EXPECT_EQ(bank->splits(), 0u);
+    tool.feed(*bank, 2.0 * pi / 60.0, 10.0);
+    EXPECT_EQ(bank->splits(), 1u) << "1 rpm";
   }
 }
 
 // A running filter is checked at every epoch as a start is
-// (FilterOptions::heading_hypotheses_split_running): a tool horizontal near east-west, started
-// one plain filter at a heading sigma of 0.2 deg (below the mirror's quarter of a degree) whose
-// heading uncertainty then grows (no aid; a gyro bias prior of 200 deg/h), becomes a bank of
-// hypotheses 1.5 times narrower once its +-3 sigma headings reach the east-west line, 5 deg
-// away (sigma 5/3 deg); the bank is that filter's distribution (the mixture's mean and
+// (FilterOptions::heading_hypotheses_split_running; here at every epoch, rotating or not, the
+// ablation of ::heading_hypotheses_mirror_at_rotation, for the rule's geometry): a tool
+// horizontal near east-west, still, started one plain filter at a heading sigma of 0.2 deg (below the mirror's quarter
+// of a degree) whose heading uncertainty then grows (no aid; a gyro bias prior of 200 deg/h),
+// becomes a bank of hypotheses 1.5 times narrower once its +-3 sigma headings reach the
+// east-west line, 5 deg away (sigma 5/3 deg); the bank is that filter's distribution (the mixture's mean and
 // covariance); without the rule it stays one filter.
 TEST(HeadingHypotheses, ARunningFilterWhoseHeadingComesToNeedTheBankSplits) {
   NavState site = testing::static_truth_state();
   site.q_nb = quaternion_from_mwd(
       {.inclination_rad = 88.0 * kDeg, .toolface_rad = 0.0, .azimuth_rad = 85.0 * kDeg});
   FilterOptions options = uncertain_heading_start(0.2 * kDeg);
+  options.heading_hypotheses_mirror_at_rotation = false;
   const double bias_sigma = 200.0 * kDeg / 3600.0;
   options.gyro_bias_sigma_radps.setConstant(bias_sigma);
   options.initial_core_covariance->diagonal().segment<3>(plugin::core_state::kGyroBias)

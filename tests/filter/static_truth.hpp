@@ -39,12 +39,16 @@ struct StaticImuErrors {
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  ///< m/s^2
 };
 
-/// Exact increments of the stationary truth plus white noise and constant biases.
+/// Exact increments of the stationary truth plus white noise and constant biases. With
+/// `spin_radps` the tool turns about its own axis (body z) at that rate from the truth's
+/// attitude at t = 0, C_nb(t) = C_nb(0) Rz(spin t), as a rotating drill string: the increments
+/// are the integrals of the body rate and specific force over each epoch (the Earth rate's
+/// coning, of order spin |w_ie| dt^2, left out).
 class StaticImu {
  public:
   StaticImu(const NavState& truth, const StaticImuErrors& errors, double rate_hz,
-            std::uint64_t seed)
-      : errors_(errors), dt_(1.0 / rate_hz), engine_(seed) {
+            std::uint64_t seed, double spin_radps = 0.0)
+      : errors_(errors), dt_(1.0 / rate_hz), spin_radps_(spin_radps), engine_(seed) {
     const Eigen::Matrix3d c_bn = truth.q_nb.toRotationMatrix().transpose();
     omega_ib_b_ = c_bn * earth_rate_n(truth.latitude_rad);
     f_ib_b_ = -(c_bn * gravity_n(truth.latitude_rad, truth.height_m));
@@ -57,17 +61,37 @@ class StaticImu {
     increment.dt_s = dt_;
     const double sd_theta = errors_.gyro_arw * std::sqrt(dt_);
     const double sd_v = errors_.accel_vrw * std::sqrt(dt_);
+    const Eigen::Vector3d delta_theta =
+        integral_in_body(omega_ib_b_, errors_.gyro_bias, increment.t_s);
+    const Eigen::Vector3d delta_v = integral_in_body(f_ib_b_, errors_.accel_bias, increment.t_s);
     for (int i = 0; i < 3; ++i) {
-      increment.delta_theta_b(i) =
-          (omega_ib_b_(i) + errors_.gyro_bias(i)) * dt_ + sd_theta * normal_(engine_);
-      increment.delta_v_b(i) = (f_ib_b_(i) + errors_.accel_bias(i)) * dt_ + sd_v * normal_(engine_);
+      increment.delta_theta_b(i) = delta_theta(i) + sd_theta * normal_(engine_);
+      increment.delta_v_b(i) = delta_v(i) + sd_v * normal_(engine_);
     }
+    increment.delta_theta_b.z() += spin_radps_ * dt_;  // exactly 0 for a still tool
     return increment;
   }
 
  private:
+  // The integral over the epoch ending at t of a vector fixed in the navigation frame, read in
+  // the turning body axes (`at_start_b`: its body components at t = 0, Rz(-spin t) at_start_b
+  // at t), plus a constant body-axis `bias`.
+  Eigen::Vector3d integral_in_body(const Eigen::Vector3d& at_start_b, const Eigen::Vector3d& bias,
+                                   double t) const {
+    if (spin_radps_ == 0.0) return (at_start_b + bias) * dt_;
+    const double w = spin_radps_;
+    const double t0 = t - dt_;
+    const double cos_integral = (std::sin(w * t) - std::sin(w * t0)) / w;
+    const double sin_integral = (std::cos(w * t0) - std::cos(w * t)) / w;
+    const Eigen::Vector3d turning{cos_integral * at_start_b.x() + sin_integral * at_start_b.y(),
+                                  -sin_integral * at_start_b.x() + cos_integral * at_start_b.y(),
+                                  at_start_b.z() * dt_};
+    return turning + bias * dt_;
+  }
+
   StaticImuErrors errors_;
   double dt_;
+  double spin_radps_;
   std::mt19937_64 engine_;
   std::normal_distribution<double> normal_{0.0, 1.0};
   Eigen::Vector3d omega_ib_b_, f_ib_b_;

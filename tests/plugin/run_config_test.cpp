@@ -81,6 +81,7 @@ void expect_same_options(const FilterOptions& a, const FilterOptions& b, double 
   EXPECT_EQ(a.heading_hypotheses_likelihood_power, b.heading_hypotheses_likelihood_power);
   EXPECT_EQ(a.heading_hypotheses_hold_together, b.heading_hypotheses_hold_together);
   EXPECT_EQ(a.heading_hypotheses_split_running, b.heading_hypotheses_split_running);
+  EXPECT_EQ(a.heading_hypotheses_mirror_at_rotation, b.heading_hypotheses_mirror_at_rotation);
   EXPECT_TRUE(a.position_sigma_m.isApprox(b.position_sigma_m, tolerance));
   EXPECT_TRUE(a.velocity_sigma_mps.isApprox(b.velocity_sigma_mps, tolerance));
   EXPECT_TRUE(a.attitude_sigma_rad.isApprox(b.attitude_sigma_rad, tolerance));
@@ -105,6 +106,7 @@ TEST_F(RunConfigTest, FilterDefaultsAreFilterOptionsDefaults) {
       "covariance_interval_s": 0.1, "max_consecutive_rejections": 3,
       "second_order_attitude_correlation_s": 900, "heading_hypothesis_likelihood_power": 0.5,
       "heading_hypothesis_hold_together": true, "heading_hypothesis_split_running": true,
+      "heading_hypothesis_mirror_at_rotation": true,
       "scale_factor_sigma_ppm": {"gyro": 0, "accel": 0}, "feedback": "closed_loop"})");
   expect_same_options(parse_filter_section(stated, "/filter").options, defaults, 1e-6);
 }
@@ -115,6 +117,7 @@ TEST_F(RunConfigTest, FilterSectionIsReadInSiUnits) {
       "covariance_interval_s": 0, "max_consecutive_rejections": 0,
       "second_order_attitude_correlation_s": 0, "heading_hypothesis_likelihood_power": 1,
       "heading_hypothesis_hold_together": false, "heading_hypothesis_split_running": false,
+      "heading_hypothesis_mirror_at_rotation": false,
       "scale_factor_sigma_ppm": {"gyro": [10, 20, 30], "accel": 50}})");
   const FilterOptions options = parse_filter_section(filter, "/filter").options;
   EXPECT_NEAR(options.attitude_sigma_rad.y(), 2.0 * std::numbers::pi / 180.0, 1e-15);
@@ -125,6 +128,7 @@ TEST_F(RunConfigTest, FilterSectionIsReadInSiUnits) {
   EXPECT_EQ(options.heading_hypotheses_likelihood_power, 1.0);
   EXPECT_FALSE(options.heading_hypotheses_hold_together);
   EXPECT_FALSE(options.heading_hypotheses_split_running);
+  EXPECT_FALSE(options.heading_hypotheses_mirror_at_rotation);
   EXPECT_NEAR(options.gyro_scale_factor_sigma.z(), 30e-6, 1e-18);
   EXPECT_NEAR(options.accel_scale_factor_sigma.x(), 50e-6, 1e-18);
   EXPECT_EQ(options.position_sigma_m, FilterOptions{}.position_sigma_m);

@@ -16,7 +16,7 @@ constexpr int kHeading = core::kAttitude + 2;  // phi_U
 // A bank is formed when the start's heading sigma exceeds this many hypothesis sigmas (10 deg
 // at the default 4): below it one first-order filter with the second-order attitude term is
 // consistent (docs/drilling-envelope.md, section 4: aligned starts of 5.7-7.9 deg at 60 N),
-// unless the start's heading interval reaches the east-west mirror (below).
+// unless it rotates with its heading interval within reach of the east-west mirror (below).
 constexpr double kSplitAbove = 2.5;
 // The east-west mirror. A rotating tool's cross-axis gyros measure the Earth rate across the
 // tool axis free of their biases: the lateral part omega_N sin(psi) and, on the high side,
@@ -27,9 +27,9 @@ constexpr double kSplitAbove = 2.5;
 // at a sigma the mirror's data support (120 rpm, 57 N, inclination 82, azimuth 87 turning to
 // 83: 94.4 deg estimated against a truth of 83.4, the mirror at 96.6; the heading sigma 0.3 deg;
 // docs/drilling-envelope.md, section 7). A bank reads the two sides through its weights, so
-// one filter, at the start or running, is split whenever its +-3 sigma heading interval crosses
-// the east-west line with the inclination above 60 deg (|cos I|, the share of the heading's
-// information that is first order on that line, below this), at any heading sigma above
+// one rotating filter is split whenever its +-3 sigma heading interval crosses the east-west
+// line with the inclination above 60 deg (|cos I|, the share of the heading's information that
+// is first order on that line, below this), at any heading sigma above
 // kMirrorFloor: a start of 3.5 deg, 7 deg across the line (2 sigma), settled 5.5 deg off at a
 // sigma of 0.6 (north 3.5 m against 0.4) as one filter (section 7).
 constexpr double kMirrorShareBelow = 0.5;
@@ -45,6 +45,14 @@ constexpr double kMirrorFloor = 0.25 * std::numbers::pi / 180.0;
 // times its hypotheses' (a survivor held as a consider state near east-west grows; one that
 // estimates its heading does not), not at every epoch.
 constexpr double kMirrorSplitAbove = 1.5;
+// The mirror needs a rotating tool: with the tool still or sliding, the cross-axis gyros' biases
+// and the Earth rate across the tool axis are one unknown, the heading's information there is
+// weak on both sides of the line, and a filter does not settle on either side. So (by default,
+// FilterOptions::heading_hypotheses_mirror_at_rotation) the mirror test is made only while the
+// tool rotates: one full turn, net, within the last 10 min (filter/net_rotation_window.hpp). A
+// sliding east-west well split at its start kept 6-8 hypotheses of 2-3 deg for hours and ended
+// with the azimuth sigma 1.8 times one filter's (docs/drilling-envelope.md, section 7); a filter
+// that starts rotating with its heading interval still across the line is split then.
 constexpr double kSpreadSigmas = 3.0;  // the grid covers +-3 start sigmas
 constexpr int kMaxHalfWidth = 7;       // at most 15 hypotheses
 constexpr double kDropBelow = 1e-5;    // of the total weight
@@ -105,25 +113,49 @@ FilterOptions with_start(const FilterOptions& options, const SplitStart& start) 
   return split;
 }
 
-// Without an alignment prior: the start's Gaussian split along its heading, on a grid of
-// spacing 2 s_c over +-3 start sigmas, each hypothesis conditioned linearly on its heading.
+// A Gaussian of covariance P split along its heading (variance s0^2 = P_UU) into hypotheses of
+// heading sigma s_c on a grid of spacing 2 s_c over +-3 s0 (at most kMaxHalfWidth each side),
+// each conditioned linearly on its heading: hypothesis i is corrected by gain d_i (gain =
+// P e_U / s0^2, d_i = i spacing) and has the covariance P - (1 - s_c^2 / s0^2) gain e_U^T P and
+// the prior log-weight -d_i^2 / (2 (s0^2 - s_c^2)). For the start's fixed-size core (15 x 15)
+// and a running filter's whole P alike.
+template <typename Covariance>
+struct HeadingGrid {
+  Eigen::Matrix<double, Covariance::RowsAtCompileTime, 1> gain;
+  Covariance conditioned;
+  double spacing = 0.0;
+  int half_width = 0;
+  double residual_variance = 0.0;
+
+  double heading_error(int i) const { return i * spacing; }
+  double log_weight(int i) const {
+    return -0.5 * heading_error(i) * heading_error(i) / residual_variance;
+  }
+};
+
+template <typename Covariance>
+HeadingGrid<Covariance> heading_grid(const Covariance& p, double sigma) {
+  HeadingGrid<Covariance> grid;
+  const double variance = p(kHeading, kHeading);
+  grid.spacing = 2.0 * sigma;
+  grid.half_width = std::min(
+      kMaxHalfWidth,
+      static_cast<int>(std::ceil(kSpreadSigmas * std::sqrt(variance) / grid.spacing)));
+  grid.gain = p.col(kHeading) / variance;
+  grid.conditioned = p - (1.0 - sigma * sigma / variance) * grid.gain * p.row(kHeading);
+  grid.conditioned = 0.5 * (grid.conditioned + grid.conditioned.transpose()).eval();
+  grid.residual_variance = variance - sigma * sigma;
+  return grid;
+}
+
+// Without an alignment prior: the start's Gaussian split along its heading (heading_grid).
 std::vector<SplitStart> linear_split(const CoreEstimate& start,
                                      const Eigen::Matrix<double, 15, 15>& p0, double sigma) {
-  const double start_variance = p0(kHeading, kHeading);
-  const double spacing = 2.0 * sigma;
-  const int half_width = std::min(
-      kMaxHalfWidth,
-      static_cast<int>(std::ceil(kSpreadSigmas * std::sqrt(start_variance) / spacing)));
-  const Eigen::Matrix<double, 15, 1> gain = p0.col(kHeading) / start_variance;
-  Eigen::Matrix<double, 15, 15> p_split =
-      p0 - (1.0 - sigma * sigma / start_variance) * gain * p0.row(kHeading);
-  p_split = 0.5 * (p_split + p_split.transpose()).eval();
-  const double residual_variance = start_variance - sigma * sigma;
+  const HeadingGrid grid = heading_grid(p0, sigma);
   std::vector<SplitStart> starts;
-  for (int i = -half_width; i <= half_width; ++i) {
-    const double heading_error = i * spacing;
-    SplitStart split{start, p_split, -0.5 * heading_error * heading_error / residual_variance};
-    apply_core_correction(gain * heading_error, split.estimate);
+  for (int i = -grid.half_width; i <= grid.half_width; ++i) {
+    SplitStart split{start, grid.conditioned, grid.log_weight(i)};
+    apply_core_correction(grid.gain * grid.heading_error(i), split.estimate);
     starts.push_back(std::move(split));
   }
   return starts;
@@ -193,13 +225,15 @@ bool reaches_east_west_mirror(const Eigen::Quaterniond& q_nb, double reach_rad) 
 
 // The heading sigma of the hypotheses one filter of heading variance s^2 is split into, or 0 for
 // no split (s_c the hypothesis sigma): s_c when s is wider than one first-order filter can
-// hold; at most s / kMirrorSplitAbove when its heading interval reaches the east-west mirror,
-// s is above kMirrorFloor and above kMirrorSplitAbove times `last_split_sigma`, the sigma of the
-// hypotheses this filter was split into before (0: never).
+// hold; at most s / kMirrorSplitAbove when `mirror_possible` (the tool rotates), its heading
+// interval reaches the east-west mirror, s is above kMirrorFloor and above kMirrorSplitAbove
+// times `last_split_sigma`, the sigma of the hypotheses this filter was split into before
+// (0: never).
 double split_hypothesis_sigma(const NavState& state, double heading_variance, double sigma,
-                              double last_split_sigma) {
+                              double last_split_sigma, bool mirror_possible) {
   if (!(sigma > 0.0)) return 0.0;
   if (heading_variance > std::pow(kSplitAbove * sigma, 2)) return sigma;
+  if (!mirror_possible) return 0.0;
   const double heading_sigma = std::sqrt(heading_variance);
   if (heading_sigma > kMirrorFloor && heading_sigma > kMirrorSplitAbove * last_split_sigma &&
       reaches_east_west_mirror(state.q_nb, kSpreadSigmas * heading_sigma)) {
@@ -221,10 +255,13 @@ HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOption
   robust_weights_ = options.heading_hypotheses_robust_weights;
   hold_together_ = options.heading_hypotheses_hold_together;
   likelihood_power_ = options.heading_hypotheses_likelihood_power;
+  // Waiting for the rotation needs a running filter that can split.
+  mirror_at_rotation_ = options.heading_hypotheses_mirror_at_rotation && split_running_;
   const bool after_alignment = options.static_gyrocompass &&
                                (options.static_gyrocompass->bias_sigma_radps.array() > 0.0).all();
-  const double sigma =
-      split_hypothesis_sigma(initial, p0(kHeading, kHeading), hypothesis_sigma_rad_, 0.0);
+  // Whether the tool rotates is not known before its first epoch.
+  const double sigma = split_hypothesis_sigma(initial, p0(kHeading, kHeading),
+                                              hypothesis_sigma_rad_, 0.0, !mirror_at_rotation_);
   last_split_sigma_rad_ = sigma;
   if (sigma == 0.0) {
     hypotheses_.push_back({std::move(first), nullptr, 0.0});
@@ -258,12 +295,14 @@ HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOption
 
 void HeadingHypotheses::step(const ImuIncrement& raw) {
   for (Hypothesis& hypothesis : hypotheses_) hypothesis.navigator->step(raw);
+  rotation_.add(raw.t_s, raw.delta_theta_b.z());
   if (hypotheses_.size() == 1) {
     if (!split_running_) return;
     const MwdNavigator& running = *hypotheses_.front().navigator;
-    const double sigma =
-        split_hypothesis_sigma(running.state(), running.covariance()(kHeading, kHeading),
-                               hypothesis_sigma_rad_, last_split_sigma_rad_);
+    const bool mirror_possible = !mirror_at_rotation_ || rotation_.rotating();
+    const double sigma = split_hypothesis_sigma(
+        running.state(), running.covariance()(kHeading, kHeading), hypothesis_sigma_rad_,
+        last_split_sigma_rad_, mirror_possible);
     if (sigma > 0.0) split_running_filter(sigma);
     return;
   }
@@ -282,23 +321,14 @@ void HeadingHypotheses::split_running_filter(double sigma) {
   Hypothesis running = std::move(hypotheses_.front());
   hypotheses_.clear();
   const MwdNavigator& filter = *running.navigator;
-  const Eigen::MatrixXd& p = filter.covariance();
-  const double variance = p(kHeading, kHeading);
-  const double spacing = 2.0 * sigma;
-  const int half_width = std::min(
-      kMaxHalfWidth, static_cast<int>(std::ceil(kSpreadSigmas * std::sqrt(variance) / spacing)));
-  const Eigen::VectorXd gain = p.col(kHeading) / variance;
-  Eigen::MatrixXd conditioned = p - (1.0 - sigma * sigma / variance) * gain * p.row(kHeading);
-  conditioned = 0.5 * (conditioned + conditioned.transpose()).eval();
-  const double residual_variance = variance - sigma * sigma;
-  for (int i = -half_width; i <= half_width; ++i) {
-    const double heading_error = i * spacing;
+  const HeadingGrid grid = heading_grid(filter.covariance(), sigma);
+  for (int i = -grid.half_width; i <= grid.half_width; ++i) {
     Hypothesis hypothesis{i == 0 ? running.plugins : make_plugins_(), nullptr,
-                          -0.5 * heading_error * heading_error / residual_variance};
-    hypothesis.navigator =
-        filter.split(*hypothesis.plugins.gyro, *hypothesis.plugins.accel,
-                     raw_aids(hypothesis.plugins), gain * heading_error, conditioned,
-                     consider_heading_);
+                          grid.log_weight(i)};
+    hypothesis.navigator = filter.split(*hypothesis.plugins.gyro, *hypothesis.plugins.accel,
+                                        raw_aids(hypothesis.plugins),
+                                        grid.gain * grid.heading_error(i), grid.conditioned,
+                                        consider_heading_);
     hypotheses_.push_back(std::move(hypothesis));
   }
   ++splits_;

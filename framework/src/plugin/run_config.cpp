@@ -486,6 +486,8 @@ FilterConfig parse_filter_section(const nlohmann::json& json, const std::string&
       "heading_hypothesis_hold_together", out.heading_hypotheses_hold_together);
   out.heading_hypotheses_split_running = reader.boolean_or(
       "heading_hypothesis_split_running", out.heading_hypotheses_split_running);
+  out.heading_hypotheses_mirror_at_rotation = reader.boolean_or(
+      "heading_hypothesis_mirror_at_rotation", out.heading_hypotheses_mirror_at_rotation);
   if (reader.has("heading_hypothesis_likelihood_power")) {
     out.heading_hypotheses_likelihood_power =
         number_in(reader, "heading_hypothesis_likelihood_power", 0.05, 1.0, "");

@@ -158,6 +158,15 @@ struct FilterOptions {
   /// as a start would. false, the ablation: the test is made at the start only
   /// (docs/drilling-envelope.md, section 7).
   bool heading_hypotheses_split_running = true;
+  /// Whether the east-west mirror test waits for the tool to rotate (run config
+  /// "filter/heading_hypothesis_mirror_at_rotation"): made only while the tool has turned a
+  /// full turn about its axis, net, within the last 10 min (filter/net_rotation_window.hpp; the
+  /// mirror is a rotating tool's), so a start is not split on the mirror's account and a
+  /// running filter is split at its first rotation if its heading interval still reaches the
+  /// line. Without heading_hypotheses_split_running the start is tested as under false, the
+  /// ablation: the test is made at the start and at every epoch, sliding or not (a sliding
+  /// east-west well then keeps 6-8 hypotheses for hours; docs/drilling-envelope.md, section 7).
+  bool heading_hypotheses_mirror_at_rotation = true;
   /// Whether the bank's weights are robust to aid outliers (run config "filter/heading_
   /// hypothesis_robust_weights"): an innovation gated out by every hypothesis does not weigh
   /// them (the aid, not a heading, failed there), and each one that does counts by a Student-t

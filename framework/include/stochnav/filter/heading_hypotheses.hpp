@@ -1,10 +1,10 @@
 #pragma once
 // A bank of navigation filters over the heading (a Gaussian sum), for a start that leaves the
-// heading uncertain by more than 10 deg, or by more than a quarter of a degree within reach of
-// the east-west mirror (heading_hypotheses.cpp: a rotating tool's cross axes cannot tell psi
-// from 180 deg - psi; there the hypotheses are at most the start's sigma / 1.5 wide), and for a
-// running filter whose heading comes to need it (below): a static alignment at high latitude,
-// where the
+// heading uncertain by more than 10 deg, and for a running filter whose heading comes to need it
+// (below): uncertain by more than a quarter of a degree within reach of the east-west mirror
+// while the tool rotates (heading_hypotheses.cpp: a rotating tool's cross axes cannot tell psi
+// from 180 deg - psi; there the hypotheses are at most the filter's sigma / 1.5 wide), or by
+// more than 10 deg. The first case: a static alignment at high latitude, where the
 // horizontal Earth rate is a fraction of the equator's (80 N: a sixth) and a FOG's turn-on bias
 // may be as large. The gyrocompass's heading is then far from Gaussian (seed 1 at 80 N: 120 deg
 // off while the linearised fine alignment said 18 +- 18), and one extended Kalman filter
@@ -24,13 +24,15 @@
 // (corrected by P0 e_U d_i / s0^2, covariance P0 - (1 - s_c^2 / s0^2) P0 e_U e_U^T P0 / s0^2,
 // weight exp(-d_i^2 / (2 (s0^2 - s_c^2))): N(0, P0) to within 1.5 % in density).
 //
-// A running filter (FilterOptions::heading_hypotheses_split_running) is checked at every epoch
-// as a start is: a heading sigma s above 10 deg, or above a quarter of a degree with its +-3 s
-// headings across the east-west line at an inclination above 60 deg (a well turned east-west,
-// or a heading uncertainty grown there), and above 1.5 times its hypotheses' sigma if it was
-// split before, splits it as a start without an alignment is, each hypothesis a whole copy of
-// the filter (MwdNavigator::split: its augmented states, open aid intervals and reference
-// trajectory) corrected along the heading, with the conditioned covariance.
+// A running filter (FilterOptions::heading_hypotheses_split_running) is checked at every epoch:
+// a heading sigma s above 10 deg, or above a quarter of a degree with its +-3 s headings across
+// the east-west line at an inclination above 60 deg while the tool rotates (a full turn about
+// its axis, net, within the last 10 min, FilterOptions::heading_hypotheses_mirror_at_rotation:
+// the first rotation after a still start, a well turned east-west, a heading uncertainty grown
+// there), and above 1.5 times its hypotheses' sigma if it was split before, splits it as a start
+// without an alignment is, each hypothesis a whole copy of the filter (MwdNavigator::split: its
+// augmented states, open aid intervals and reference trajectory) corrected along the heading,
+// with the conditioned covariance.
 //
 // In a horizontal east-west hole each hypothesis holds its heading as a consider state
 // (FilterOptions::heading_considered, ::heading_hypotheses_consider_heading): no update corrects
@@ -63,10 +65,9 @@
 // The outputs are the mixture's: the mean (about the most probable hypothesis, as an error
 // state) and the covariance sum_i w_i (P_i + (x_i - x)(x_i - x)^T) of the 15 core states.
 // Innovations and health are the most probable hypothesis'. With one hypothesis (a start
-// whose heading sigma is below 2.5 s_c and away from the mirror, or s_c = 0) every output is
-// that filter's own, until it splits. Each hypothesis is a whole navigator: a bank that cannot
-// single out a heading (sliding east-west at 74 N: 21 hypotheses after 8 h) costs that many
-// filters.
+// whose heading sigma is below 2.5 s_c, or s_c = 0) every output is that filter's own, until it
+// splits. Each hypothesis is a whole navigator: a bank that cannot single out a heading (sliding
+// east-west at 74 N: 21 hypotheses after 8 h) costs that many filters.
 
 #include <Eigen/Core>
 #include <functional>
@@ -77,6 +78,7 @@
 #include "stochnav/filter/core_correction.hpp"
 #include "stochnav/filter/filter_options.hpp"
 #include "stochnav/filter/mwd_navigator.hpp"
+#include "stochnav/filter/net_rotation_window.hpp"
 
 namespace stochnav {
 
@@ -149,6 +151,8 @@ class HeadingHypotheses final {
   double hypothesis_sigma_rad_ = 0.0;  // FilterOptions::heading_hypothesis_sigma_rad
   double last_split_sigma_rad_ = 0.0;  // the hypotheses' heading sigma at the last split
   bool split_running_ = true;          // FilterOptions::heading_hypotheses_split_running
+  bool mirror_at_rotation_ = true;     // FilterOptions::heading_hypotheses_mirror_at_rotation
+  NetRotationWindow rotation_;         // the tool's net rotation about its axis, last 10 min
   bool consider_heading_ = true;       // FilterOptions::heading_hypotheses_consider_heading
   std::size_t splits_ = 0;
   bool robust_weights_ = true;  // FilterOptions::heading_hypotheses_robust_weights

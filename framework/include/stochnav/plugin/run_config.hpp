@@ -28,6 +28,7 @@
 //       "heading_hypothesis_robust_weights": true,      // the bank's weights bound outliers
 //       "heading_hypothesis_hold_together": true,       // one consider rule for the bank
 //       "heading_hypothesis_split_running": true,       // a running filter may become a bank
+//       "heading_hypothesis_mirror_at_rotation": true,  // the mirror split waits for rotation
 //       "heading_hypothesis_likelihood_power": 0.5,     // [0.05, 1]; the weights' tempering
 //       "scale_factor_sigma_ppm": {"gyro": 0, "accel": 0},   // >= 0; > 0 adds the 3 states
 //       "feedback": "closed_loop"},                     // the only mode implemented
