@@ -9,13 +9,15 @@
 // memory after 1 M and after 5 M epochs (flat: nothing grows with the record's length).
 // Against KF-GINS, whose figure is a whole process (parse and output included), compare like
 // for like with bench/nav_whole_process.py.
-// Usage: navigation_bench [epochs]   (default 2,000,000)
+// Usage: navigation_bench [epochs] [layout]   (default 2,000,000; layout: 15, 21sf or 21gm runs
+// that layout only, with P every epoch, for a profiler)
 
 #include <sys/resource.h>
 
 #include <fmt/format.h>
 
 #include <ctime>
+#include <string>
 
 #include "stochnav/filter/mwd_navigator.hpp"
 #include "stochnav/ins/earth.hpp"
@@ -119,6 +121,20 @@ int main(int argc, char** argv) {
   const Case cases[] = {{"15 states (core)", white, FilterOptions{}},
                         {"21 states (core + scale factors)", white, scale_factors},
                         {"21 states (core + 6 Gauss-Markov)", gauss_markov, FilterOptions{}}};
+
+  if (argc > 2) {
+    const std::string only = argv[2];
+    const std::size_t index = only == "15" ? 0 : only == "21sf" ? 1 : only == "21gm" ? 2 : 3;
+    if (index == 3) {
+      fmt::print(stderr, "unknown layout '{}': 15, 21sf or 21gm\n", only);
+      return 2;
+    }
+    FilterOptions every_epoch = cases[index].options;
+    every_epoch.covariance_interval_s = 0.0;
+    fmt::print("{}, P every epoch: {:.0f} epochs/s\n", cases[index].name,
+               run(cases[index].plugins, initial, every_epoch, epochs));
+    return 0;
+  }
 
   fmt::print("MWD navigator: INS + ESKF, {} Hz IMU, 1 Hz static-position updates, {} epochs "
              "(every-epoch cases a quarter), in memory (no parsing, no output), per second of this "

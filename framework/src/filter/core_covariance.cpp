@@ -9,6 +9,49 @@ constexpr int kCore = 15;  // kNav + kBias
 // Rows of T and P'_nn are computed in columns padded from 9 to 12: whole SIMD registers, no
 // scalar tail (the 3 extra rows, read from Phi's rows 9..11, are never used).
 constexpr int kPadded = 12;
+// Three 4-lane vectors hold a padded column of 12 doubles (GCC's vector extension: one AVX2
+// register each, two SSE2 registers in the default clone). Loads and stores through a type that
+// may alias doubles at any 8-byte alignment.
+using Lanes = double __attribute__((vector_size(32)));
+using UnalignedLanes = double __attribute__((vector_size(32), aligned(8), may_alias));
+
+// Three columns of a product at once, out(:, c) = sum_k column(k)(:) * scalar(k, c) over k < N,
+// each entry summed in k order (the same bits as one column at a time): each entry is a chain
+// of N dependent additions, and one column's three register-wide chains leave the adder idle
+// for most of each addition's latency; three columns fill it (9 accumulators, 3 loads and a
+// broadcast: 13 of the 16 AVX2 registers).
+template <int N, typename Column, typename Scalar>
+[[gnu::always_inline]] inline void three_columns(Column column, Scalar scalar, double* out0,
+                                                 double* out1, double* out2) {
+  Lanes s00{}, s01{}, s02{}, s10{}, s11{}, s12{}, s20{}, s21{}, s22{};
+  for (int k = 0; k < N; ++k) {
+    const auto* c = reinterpret_cast<const UnalignedLanes*>(column(k));
+    const Lanes f0 = c[0], f1 = c[1], f2 = c[2];
+    double x = scalar(k, 0);
+    Lanes b = {x, x, x, x};
+    s00 += f0 * b;
+    s01 += f1 * b;
+    s02 += f2 * b;
+    x = scalar(k, 1);
+    b = Lanes{x, x, x, x};
+    s10 += f0 * b;
+    s11 += f1 * b;
+    s12 += f2 * b;
+    x = scalar(k, 2);
+    b = Lanes{x, x, x, x};
+    s20 += f0 * b;
+    s21 += f1 * b;
+    s22 += f2 * b;
+  }
+  for (const auto& [out, first, second, third] :
+       {std::tuple{out0, s00, s01, s02}, std::tuple{out1, s10, s11, s12},
+        std::tuple{out2, s20, s21, s22}}) {
+    auto* lanes = reinterpret_cast<UnalignedLanes*>(out);
+    lanes[0] = first;
+    lanes[1] = second;
+    lanes[2] = third;
+  }
+}
 
 // x86-64: an AVX2 clone chosen at load time where the CPU has it (4 doubles per instruction),
 // the baseline SSE2 code elsewhere. Neither contracts to FMA (AVX2 does not imply it), and each
@@ -28,26 +71,20 @@ template <int N>
 [[gnu::always_inline]] inline void propagate_nav_diagonal_body(const double* phi, const double* q,
                                                                double* p, long p_stride) {
   static_assert(N >= kPadded);
+  static_assert(N % 3 == 0 && kNav % 3 == 0);
   // T = [A B] P (9 x N), column j = sum_k Phi(:, k) P(k, j).
   alignas(32) double t[N][kPadded];
-  for (int j = 0; j < N; ++j) {
-    double column[kPadded] = {};
-    for (int k = 0; k < N; ++k) {
-      const double p_kj = p[j * p_stride + k];
-      const double* phi_k = phi + k * N;
-      for (int i = 0; i < kPadded; ++i) column[i] += phi_k[i] * p_kj;
-    }
-    for (int i = 0; i < kPadded; ++i) t[j][i] = column[i];
+  for (int j = 0; j < N; j += 3) {
+    three_columns<N>([phi](int k) { return phi + k * N; },
+                     [p, p_stride, j](int k, int c) { return p[(j + c) * p_stride + k]; }, t[j],
+                     t[j + 1], t[j + 2]);
   }
   // P'_nn - Q_nn = T [A B]^T (9 x 9), column j = sum_k T(:, k) Phi(j, k).
   alignas(32) double next_nn[kNav][kPadded];
-  for (int j = 0; j < kNav; ++j) {
-    double column[kPadded] = {};
-    for (int k = 0; k < N; ++k) {
-      const double phi_jk = phi[k * N + j];
-      for (int i = 0; i < kPadded; ++i) column[i] += t[k][i] * phi_jk;
-    }
-    for (int i = 0; i < kPadded; ++i) next_nn[j][i] = column[i];
+  for (int j = 0; j < kNav; j += 3) {
+    three_columns<N>([&t](int k) { return t[k]; },
+                     [phi, j](int k, int c) { return phi[k * N + j + c]; }, next_nn[j],
+                     next_nn[j + 1], next_nn[j + 2]);
   }
   // P' from the lower triangles, mirrored: P'_nn, then P'_bn = D T_b^T + Q_bn, then
   // D P_bb D + Q_bb.
