@@ -190,8 +190,9 @@ TEST(HeadingHypotheses, ARotatingToolWithinReachOfTheEastWestMirrorFormsABank) {
   }
 }
 
-// Feeds `seconds` of a tool at the site turning about its axis at `spin` rad/s to `bank`,
-// continuing the truth's toolface and the record's time from `at`.
+// A tool at the site turning about its axis: feed() gives `bank` `seconds` of it at `spin`
+// rad/s, continuing the truth's toolface and the record's time from where the last feed left
+// them.
 struct TurningTool {
   NavState site;
   double toolface_rad = 0.0;
@@ -270,11 +271,11 @@ TEST(HeadingHypotheses, TheMirrorWaitsForTheToolToRotate) {
 // A running filter is checked at every epoch as a start is
 // (FilterOptions::heading_hypotheses_split_running; here at every epoch, rotating or not, the
 // ablation of ::heading_hypotheses_mirror_at_rotation, for the rule's geometry): a tool
-// horizontal near east-west, still, started one plain filter at a heading sigma of 0.2 deg (below the mirror's quarter
-// of a degree) whose heading uncertainty then grows (no aid; a gyro bias prior of 200 deg/h),
-// becomes a bank of hypotheses 1.5 times narrower once its +-3 sigma headings reach the
-// east-west line, 5 deg away (sigma 5/3 deg); the bank is that filter's distribution (the mixture's mean and
-// covariance); without the rule it stays one filter.
+// horizontal near east-west, still, started one plain filter at a heading sigma of 0.2 deg
+// (below the mirror's quarter of a degree) whose heading uncertainty then grows (no aid; a gyro
+// bias prior of 200 deg/h), becomes a bank of hypotheses 1.5 times narrower once its +-3 sigma
+// headings reach the east-west line, 5 deg away (sigma 5/3 deg); the bank is that filter's
+// distribution (the mixture's mean and covariance); without the rule it stays one filter.
 TEST(HeadingHypotheses, ARunningFilterWhoseHeadingComesToNeedTheBankSplits) {
   NavState site = testing::static_truth_state();
   site.q_nb = quaternion_from_mwd(

@@ -1,7 +1,8 @@
 #pragma once
-// A stationary tool with known truth for the filter tests: exact IMU increments of the Earth
-// rate and gravity, plus sensor errors drawn per seed, and test doubles of a white-noise model
-// and a noisy position / zero-velocity aid (the real plugins are tested in tests/plugin).
+// A stationary tool with known truth for the filter tests (optionally turning about its own
+// axis): exact IMU increments of the Earth rate and gravity, plus sensor errors drawn per seed,
+// and test doubles of a white-noise model and a noisy position / zero-velocity aid (the real
+// plugins are tested in tests/plugin).
 
 #include <Eigen/Geometry>
 #include <cmath>
