@@ -187,6 +187,60 @@ void expect_wide_kernel_matches_dense_product(int first_order, std::uint64_t see
   }
 }
 
+// The kernel's arithmetic written out one entry at a time, each sum in k order from zero:
+// T = [A B] P (9 x N), P'_nn = T [A B]^T + Q_nn, P'_bn = D T_b^T + Q_bn, P'_bb = D P_bb D + Q_bb,
+// lower triangles mirrored. However the kernel groups its columns into registers, it must add
+// the same products in the same order: the same bits.
+template <int N>
+NavDiagonalMatrix<N> summed_in_order(const NavDiagonalMatrix<N>& phi,
+                                     const NavDiagonalMatrix<N>& q,
+                                     const NavDiagonalMatrix<N>& p) {
+  Eigen::Matrix<double, 9, N> t;
+  for (int j = 0; j < N; ++j) {
+    for (int i = 0; i < 9; ++i) {
+      double sum = 0.0;
+      for (int k = 0; k < N; ++k) sum += phi(i, k) * p(k, j);
+      t(i, j) = sum;
+    }
+  }
+  NavDiagonalMatrix<N> out;
+  for (int j = 0; j < N; ++j) {
+    for (int i = j; i < N; ++i) {
+      double value = 0.0;
+      if (i < 9) {
+        for (int k = 0; k < N; ++k) value += t(i, k) * phi(j, k);
+        value += q(i, j);
+      } else if (j < 9) {
+        value = phi(i, i) * t(j, i) + q(i, j);
+      } else {
+        value = phi(i, i) * p(i, j) * phi(j, j) + q(i, j);
+      }
+      out(i, j) = out(j, i) = value;
+    }
+  }
+  return out;
+}
+
+template <int N>
+void expect_kernel_sums_in_order(int first_order, std::uint64_t seed) {
+  std::mt19937_64 engine(seed);
+  for (int trial = 0; trial < 100; ++trial) {
+    const NavDiagonalMatrix<N> phi = random_wide_transition<N>(engine, first_order);
+    const NavDiagonalMatrix<N> p0 = random_square_covariance<N>(engine);
+    const NavDiagonalMatrix<N> q = random_square_covariance<N>(engine) * 1e-3;
+    NavDiagonalMatrix<N> p = p0;
+    propagate_nav_diagonal_covariance<N>(phi, q, p);
+    EXPECT_TRUE(p == summed_in_order<N>(phi, q, p0)) << "N = " << N << ", trial " << trial;
+  }
+}
+
+TEST(NavDiagonalCovariance, EveryEntryIsSummedInOrderBitForBit) {
+  expect_kernel_sums_in_order<15>(0, 115);
+  expect_kernel_sums_in_order<21>(0, 121);
+  expect_kernel_sums_in_order<21>(6, 126);
+  expect_kernel_sums_in_order<27>(6, 127);
+}
+
 TEST(NavDiagonalCovariance, MatchesTheDenseProductWithScaleFactorStates) {
   expect_wide_kernel_matches_dense_product<18>(0, 18);
   expect_wide_kernel_matches_dense_product<21>(0, 21);

@@ -295,7 +295,7 @@ HeadingHypotheses::HeadingHypotheses(const NavState& initial, const FilterOption
 
 void HeadingHypotheses::step(const ImuIncrement& raw) {
   for (Hypothesis& hypothesis : hypotheses_) hypothesis.navigator->step(raw);
-  rotation_.add(raw.t_s, raw.delta_theta_b.z());
+  if (mirror_at_rotation_) rotation_.add(raw.t_s, raw.delta_theta_b.z());
   if (hypotheses_.size() == 1) {
     if (!split_running_) return;
     const MwdNavigator& running = *hypotheses_.front().navigator;
